@@ -1,0 +1,5 @@
+"""Let ``python -m rosreconf`` run the CLI."""
+
+from rosreconf.cli import main
+
+main()

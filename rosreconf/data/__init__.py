@@ -1,0 +1,1 @@
+"""Bundled JSON Schemas and other data files of rosreconf."""

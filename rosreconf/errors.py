@@ -1,0 +1,86 @@
+"""The one error family of rosreconf, and the problems it reports about user files.
+
+Library code raises these and never prints or exits; only ``rosreconf.cli`` turns them into
+messages and exit codes. Problems in user files are *collected* (every file, every problem)
+and raised together, because a user fixing a library wants the whole list in one run.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from rosreconf.model import Span
+
+
+class ExitCode(enum.IntEnum):
+    """The documented exit codes of every rosreconf command."""
+
+    OK = 0
+    FAILED = 1
+    """The check failed: invalid input files, no configuration possible, non-conformant graph."""
+    USAGE = 2
+    """The command line was wrong: unknown option, missing file, bad value."""
+    PLANNER = 3
+    """An external program (planner, graphviz, roslaunch) is missing, failed or timed out."""
+
+
+class Severity(enum.StrEnum):
+    """How bad a problem is: errors make a file invalid, warnings do not."""
+
+    ERROR = "error"
+    WARNING = "warning"
+
+
+@dataclass(frozen=True, order=True)
+class Problem:
+    """One thing wrong in a user file, with where it is and how to fix it.
+
+    Attributes:
+        span: file, line and column of the offending value.
+        message: what is wrong, in one sentence.
+        hint: how to fix it (may be empty).
+        code: a short stable identifier (``duplicate-key``) for tests and JSON consumers.
+        severity: error or warning.
+    """
+
+    span: Span
+    message: str
+    hint: str = ""
+    code: str = "invalid"
+    severity: Severity = Severity.ERROR
+
+    def __str__(self) -> str:
+        text = f"{self.span}: {self.severity}: {self.message}"
+        return f"{text} ({self.hint})" if self.hint else text
+
+
+class RosreconfError(Exception):
+    """The base of every error rosreconf raises on purpose; carries its exit code."""
+
+    exit_code: ExitCode = ExitCode.FAILED
+
+
+class InvalidInputError(RosreconfError):
+    """User files are invalid; ``problems`` lists every problem found, sorted by position."""
+
+    exit_code = ExitCode.FAILED
+
+    def __init__(self, problems: Iterable[Problem]) -> None:
+        self.problems = tuple(sorted(problems))
+        first = str(self.problems[0]) if self.problems else "invalid input"
+        more = len(self.problems) - 1
+        super().__init__(first + (f" (and {more} more problem(s))" if more > 0 else ""))
+
+
+class UsageError(RosreconfError):
+    """The command line asked for something impossible (unknown component, missing file)."""
+
+    exit_code = ExitCode.USAGE
+
+
+class ExternalToolError(RosreconfError):
+    """An external program is missing, failed, or ran out of time or memory."""
+
+    exit_code = ExitCode.PLANNER
