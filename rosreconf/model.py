@@ -147,6 +147,9 @@ class Component:
         metrics: named numbers (cost, settling_time, ...) for optimisation.
         description: free text for people.
         span: where the component was written.
+        where: positions of individual values for error messages, keyed ``"name"``,
+            ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
+            ``"provides.<i>"``, ``"requires.<i>"``.
     """
 
     name: str
@@ -161,6 +164,11 @@ class Component:
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
+    where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
+
+    def at(self, key: str) -> Span:
+        """Return where the value ``key`` (see ``where``) is written, else the component."""
+        return self.where.get(key, self.span)
 
     def may_serve_in(self, schema_name: str) -> bool:
         """Tell whether Table 1's "In Schema" column lets this component serve ``schema_name``."""
@@ -319,6 +327,8 @@ class InteroperabilitySchema:
         nominal: the declared running configuration, role -> component (may be empty).
         span: where the schema was written.
         source: the file it came from.
+        where: positions of values for error messages: ``"name"``, ``"nominal.<role>"``,
+            ``"role.<role>.abstraction"``.
     """
 
     name: str
@@ -329,6 +339,11 @@ class InteroperabilitySchema:
     nominal: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     span: Span = field(default=NOWHERE, compare=False)
     source: str = ""
+    where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
+
+    def at(self, key: str) -> Span:
+        """Return where the value ``key`` (see ``where``) is written, else the schema."""
+        return self.where.get(key, self.span)
 
     @property
     def display_name(self) -> str:

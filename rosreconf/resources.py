@@ -11,6 +11,9 @@ from __future__ import annotations
 import enum
 from importlib import resources
 from importlib.resources.abc import Traversable
+from pathlib import Path
+
+_CHECKOUT = Path(__file__).resolve().parent.parent
 
 
 class Bundle(enum.StrEnum):
@@ -24,7 +27,16 @@ class Bundle(enum.StrEnum):
 
 def bundled(kind: Bundle, name: str | None = None) -> Traversable:
     """Return the bundled folder ``kind``, or the file ``name`` inside it."""
-    root = resources.files(f"rosreconf.{kind.value}")
+    root: Traversable
+    if kind is Bundle.DATA:
+        root = resources.files("rosreconf.data")
+    else:
+        try:
+            root = resources.files(f"rosreconf.{kind.value}")
+        except ModuleNotFoundError:
+            # Run from a checkout whose folder shadows the installed package (python -m in the
+            # repository root): the folders sit beside the package.
+            root = _CHECKOUT / kind.value
     return root if name is None else root.joinpath(name)
 
 

@@ -1,0 +1,295 @@
+"""Check a loaded library L and configuration library C against the paper's rules.
+
+Structure (keys, types, name syntax) is the JSON Schema's job in ``loader``; this module
+checks what needs the whole picture: names that must refer to something, interfaces that
+must agree across components, requirements that some component must be able to meet (the
+condition of Lemma 4), and roles that some component must be able to fill. Every problem
+names the exact value and says how to fix it.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterator, Sequence
+
+from rosreconf.errors import Problem, Severity
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Interface,
+    InterfaceKind,
+    InteroperabilitySchema,
+    Span,
+)
+
+
+def check(
+    libraries: Sequence[ComponentLibrary],
+    schemas: Sequence[InteroperabilitySchema],
+    *,
+    library_complete: bool = True,
+) -> list[Problem]:
+    """Return every semantic problem of the library files and schema files, sorted.
+
+    When a library file could not be loaded (``library_complete`` false), checks that
+    need the whole library (does some component carry this label, provide this interface?)
+    are skipped for the schemas: they would only repeat the broken file's problem as
+    dozens of false ones.
+    """
+    problems: list[Problem] = []
+    components = [c for lib in libraries for c in lib.components]
+    problems.extend(_names(components))
+    if components:
+        library = ComponentLibrary.merge(libraries)
+        problems.extend(_couplings(library))
+        problems.extend(_interfaces(components))
+        problems.extend(_requirements(components))
+    problems.extend(_schema_names(schemas))
+    known = components if library_complete else []
+    for schema in schemas:
+        problems.extend(_schema(schema, known))
+    if components and schemas and library_complete:
+        problems.extend(_usage(components, schemas))
+    return sorted(problems)
+
+
+def _names(components: Sequence[Component]) -> Iterator[Problem]:
+    seen: dict[str, Component] = {}
+    folded: dict[str, Component] = {}
+    for c in components:
+        if c.name in seen:
+            first = seen[c.name]
+            yield Problem(
+                c.at("name"),
+                f"duplicate component name '{c.name}' (first defined at {first.at('name')})",
+                "give every component a unique name",
+                code="duplicate-component",
+            )
+            continue
+        other = folded.get(c.name.lower())
+        if other is not None:
+            yield Problem(
+                c.at("name"),
+                f"component names '{other.name}' and '{c.name}' differ only in letter case",
+                "rename one: PDDL, which rosreconf plans with, does not distinguish case",
+                code="case-collision",
+            )
+        seen[c.name] = c
+        folded[c.name.lower()] = c
+
+
+def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
+    for c in library:
+        for key, names in (("needs", c.needs), ("excludes", c.excludes)):
+            for name in sorted(names):
+                span = c.at(f"{key}.{name}")
+                if name == c.name:
+                    yield Problem(
+                        span,
+                        f"{c.name} {key} itself",
+                        f"remove '{name}' from {key}",
+                        code="self-coupling",
+                    )
+                elif name not in library:
+                    yield Problem(
+                        span,
+                        f"{c.name} {key} '{name}', which is not a component of the library",
+                        "name a component defined in a library file, or remove it",
+                        code="unknown-component",
+                    )
+        for name in sorted(c.needs & c.excludes):
+            yield Problem(
+                c.at(f"excludes.{name}"),
+                f"{c.name} both needs and excludes '{name}'",
+                "keep it in one list only",
+                code="contradictory-coupling",
+            )
+
+
+def _all_interfaces(c: Component) -> Iterator[tuple[Interface, Span]]:
+    for i, iface in enumerate(sorted(c.provides)):
+        yield iface, c.at(f"provides.{i}")
+    for i, req in enumerate(c.requires):
+        for iface in req.options:
+            yield iface, req.span if req.span.line else c.at(f"requires.{i}")
+
+
+def _interfaces(components: Sequence[Component]) -> Iterator[Problem]:
+    types: dict[tuple[InterfaceKind, str], tuple[str, str, Span]] = {}
+    kinds: dict[str, tuple[InterfaceKind, str]] = {}
+    for c in components:
+        for iface, span in _all_interfaces(c):
+            key = (iface.kind, iface.label)
+            first = types.get(key)
+            if first is None:
+                types[key] = (iface.type, c.name, span)
+            elif first[0] != iface.type:
+                yield Problem(
+                    span,
+                    f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
+                    f"{first[0]} in {first[1]} ({first[2]})",
+                    "one label must carry one message class; rename one of them",
+                    code="type-conflict",
+                )
+            other = kinds.get(iface.label)
+            if other is None:
+                kinds[iface.label] = (iface.kind, c.name)
+            elif other[0] != iface.kind:
+                yield Problem(
+                    span,
+                    f"'{iface.label}' is a {iface.kind} in {c.name} but a {other[0]} in {other[1]}",
+                    "use different labels for a topic and a service",
+                    code="kind-conflict",
+                    severity=Severity.WARNING,
+                )
+
+
+def _requirements(components: Sequence[Component]) -> Iterator[Problem]:
+    provided = {iface for c in components for iface in c.provides}
+    for c in components:
+        for i, req in enumerate(c.requires):
+            if any(o in provided for o in req.options):
+                continue
+            verb = "calls" if req.options[0].kind is InterfaceKind.SERVICE else "subscribes to"
+            yield Problem(
+                req.span if req.span.line else c.at(f"requires.{i}"),
+                f"{c.name} {verb} {req}, which no component in the library provides",
+                "add a component that provides it, or fix the label or type",
+                code="unmet-requirement",
+            )
+
+
+def _schema_names(schemas: Sequence[InteroperabilitySchema]) -> Iterator[Problem]:
+    seen: dict[str, InteroperabilitySchema] = {}
+    for s in schemas:
+        if s.name in seen:
+            yield Problem(
+                s.at("name"),
+                f"duplicate schema name '{s.name}' (first defined at {seen[s.name].at('name')})",
+                "give every interoperability schema a unique name",
+                code="duplicate-schema",
+            )
+        seen.setdefault(s.name, s)
+
+
+def _schema(s: InteroperabilitySchema, components: Sequence[Component]) -> Iterator[Problem]:
+    by_name = {c.name: c for c in components}
+    labels = {c.abstraction for c in components}
+    roles: dict[str, Span] = {}
+    for role in s.graph.roles:
+        if role.name in roles:
+            yield Problem(
+                role.span,
+                f"duplicate role '{role.name}' (first at line {roles[role.name].line})",
+                "give every role of a schema a unique name",
+                code="duplicate-role",
+            )
+            continue
+        roles[role.name] = role.span
+        if components and role.abstraction not in labels:
+            yield Problem(
+                s.at(f"role.{role.name}.abstraction"),
+                f"role '{role.name}' needs abstraction '{role.abstraction}', which no "
+                "component in the library carries",
+                _closest("abstraction labels in the library", role.abstraction, labels),
+                code="unknown-abstraction",
+            )
+    provided = {iface.label for c in components for iface in c.provides}
+    for e in s.graph.edges:
+        for end in (e.consumer, e.provider):
+            if end not in roles:
+                yield Problem(
+                    e.span,
+                    f"edge names role '{end}', which schema '{s.name}' does not define",
+                    _closest("roles", end, set(roles)),
+                    code="unknown-role",
+                )
+        if e.consumer == e.provider:
+            yield Problem(
+                e.span,
+                f"edge from role '{e.consumer}' to itself",
+                "a role cannot use what it provides itself; remove the edge",
+                code="self-edge",
+            )
+        for label in sorted(e.interfaces):
+            if components and label not in provided:
+                yield Problem(
+                    e.span,
+                    f"edge {e.consumer} -> {e.provider} allows interface '{label}', which no "
+                    "component provides",
+                    "fix the label, or remove it from interfaces",
+                    code="unknown-interface",
+                )
+    yield from _nominal(s, roles, by_name)
+
+
+def _nominal(
+    s: InteroperabilitySchema, roles: dict[str, Span], by_name: dict[str, Component]
+) -> Iterator[Problem]:
+    if not s.nominal:
+        return
+    for role, comp in s.nominal.items():
+        span = s.at(f"nominal.{role}")
+        if role not in roles:
+            yield Problem(
+                span,
+                f"nominal configuration names role '{role}', which the schema does not define",
+                _closest("roles", role, set(roles)),
+                code="unknown-role",
+            )
+        elif by_name and comp not in by_name:
+            yield Problem(
+                span,
+                f"nominal configuration puts '{comp}' in role '{role}', but the library has no "
+                "such component",
+                _closest("components", comp, set(by_name)),
+                code="unknown-component",
+            )
+        elif by_name and by_name[comp].abstraction != s.graph.role(role).abstraction:
+            yield Problem(
+                span,
+                f"nominal configuration puts {comp} ({by_name[comp].abstraction}) in role "
+                f"'{role}', which needs {s.graph.role(role).abstraction}",
+                "choose a component with the role's abstraction label",
+                code="wrong-abstraction",
+            )
+    for role in roles:
+        if role not in s.nominal:
+            yield Problem(
+                s.span,
+                f"nominal configuration of '{s.name}' leaves role '{role}' empty",
+                "fill every role, or remove 'nominal'",
+                code="incomplete-nominal",
+            )
+
+
+def _usage(
+    components: Sequence[Component], schemas: Sequence[InteroperabilitySchema]
+) -> Iterator[Problem]:
+    names = {s.name for s in schemas}
+    used = {r.abstraction for s in schemas for r in s.graph.roles}
+    for c in components:
+        for name in sorted(c.schemas - names):
+            yield Problem(
+                c.at(f"schemas.{name}"),
+                f"{c.name} may serve in schema '{name}', which none of the given files defines",
+                _closest("schemas", name, names),
+                code="unknown-schema",
+                severity=Severity.WARNING,
+            )
+        if c.abstraction not in used:
+            yield Problem(
+                c.at("abstraction"),
+                f"{c.name} has abstraction '{c.abstraction}', which no role of any schema uses",
+                "it can never be chosen; fix the label or add a role",
+                code="unused-abstraction",
+                severity=Severity.WARNING,
+            )
+
+
+def _closest(what: str, name: str, choices: set[str]) -> str:
+    close = difflib.get_close_matches(name, sorted(choices), n=1)
+    if close:
+        return f"did you mean '{close[0]}'?"
+    listed = ", ".join(sorted(choices)[:8]) or "none"
+    return f"known {what}: {listed}"

@@ -1,0 +1,475 @@
+"""Load component libraries and interoperability schemas from YAML, with positions.
+
+Each file goes through three steps: YAML -> positioned tree (``yamlsource``), structure
+checked against the shipped JSON Schema (``jsonschema``, errors mapped back to
+``file:line:column``), then model objects (``model``). Problems are collected per file and
+across files; the caller gets the model of every well-formed file *and* the list of
+problems, so ``validate`` can report everything in one run while ``enumerate`` can refuse
+to work on invalid input.
+"""
+
+from __future__ import annotations
+
+import difflib
+import enum
+import json
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+import jsonschema
+import jsonschema.exceptions
+
+from rosreconf import yamlsource as ys
+from rosreconf.checks import check
+from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    ConfigurationLibrary,
+    Edge,
+    Interface,
+    InterfaceKind,
+    InteroperabilitySchema,
+    Requirement,
+    Role,
+    RosLaunch,
+    Span,
+    SystemGraph,
+)
+from rosreconf.resources import Bundle, bundled
+
+YAML_SUFFIXES = (".yaml", ".yml")
+
+
+class DocumentKind(enum.StrEnum):
+    """The two file formats, named by their ``format:`` field."""
+
+    LIBRARY = "rosreconf/component-library"
+    SCHEMA = "rosreconf/interoperability-schema"
+
+
+JSON_SCHEMA_FILES = {
+    DocumentKind.LIBRARY: "component-library.schema.json",
+    DocumentKind.SCHEMA: "interoperability-schema.schema.json",
+}
+
+
+@cache
+def json_schema(kind: DocumentKind) -> dict[str, Any]:
+    """Return the shipped JSON Schema of ``kind`` (the same file editors use)."""
+    text = bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_text(encoding="utf-8")
+    schema: dict[str, Any] = json.loads(text)
+    return schema
+
+
+@dataclass(frozen=True)
+class Source:
+    """One input file: its name as shown to the user and its bytes."""
+
+    name: str
+    data: bytes
+
+
+@dataclass
+class Loaded:
+    """What loading a set of files produced: the models that could be built, and problems.
+
+    Attributes:
+        libraries: one ComponentLibrary per well-formed library file.
+        schemas: one InteroperabilitySchema per well-formed schema file.
+        problems: every problem found, in every file.
+        files: the names of the files read.
+        library_complete: false when a file that is (or may be) a library failed to load, so
+            checks needing the whole library must not run.
+        note: how the files were chosen, for the user ("bundled example: ...").
+    """
+
+    libraries: list[ComponentLibrary] = field(default_factory=list)
+    schemas: list[InteroperabilitySchema] = field(default_factory=list)
+    problems: list[Problem] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    library_complete: bool = True
+    note: str = ""
+
+    @property
+    def library(self) -> ComponentLibrary:
+        """Return L: all library files joined into one."""
+        return ComponentLibrary.merge(self.libraries)
+
+    @property
+    def configurations(self) -> ConfigurationLibrary:
+        """Return C: all schemas, in file order."""
+        return ConfigurationLibrary(tuple(self.schemas))
+
+
+def discover(paths: Iterable[Path]) -> list[Path]:
+    """Expand folders into their YAML files (sorted, recursive); keep files as given.
+
+    Raises:
+        UsageError: a path does not exist.
+    """
+    out: list[Path] = []
+    for p in paths:
+        if p.is_dir():
+            out.extend(sorted(f for f in p.rglob("*") if f.is_file() and f.suffix in YAML_SUFFIXES))
+        elif p.is_file():
+            out.append(p)
+        else:
+            raise UsageError(f"{p}: no such file or folder")
+    return out
+
+
+def read_sources(paths: Iterable[Path]) -> list[Source]:
+    """Read files as bytes (size is checked by the parser), failing clearly when unreadable."""
+    sources = []
+    for p in paths:
+        try:
+            sources.append(Source(str(p), p.read_bytes()))
+        except OSError as exc:
+            raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+    return sources
+
+
+def load_sources(sources: Iterable[Source]) -> Loaded:
+    """Parse and build every source, collecting problems instead of stopping at the first."""
+    loaded = Loaded()
+    for src in sources:
+        loaded.files.append(src.name)
+        try:
+            tree = ys.parse(src.data, src.name)
+        except InvalidInputError as exc:
+            loaded.problems.extend(exc.problems)
+            loaded.library_complete = False
+            continue
+        kind, problems = _kind_of(tree, src.name)
+        if kind is None or tree is None:
+            loaded.problems.extend(problems)
+            loaded.library_complete = False
+            continue
+        structural = list(_structure_problems(tree, kind))
+        if structural:
+            loaded.problems.extend(structural)
+            loaded.library_complete &= kind is not DocumentKind.LIBRARY
+            continue
+        assert isinstance(tree, ys.YMapping)
+        if kind is DocumentKind.LIBRARY:
+            loaded.libraries.append(_build_library(tree, src.name))
+        else:
+            loaded.schemas.append(_build_schema(tree, src.name))
+    return loaded
+
+
+def load_paths(paths: Sequence[Path]) -> Loaded:
+    """Load the YAML files at ``paths`` (files or folders)."""
+    return load_sources(read_sources(discover(paths)))
+
+
+def load_bundled() -> Loaded:
+    """Load the bundled example (the paper's robot arm and the mobile robot)."""
+    sources = []
+    for kind in (Bundle.LIBRARIES, Bundle.SCHEMAS):
+        for f in sorted(bundled(kind).iterdir(), key=lambda t: t.name):
+            if f.is_file() and f.name.endswith(YAML_SUFFIXES):
+                sources.append(Source(f"<bundled>/{kind.value}/{f.name}", f.read_bytes()))
+    loaded = load_sources(sources)
+    loaded.note = "no libraries/ or schemas/ here: using the bundled example"
+    return loaded
+
+
+DEFAULT_FOLDERS = (Path("libraries"), Path("schemas"))
+
+
+def load_selection(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
+    """Load what the user named, else ``libraries/`` and ``schemas/`` here, else the bundle.
+
+    This is the one rule every command uses to pick its input, so that ``rosreconf
+    validate``, ``enumerate`` and ``plan`` always look at the same files.
+    """
+    if paths:
+        return load_paths(paths)
+    here = base or Path()
+    folders = [here / f for f in DEFAULT_FOLDERS if (here / f).is_dir()]
+    if folders:
+        loaded = load_paths(folders)
+        loaded.note = "using " + " and ".join(f"{f.name}/" for f in folders)
+        return loaded
+    return load_bundled()
+
+
+def check_loaded(loaded: Loaded) -> list[Problem]:
+    """Return the semantic problems of what ``loaded`` holds (see ``rosreconf.checks``)."""
+    return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
+
+
+def load_checked(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
+    """Load like ``load_selection`` and refuse input with any error (for the solvers).
+
+    Raises:
+        InvalidInputError: with every structural and semantic error of the files.
+    """
+    loaded = load_selection(paths, base=base)
+    problems = [*loaded.problems, *check_loaded(loaded)]
+    errors = [p for p in problems if p.severity is Severity.ERROR]
+    if errors:
+        raise InvalidInputError(errors)
+    return loaded
+
+
+# --- the format field -------------------------------------------------------------------
+
+
+def _kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
+    known = ", ".join(k.value for k in DocumentKind)
+    if not isinstance(tree, ys.YMapping):
+        span = tree.span if tree is not None else Span(name, 1, 1)
+        return None, [
+            Problem(
+                span,
+                "expected a mapping with a 'format' key at the top of the file",
+                f"start the file with 'format: <kind>' where kind is one of {known}",
+                code="not-a-document",
+            )
+        ]
+    fmt = tree.items.get("format")
+    if fmt is None:
+        return None, [
+            Problem(
+                tree.span,
+                "missing 'format' key",
+                f"add 'format: <kind>' where kind is one of {known}",
+                code="missing-format",
+            )
+        ]
+    raw = fmt.raw if isinstance(fmt, ys.YScalar) else ""
+    for kind in DocumentKind:
+        if raw == kind.value:
+            return kind, []
+    return None, [
+        Problem(
+            fmt.span,
+            f"unknown format '{raw}'",
+            f"use one of {known}",
+            code="unknown-format",
+        )
+    ]
+
+
+# --- structure: JSON Schema, with friendly positioned messages ---------------------------
+
+
+def _structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
+    validator = jsonschema.Draft202012Validator(json_schema(kind))
+    plain = ys.to_plain(tree)
+    for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):
+        yield _problem_of(error, tree)
+
+
+def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) -> Problem:
+    if error.validator in ("oneOf", "anyOf") and error.context:
+        hint = str(error.schema.get("x-hint", "")) if isinstance(error.schema, dict) else ""
+        best = jsonschema.exceptions.best_match(error.context)
+        problem = _problem_of(best, tree)
+        return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
+    path = list(error.absolute_path)
+    node = ys.lookup(tree, path)
+    span = node.span if node is not None else tree.span
+    where = _describe_path(path)
+    schema = error.schema if isinstance(error.schema, dict) else {}
+    hint = str(schema.get("x-hint", ""))
+    validator = error.validator
+    if validator == "required":
+        missing = str(error.message).split("'")[1] if "'" in error.message else "?"
+        return Problem(span, f"{where} is missing required key '{missing}'", code="missing-key")
+    if validator == "additionalProperties" and isinstance(error.instance, dict):
+        allowed = sorted(schema.get("properties", {}))
+        extra = sorted(set(error.instance) - set(allowed))
+        name = extra[0] if extra else "?"
+        kspan = ys.key_span(tree, [*path, name]) or span
+        close = difflib.get_close_matches(name, allowed, n=1)
+        fix = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(allowed)}"
+        return Problem(kspan, f"unknown key '{name}' in {where}", fix, code="unknown-key")
+    if validator == "type":
+        got = _written(node)
+        want = error.validator_value
+        wanted = " or ".join(want) if isinstance(want, list) else str(want)
+        fix = hint
+        if "string" in wanted and isinstance(node, ys.YScalar) and node.plain:
+            fix = f"quote it ('{node.raw}') if you mean the text"
+        return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
+    if validator == "pattern":
+        return Problem(span, f"{where} {_written(node)} is not valid", hint, code="bad-name")
+    if validator == "const":
+        return Problem(
+            span,
+            f"{where} must be {json.dumps(error.validator_value)}, not {_written(node)}",
+            code="wrong-value",
+        )
+    if validator in ("minimum", "maximum"):
+        return Problem(
+            span,
+            f"{where} is {_written(node)}, which is out of range",
+            f"{validator} is {error.validator_value}",
+            code="out-of-range",
+        )
+    if validator == "minItems":
+        return Problem(
+            span,
+            f"{where} needs at least {error.validator_value} item(s)",
+            code="too-few",
+        )
+    if validator == "uniqueItems":
+        return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
+    return Problem(span, f"{where}: {error.message}", hint, code="invalid")
+
+
+def _written(node: ys.YNode | None) -> str:
+    if isinstance(node, ys.YScalar):
+        kind = type(node.value).__name__.replace("NoneType", "null").replace("str", "text")
+        kind = {"int": "number", "float": "number", "bool": "boolean"}.get(kind, kind)
+        return f"{kind} {node.raw!r}" if node.raw else "empty value"
+    if isinstance(node, ys.YMapping):
+        return "a mapping"
+    if isinstance(node, ys.YSequence):
+        return "a list"
+    return "nothing"
+
+
+def _describe_path(path: Sequence[str | int]) -> str:
+    if not path:
+        return "the document"
+    parts = []
+    for step in path:
+        parts.append(f"[{step}]" if isinstance(step, int) else f".{step}")
+    return "'" + "".join(parts).lstrip(".") + "'"
+
+
+# --- building model objects from well-formed trees --------------------------------------
+
+
+def _text(node: ys.YNode | None, default: str = "") -> str:
+    """Return a scalar as the text the user wrote (so names are never turned into numbers)."""
+    if isinstance(node, ys.YScalar):
+        return node.raw
+    return default
+
+
+def _seq(node: ys.YNode | None) -> list[ys.YNode]:
+    return node.items if isinstance(node, ys.YSequence) else []
+
+
+def _map(node: ys.YNode | None) -> dict[str, ys.YNode]:
+    return node.items if isinstance(node, ys.YMapping) else {}
+
+
+def _interface(node: ys.YNode) -> Interface:
+    items = _map(node)
+    kind = InterfaceKind.SERVICE if "service" in items else InterfaceKind.TOPIC
+    return Interface(kind, _text(items[kind.value]), _text(items["type"]))
+
+
+def _requirement(node: ys.YNode) -> Requirement:
+    items = _map(node)
+    if "any_of" in items:
+        return Requirement(tuple(_interface(o) for o in _seq(items["any_of"])), node.span)
+    return Requirement((_interface(node),), node.span)
+
+
+def _launch(node: ys.YNode | None) -> RosLaunch | None:
+    if node is None:
+        return None
+    items = _map(node)
+    params: dict[str, str | int | float | bool] = {}
+    for key, value in _map(items.get("parameters")).items():
+        assert isinstance(value, ys.YScalar) and value.value is not None
+        params[key] = value.value
+    remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
+    ns = items.get("namespace")
+    return RosLaunch(
+        package=_text(items["package"]),
+        executable=_text(items["executable"]),
+        parameters=MappingProxyType(params),
+        remappings=MappingProxyType(remaps),
+        namespace=_text(ns) if ns is not None else None,
+    )
+
+
+def _component(node: ys.YNode) -> Component:
+    items = _map(node)
+    fp = items.get("failure_probability")
+    metrics: dict[str, float] = {}
+    for key, value in _map(items.get("metrics")).items():
+        assert isinstance(value, ys.YScalar) and isinstance(value.value, int | float)
+        metrics[key] = float(value.value)
+    where = {"name": items["name"].span, "abstraction": items["abstraction"].span}
+    for key in ("needs", "excludes", "schemas"):
+        for n in _seq(items.get(key)):
+            where[f"{key}.{_text(n)}"] = n.span
+    for key in ("provides", "requires"):
+        for i, n in enumerate(_seq(items.get(key))):
+            where[f"{key}.{i}"] = n.span
+    return Component(
+        name=_text(items["name"]),
+        abstraction=_text(items["abstraction"]),
+        provides=frozenset(_interface(n) for n in _seq(items.get("provides"))),
+        requires=tuple(_requirement(n) for n in _seq(items.get("requires"))),
+        failure_probability=(
+            float(fp.value) if isinstance(fp, ys.YScalar) and fp.value is not None else None
+        ),
+        needs=frozenset(_text(n) for n in _seq(items.get("needs"))),
+        excludes=frozenset(_text(n) for n in _seq(items.get("excludes"))),
+        schemas=frozenset(_text(n) for n in _seq(items.get("schemas"))),
+        launch=_launch(items.get("ros")),
+        metrics=MappingProxyType(metrics),
+        description=_text(items.get("description")),
+        span=node.span,
+        where=MappingProxyType(where),
+    )
+
+
+def _build_library(tree: ys.YMapping, name: str) -> ComponentLibrary:
+    items = tree.items
+    return ComponentLibrary(
+        name=_text(items["name"]),
+        components=tuple(_component(n) for n in _seq(items["components"])),
+        description=_text(items.get("description")),
+        source=(name,),
+    )
+
+
+def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
+    items = tree.items
+    roles = tuple(
+        Role(
+            name=_text(_map(n)["name"]),
+            abstraction=_text(_map(n)["abstraction"]),
+            description=_text(_map(n).get("description")),
+            span=n.span,
+        )
+        for n in _seq(items["roles"])
+    )
+    edges = []
+    for n in _seq(items.get("edges")):
+        e = _map(n)
+        interfaces = frozenset(_text(i) for i in _seq(e.get("interfaces")))
+        for p in _seq(e["providers"]):
+            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, p.span))
+    nominal = {k: _text(v) for k, v in _map(items.get("nominal")).items()}
+    where = {"name": items["name"].span}
+    where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
+    for n in _seq(items["roles"]):
+        where[f"role.{_text(_map(n)['name'])}.abstraction"] = _map(n)["abstraction"].span
+    return InteroperabilitySchema(
+        name=_text(items["name"]),
+        title=_text(items.get("title")),
+        graph=SystemGraph(roles, tuple(edges)),
+        skill=_text(items["skill"]).strip(),
+        environment=_text(items["environment"]).strip(),
+        nominal=MappingProxyType(nominal),
+        span=tree.span,
+        source=name,
+        where=MappingProxyType(where),
+    )

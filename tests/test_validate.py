@@ -1,0 +1,116 @@
+"""``rosreconf validate`` on the bundled data and on every case folder under tests/cases."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from rosreconf.cli import app
+
+CASES = Path(__file__).parent / "cases"
+
+VALID = sorted(p for p in (CASES / "valid").iterdir() if p.is_dir())
+INVALID = sorted(p for p in (CASES / "invalid").iterdir() if p.is_dir())
+REPO = Path(__file__).resolve().parent.parent
+
+
+def _run(runner: CliRunner, where: Path, *args: str) -> tuple[int, str, str]:
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(where)
+        result = runner.invoke(app, ["validate", *args])
+    assert not isinstance(result.exception, Exception) or isinstance(
+        result.exception, SystemExit
+    ), result.exception
+    return result.exit_code, result.stdout, result.stderr
+
+
+def test_bundled_files_are_valid(runner: CliRunner, tmp_path: Path) -> None:
+    code, out, _ = _run(runner, tmp_path)  # empty folder: falls back to the bundled example
+    assert code == 0, out
+    assert "5 file(s) valid: 0 error(s), 0 warning(s)" in out
+    assert "bundled example" in out
+
+
+def test_checkout_folders_are_valid(runner: CliRunner) -> None:
+    code, out, _ = _run(runner, REPO)
+    assert code == 0, out
+    assert "using libraries/ and schemas/" in out
+
+
+@pytest.mark.parametrize("case", VALID, ids=lambda p: p.name)
+def test_valid_case(runner: CliRunner, case: Path) -> None:
+    code, out, _ = _run(runner, case, ".")
+    assert code == 0, out
+
+
+@pytest.mark.parametrize("case", INVALID, ids=lambda p: p.name)
+def test_invalid_case_pins_message_and_position(runner: CliRunner, case: Path) -> None:
+    code, out, _ = _run(runner, case, ".")
+    expected = (case / "expected.txt").read_text(encoding="utf-8").splitlines()
+    assert expected, f"{case}/expected.txt is empty"
+    got = [line for line in out.splitlines() if not line[0].isdigit()]
+    assert got == expected
+    assert code == 1
+
+
+def test_json_report_is_one_document_with_positions(runner: CliRunner) -> None:
+    code, out, _ = _run(runner, CASES / "invalid" / "unknown_key", ".", "--format", "json")
+    doc = json.loads(out)
+    assert code == 1 and doc["valid"] is False and doc["errors"] == 1
+    [problem] = doc["problems"]
+    assert (problem["file"], problem["line"], problem["column"]) == ("lib.yaml", 7, 5)
+    assert problem["code"] == "unknown-key"
+    assert "did you mean 'provides'?" in problem["hint"]
+
+
+def test_github_annotations(runner: CliRunner) -> None:
+    code, out, _ = _run(runner, CASES / "invalid" / "unknown_coupling", ".", "-f", "github")
+    lines = out.splitlines()
+    assert code == 1 and len(lines) == 2
+    assert lines[0].startswith(
+        "::error file=lib.yaml,line=9,col=13,title=rosreconf unknown-component::"
+    )
+
+
+def test_all_files_reported_in_one_run(runner: CliRunner, tmp_path: Path) -> None:
+    for case in ("unknown_key", "alias", "syntax_error"):
+        shutil.copy(CASES / "invalid" / case / "lib.yaml", tmp_path / f"{case}.yaml")
+    code, out, _ = _run(runner, tmp_path, ".")
+    files = {line.split(":")[0] for line in out.splitlines() if ".yaml:" in line}
+    assert code == 1 and files == {"unknown_key.yaml", "alias.yaml", "syntax_error.yaml"}
+
+
+def test_warning_fails_only_with_strict(runner: CliRunner, tmp_path: Path) -> None:
+    lib = (CASES / "invalid" / "schema_errors" / "lib.yaml").read_text()
+    (tmp_path / "lib.yaml").write_text(lib)
+    (tmp_path / "task.yaml").write_text(
+        "format: rosreconf/interoperability-schema\nversion: 1\nname: t\nskill: s\n"
+        "environment: e\nroles:\n  - {name: camera, abstraction: camera}\n"
+        "  - {name: vision, abstraction: perception}\n"
+        "edges:\n  - {consumer: vision, providers: [camera]}\n"
+    )
+    assert _run(runner, tmp_path, ".")[0] == 0
+    (tmp_path / "task.yaml").write_text(
+        (tmp_path / "task.yaml")
+        .read_text()
+        .replace("perception}", "perception}\n  - {name: spare, abstraction: camera}")
+        .replace("[camera]}", "[camera]}\n  - {consumer: vision, providers: [spare]}")
+    )
+    lib2 = (
+        lib + "  - name: SONAR\n    abstraction: sonar\n    provides:\n"
+        "      - {topic: range, type: sensor_msgs/Range}\n"
+    )
+    (tmp_path / "lib.yaml").write_text(lib2)
+    code, out, _ = _run(runner, tmp_path, ".")
+    assert code == 0 and "warning" in out
+    assert _run(runner, tmp_path, ".", "--strict")[0] == 1
+
+
+def test_missing_path_is_usage_error(runner: CliRunner, tmp_path: Path) -> None:
+    code, _, err = _run(runner, tmp_path, "nope.yaml")
+    assert code == 2
+    assert "nope.yaml: no such file or folder" in err
