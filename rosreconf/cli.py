@@ -79,10 +79,12 @@ def _root(
 
 
 def _register() -> None:
+    from rosreconf.commands import enumerate as enumerate_
     from rosreconf.commands import validate
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
+        "enumerate": enumerate_.enumerate_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))

@@ -200,18 +200,44 @@ def load_selection(paths: Sequence[Path], *, base: Path | None = None) -> Loaded
     return load_bundled()
 
 
+def load_split(
+    library_paths: Sequence[Path], schema_paths: Sequence[Path], *, base: Path | None = None
+) -> Loaded:
+    """Load libraries and schemas chosen separately (``--library``/``--schema`` options).
+
+    Whichever side is not given comes from the default rule of ``load_selection``.
+    """
+    if not library_paths and not schema_paths:
+        return load_selection([], base=base)
+    default = load_selection([], base=base)
+    given = load_paths([*library_paths, *schema_paths])
+    if not library_paths:
+        given.libraries = default.libraries + given.libraries
+        given.files = [f for f in default.files if "librar" in f] + given.files
+    if not schema_paths:
+        given.schemas = given.schemas + default.schemas
+        given.files = given.files + [f for f in default.files if "schema" in f]
+    given.problems += [p for p in default.problems if p not in given.problems]
+    return given
+
+
 def check_loaded(loaded: Loaded) -> list[Problem]:
     """Return the semantic problems of what ``loaded`` holds (see ``rosreconf.checks``)."""
     return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
 
 
-def load_checked(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
-    """Load like ``load_selection`` and refuse input with any error (for the solvers).
+def load_checked(
+    library_paths: Sequence[Path] = (),
+    schema_paths: Sequence[Path] = (),
+    *,
+    base: Path | None = None,
+) -> Loaded:
+    """Load like ``load_split`` and refuse input with any error (for the solvers).
 
     Raises:
         InvalidInputError: with every structural and semantic error of the files.
     """
-    loaded = load_selection(paths, base=base)
+    loaded = load_split(library_paths, schema_paths, base=base)
     problems = [*loaded.problems, *check_loaded(loaded)]
     errors = [p for p in problems if p.severity is Severity.ERROR]
     if errors:

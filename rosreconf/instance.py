@@ -1,0 +1,186 @@
+"""Compile one schema over the library into the static facts every solver works on.
+
+Which components can fill which role, which candidate pairs realise which edge, and which
+providers meet which requirement are all decided here, once, in Python; the solvers (clingo,
+the counter, the PDDL renderer) only see the resulting tables. Computing these joins ahead
+is what keeps grounding linear (see shared/notes/planners.md: lifted joins explode).
+
+It also explains emptiness: ``explain`` prunes candidates by local reasoning and turns the
+first role left without candidates into a plain-language reason.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+from dataclasses import dataclass, field
+
+from rosreconf.model import Component, ComponentLibrary, InteroperabilitySchema, Role
+from rosreconf.validity import edge_interfaces
+
+
+@dataclass
+class Instance:
+    """The finite-domain problem of one schema.
+
+    Attributes:
+        schema: the interoperability schema.
+        library: the component library L.
+        failed: names of components that are unavailable.
+        roles: the schema's roles, in order (variable i is roles[i]).
+        domains: per role, the candidate components (available, label and schema match),
+            in library order.
+        excluded: per role, candidate name -> why it was ruled out before solving.
+        edge_ok: per edge index, the allowed (consumer candidate, provider candidate) pairs.
+        meets: per (role index, candidate, requirement index), the (provider role index,
+            provider candidate) pairs meeting that requirement along the role's edges.
+    """
+
+    schema: InteroperabilitySchema
+    library: ComponentLibrary
+    failed: frozenset[str]
+    roles: tuple[Role, ...]
+    domains: list[list[Component]]
+    excluded: list[dict[str, str]]
+    edges: list[tuple[int, int]] = field(default_factory=list)
+    edge_ok: list[set[tuple[str, str]]] = field(default_factory=list)
+    meets: dict[tuple[int, str, int], list[tuple[int, str]]] = field(default_factory=dict)
+
+    @property
+    def role_index(self) -> dict[str, int]:
+        """Return role name -> variable index."""
+        return {r.name: i for i, r in enumerate(self.roles)}
+
+
+def compile_instance(
+    library: ComponentLibrary, schema: InteroperabilitySchema, failed: Collection[str] = ()
+) -> Instance:
+    """Compute candidates, edge tables and requirement tables of ``schema`` over ``library``."""
+    dead = frozenset(failed)
+    roles = schema.graph.roles
+    index = {r.name: i for i, r in enumerate(roles)}
+    domains: list[list[Component]] = []
+    excluded: list[dict[str, str]] = []
+    for role in roles:
+        dom, why = [], {}
+        for c in library.candidates(role.abstraction):
+            if c.name in dead:
+                why[c.name] = f"{c.name} has failed"
+            elif not c.may_serve_in(schema.name):
+                why[c.name] = f"{c.name} may only serve in {', '.join(sorted(c.schemas))}"
+            else:
+                dom.append(c)
+        domains.append(dom)
+        excluded.append(why)
+    inst = Instance(schema, library, dead, roles, domains, excluded)
+    for e in schema.graph.edges:
+        u, v = index[e.consumer], index[e.provider]
+        inst.edges.append((u, v))
+        inst.edge_ok.append(
+            {
+                (cu.name, cv.name)
+                for cu in domains[u]
+                for cv in domains[v]
+                if edge_interfaces(cu, cv, e)
+            }
+        )
+    for u, role in enumerate(roles):
+        out_edges = [e for e in schema.graph.edges if e.consumer == role.name]
+        for cu in domains[u]:
+            for i, req in enumerate(cu.requires):
+                pairs = []
+                for e in out_edges:
+                    v = index[e.provider]
+                    for cv in domains[v]:
+                        if any(o in cv.provides and e.allows(o) for o in req.options):
+                            pairs.append((v, cv.name))
+                inst.meets[(u, cu.name, i)] = pairs
+    return inst
+
+
+def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[int]]:
+    """Remove candidates that cannot be in any configuration by local reasoning.
+
+    Returns the surviving candidate names per role, per role candidate -> reason, and the
+    roles in the order they lost their last candidate (the first is nearest the cause).
+    Local reasoning: a requirement with no surviving provider, an edge with no surviving
+    partner, a needed component that cannot be chosen. It is sound (never removes a
+    candidate of a valid configuration) but not complete.
+    """
+    alive = [[c.name for c in dom] for dom in inst.domains]
+    why: list[dict[str, str]] = [dict(x) for x in inst.excluded]
+    emptied = [u for u, a in enumerate(alive) if not a]
+    comp = inst.library.by_name
+    changed = True
+    while changed:
+        changed = False
+        alive_sets = [set(a) for a in alive]
+        anywhere = set().union(*alive_sets) if alive_sets else set()
+        for u in range(len(inst.roles)):
+            for name in list(alive[u]):
+                reason = _dead_reason(inst, u, name, alive_sets, anywhere, comp)
+                if reason:
+                    alive[u].remove(name)
+                    why[u][name] = reason
+                    changed = True
+                    if not alive[u]:
+                        emptied.append(u)
+    return alive, why, emptied
+
+
+def _dead_reason(
+    inst: Instance,
+    u: int,
+    name: str,
+    alive: list[set[str]],
+    anywhere: set[str],
+    comp: dict[str, Component] | object,
+) -> str:
+    c = inst.library[name]
+    for i, req in enumerate(c.requires):
+        if not any(cv in alive[v] for v, cv in inst.meets[(u, name, i)]):
+            return f"{name} requires {req}, and no surviving provider along its edges offers it"
+    for k, (eu, ev) in enumerate(inst.edges):
+        if eu == u and not any(a == name and b in alive[ev] for a, b in inst.edge_ok[k]):
+            provider = inst.roles[ev]
+            return (
+                f"{name} uses nothing the surviving {provider.abstraction} candidates "
+                f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
+            )
+        if ev == u and not any(b == name and a in alive[eu] for a, b in inst.edge_ok[k]):
+            consumer = inst.roles[eu]
+            return (
+                f"no surviving {consumer.abstraction} candidate "
+                f"({', '.join(sorted(alive[eu])) or 'none'}) uses what {name} provides"
+            )
+    for need in sorted(c.needs):
+        if need not in anywhere:
+            return f"{name} needs {need}, which cannot be chosen"
+    return ""
+
+
+def explain(inst: Instance) -> str:
+    """Say in plain words why the schema has no configuration (empty if pruning finds none)."""
+    alive, why, emptied = prune(inst)
+    title = inst.schema.display_name
+    for u in emptied[:1]:
+        role = inst.roles[u]
+        label = _article(role.abstraction.replace("_", " "))
+        if not why[u]:
+            return (
+                f"{title} needs {label} (role {role.name}), but no component in the library "
+                f"carries the label '{role.abstraction}'"
+            )
+        reasons = "; ".join(why[u][n] for n in sorted(why[u]))
+        only = len(why[u]) == 1
+        lead = "its only candidate" if only else "every candidate is ruled out"
+        return f"{title} needs {label} (role {role.name}); {lead}: {reasons}"
+    return (
+        f"{title}: every role keeps candidates ("
+        + ", ".join(f"{r.name}: {'/'.join(alive[i])}" for i, r in enumerate(inst.roles))
+        + "), but no combination of them satisfies all edges, requirements and couplings "
+        "together"
+    )
+
+
+def _article(noun: str) -> str:
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
