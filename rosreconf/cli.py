@@ -79,12 +79,14 @@ def _root(
 
 
 def _register() -> None:
+    from rosreconf.commands import analyse, redundancy, validate
     from rosreconf.commands import enumerate as enumerate_
-    from rosreconf.commands import validate
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
         "enumerate": enumerate_.enumerate_command,
+        "analyse": analyse.analyse_command,
+        "redundancy": redundancy.redundancy_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
