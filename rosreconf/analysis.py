@@ -19,7 +19,7 @@ import math
 import random
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cache
 
 from rosreconf.counting import count
 from rosreconf.instance import Instance, compile_instance
@@ -115,9 +115,7 @@ def analyse(
         orthogonal=valid == substitutions and valid > 0,
         incompatible=incompatible_pairs(inst),
     )
-    listed = (
-        list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
-    )
+    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
     configs = [frozenset(c.components) for c in listed]
     used: list[set[str]] = [set() for _ in inst.roles]
     for cfg in listed:
@@ -181,9 +179,10 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
             for cv in inst.domains[v]:
                 if (cu.name, cv.name) in ok:
                     continue
-                needs = ", ".join(
-                    " or ".join(o.label for o in r.options) for r in cu.requires
-                ) or "nothing"
+                needs = (
+                    ", ".join(" or ".join(o.label for o in r.options) for r in cu.requires)
+                    or "nothing"
+                )
                 has = ", ".join(sorted(i.label for i in cv.provides)) or "nothing"
                 out.setdefault(
                     _key(cu.name, cv.name), f"{cu.name} requires {needs}; {cv.name} provides {has}"
@@ -230,7 +229,7 @@ def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) ->
     removes x from them; memoised on the (absorbed) set of configurations.
     """
 
-    @lru_cache(maxsize=None)
+    @cache
     def works(state: frozenset[frozenset[str]]) -> float:
         if not state:
             return 0.0

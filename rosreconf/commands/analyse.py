@@ -41,8 +41,11 @@ def analyse_command(
     sel = select(library, schema, fail, only)
     results = [analyse(sel.library, s, sel.failed, samples=samples, seed=seed) for s in sel.schemas]
     if as_json:
-        doc = {"failed": list(sel.failed), "files": sel.loaded.files,
-               "schemas": [asdict(r) for r in results]}
+        doc = {
+            "failed": list(sel.failed),
+            "files": sel.loaded.files,
+            "schemas": [asdict(r) for r in results],
+        }
         write_stdout(json.dumps(doc, indent=2) + "\n")
     else:
         write_stdout("".join(_text(r) for r in results))
