@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
 # Install the Debian packages rosreconf's tests use, only those that are missing.
 # Needs root (CI and the development machines run as root); otherwise prints the command.
+#   graphviz            dot, for the DOT reports
+#   python3-roslaunch   roscore, rosmaster, roslaunch and rosout (ROS 1 from Debian, docs/ros.md)
+#   python3-rospy       rospy (and std_msgs) for /usr/bin/python3, run by tests/standin_node.py
+#   python3-std-srvs    std_srvs/Trigger, the stand-ins' service type
 set -euo pipefail
 need=()
 command -v dot >/dev/null 2>&1 || need+=(graphviz)
+command -v roscore >/dev/null 2>&1 || need+=(python3-roslaunch)
+/usr/bin/python3 -c 'import rospy' >/dev/null 2>&1 || need+=(python3-rospy)
+/usr/bin/python3 -c 'import std_srvs.srv' >/dev/null 2>&1 || need+=(python3-std-srvs)
 if [ ${#need[@]} -eq 0 ]; then
   echo "system-deps: all present"
   exit 0

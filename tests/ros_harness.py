@@ -1,0 +1,271 @@
+"""Start a real ROS 1 master and stand-in nodes for tests, and make sure none outlives them.
+
+roscore's children (rosmaster, rosout) are started by roslaunch with ``setsid``, so each sits
+in its own session and process group: killing roscore's group alone would orphan them.
+Teardown therefore kills the group of every process descended from roscore, recorded while
+they run, and then checks that no process is left whose environment names this master's
+private ROS_HOME (that also catches stand-ins a test forgot).
+
+Everything here talks to the master with raw ``xmlrpc.client`` so that a bug in
+``rosreconf.rosmaster`` cannot hide behind the harness.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import time
+import xmlrpc.client
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager, suppress
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+"""Debian's Python, the one with rospy (the project's venv has none)."""
+STANDIN = Path(__file__).with_name("standin_node.py")
+MASTER_START_TIMEOUT = 20.0
+NODE_START_TIMEOUT = 15.0
+STOP_TIMEOUT = 5.0
+
+
+def ros_installed() -> bool:
+    """Tell whether roscore and the system Python's rospy are there (scripts/system-deps.sh)."""
+    if shutil.which("roscore") is None or not Path(SYSTEM_PYTHON).exists():
+        return False
+    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy"], capture_output=True, check=False)
+    return probe.returncode == 0
+
+
+def free_port() -> int:
+    """Return a TCP port on 127.0.0.1 that nothing listens on right now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        port: int = s.getsockname()[1]
+        return port
+
+
+def wait_until(
+    check: Callable[[], bool], timeout: float, what: str, interval: float = 0.05
+) -> float:
+    """Poll ``check`` until it holds; return the seconds it took, or fail naming ``what``."""
+    start = time.monotonic()
+    while True:
+        if check():
+            return time.monotonic() - start
+        if time.monotonic() - start > timeout:
+            raise TimeoutError(f"{what} did not happen within {timeout:g} s")
+        time.sleep(interval)
+
+
+class _Patient(xmlrpc.client.Transport):
+    """An XML-RPC transport that gives up after ``timeout`` seconds."""
+
+    def __init__(self, timeout: float) -> None:
+        super().__init__()
+        self.timeout = timeout
+
+    def make_connection(self, host: Any) -> Any:
+        conn = super().make_connection(host)
+        conn.timeout = self.timeout
+        return conn
+
+
+def system_state(uri: str, timeout: float = 2.0) -> list[Any] | None:
+    """Return getSystemState's ``[pubs, subs, srvs]``, or None if the master does not answer."""
+    try:
+        answer: Any = xmlrpc.client.ServerProxy(uri, transport=_Patient(timeout)).getSystemState(
+            "/h"
+        )
+    except (OSError, xmlrpc.client.Error):
+        return None
+    return list(answer[2]) if answer[0] == 1 else None
+
+
+def registered(uri: str, node: str) -> tuple[set[str], set[str], set[str]]:
+    """Return the topics node publishes, subscribes and the services it serves, per master."""
+    state = system_state(uri) or [[], [], []]
+    pubs, subs, srvs = ({name for name, nodes in part if node in nodes} for part in state)
+    return pubs, subs, srvs
+
+
+def ros_env(uri: str, home: Path) -> dict[str, str]:
+    """Return this environment minus ROS/Python settings, plus a private master and ROS_HOME."""
+    keep = {k: v for k, v in os.environ.items() if not k.startswith(("ROS", "PYTHON"))}
+    keep.pop("VIRTUAL_ENV", None)
+    return keep | {
+        "ROS_MASTER_URI": uri,
+        "ROS_HOME": str(home),
+        "ROS_LOG_DIR": str(home / "log"),
+        "ROS_HOSTNAME": "127.0.0.1",
+    }
+
+
+@dataclass
+class Master:
+    """A running roscore: its URI, its private ROS_HOME and every process it started."""
+
+    uri: str
+    port: int
+    home: Path
+    process: subprocess.Popen[bytes]
+    pids: set[int] = field(default_factory=set)
+
+    def env(self) -> dict[str, str]:
+        """Return the environment a ROS process needs to use this master and nothing else."""
+        return ros_env(self.uri, self.home)
+
+    def remember_children(self) -> None:
+        """Record every living descendant of roscore, for teardown."""
+        self.pids |= descendants(self.process.pid)
+
+
+def _stat(pid: int) -> tuple[str, int] | None:
+    """Return (state, parent pid) from /proc, or None if ``pid`` is gone."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    fields = text[text.rindex(")") + 2 :].split()
+    return fields[0], int(fields[1])
+
+
+def descendants(root: int) -> set[int]:
+    """Return the pids of every living process below ``root``."""
+    parents: dict[int, int] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and (st := _stat(int(entry.name))) is not None:
+            parents[int(entry.name)] = st[1]
+    found: set[int] = set()
+    frontier = {root}
+    while frontier:
+        frontier = {p for p, parent in parents.items() if parent in frontier} - found
+        found |= frontier
+    return found
+
+
+def running(pid: int) -> bool:
+    """Tell whether ``pid`` is a process that is not a zombie."""
+    st = _stat(pid)
+    return st is not None and st[0] != "Z"
+
+
+def processes_using(home: Path) -> list[int]:
+    """Return the living processes whose environment has ROS_HOME=``home``."""
+    needle = f"ROS_HOME={home}\0".encode()
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and int(entry.name) != os.getpid():
+            with suppress(OSError):
+                if needle in (entry / "environ").read_bytes() + b"\0" and running(int(entry.name)):
+                    found.append(int(entry.name))
+    return found
+
+
+def kill_group(pid: int, sig: int = signal.SIGKILL) -> None:
+    """Send ``sig`` to the process group ``pid`` leads (a no-op when it is gone)."""
+    with suppress(ProcessLookupError, PermissionError):
+        os.killpg(pid, sig)
+
+
+def stop(*processes: subprocess.Popen[bytes], grace: float = STOP_TIMEOUT) -> None:
+    """Stop processes started in their own sessions: SIGTERM each group, SIGKILL after ``grace``.
+
+    All are signalled before any is waited for, so stopping n nodes costs one grace, not n.
+    """
+    for process in processes:
+        kill_group(process.pid, signal.SIGTERM)
+    deadline = time.monotonic() + grace
+    for process in processes:
+        try:
+            process.wait(max(0.0, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            kill_group(process.pid)
+            process.wait(grace)
+        kill_group(process.pid)  # anything it left in its group
+
+
+@contextmanager
+def running_master(home: Path) -> Iterator[Master]:
+    """Run ``roscore -p <free port>`` with a private ROS_HOME; kill all of it on exit."""
+    home.mkdir(parents=True, exist_ok=True)
+    port = free_port()
+    uri = f"http://127.0.0.1:{port}/"
+    log = (home / "roscore.out").open("wb")
+    proc = subprocess.Popen(
+        ["roscore", "-p", str(port)], env=ros_env(uri, home), stdout=log,
+        stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+    )  # fmt: skip
+    master = Master(uri, port, home, proc)
+    try:
+
+        def up() -> bool:
+            if proc.poll() is not None:
+                out = (home / "roscore.out").read_text(errors="replace")[-2000:]
+                raise RuntimeError(f"roscore exited with {proc.returncode}:\n{out}")
+            return system_state(uri, timeout=0.5) is not None
+
+        wait_until(up, MASTER_START_TIMEOUT, f"ROS master answering at {uri}")
+        master.remember_children()
+        yield master
+    finally:
+        master.remember_children()
+        for pid in {proc.pid, *master.pids}:
+            kill_group(pid)
+        with suppress(subprocess.TimeoutExpired):
+            proc.wait(STOP_TIMEOUT)
+        log.close()
+        wait_until(lambda: not any(running(p) for p in master.pids), STOP_TIMEOUT, "roscore exit")
+        left = processes_using(home)
+        for pid in left:
+            kill_group(pid)
+            with suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+        assert not left, f"processes left after stopping the master at {uri} (killed): {left}"
+
+
+@dataclass
+class StandIn:
+    """A running stand-in node: its global name, its spec and its process."""
+
+    name: str
+    spec: dict[str, Any]
+    process: subprocess.Popen[bytes]
+
+
+def start_standin(master: Master, spec: dict[str, Any]) -> StandIn:
+    """Start ``tests/standin_node.py`` with ``spec``; return once the master lists it all."""
+    name = "/" + spec["name"].lstrip("/")
+    spec_file = master.home / f"standin-{spec['name']}.json"
+    spec_file.write_text(json.dumps(spec))
+    out = (master.home / f"standin-{spec['name']}.out").open("wb")
+    proc = subprocess.Popen(
+        [SYSTEM_PYTHON, str(STANDIN), str(spec_file)], env=master.env(), stdout=out,
+        stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+    )  # fmt: skip
+    out.close()
+    node = StandIn(name, spec, proc)
+    want = (
+        {p["topic"] for p in spec.get("publish", [])},
+        {s["topic"] for s in spec.get("subscribe", [])},
+        {s["service"] for s in spec.get("serve", [])},
+    )
+
+    def listed() -> bool:
+        if proc.poll() is not None:
+            text = (master.home / f"standin-{spec['name']}.out").read_text(errors="replace")
+            raise RuntimeError(f"stand-in {name} exited with {proc.returncode}:\n{text[-2000:]}")
+        have = registered(master.uri, name)
+        return all(w <= h for w, h in zip(want, have, strict=True))
+
+    try:
+        wait_until(listed, NODE_START_TIMEOUT, f"stand-in {name} registering")
+    except BaseException:
+        stop(proc)
+        raise
+    return node

@@ -1,0 +1,201 @@
+"""Tests of rosreconf.rosmaster: against a real roscore (marked ros) and against fakes."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import threading
+import time
+import xmlrpc.client
+import xmlrpc.server
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+import ros_harness
+from conftest import StartStandIn
+
+from rosreconf.errors import ExternalToolError, UsageError
+from rosreconf.livegraph import LiveNode, from_json, to_json, without_plumbing
+from rosreconf.rosmaster import alive, purge_dead, read_live_graph
+
+TALKER = {
+    "name": "talker",
+    "publish": [{"topic": "/a", "type": "std_msgs/String"}],
+    "serve": [{"service": "/s", "type": "std_srvs/Trigger"}],
+}
+LISTENER = {"name": "listener", "subscribe": [{"topic": "/a", "type": "std_msgs/String"}]}
+
+
+@pytest.mark.ros
+def test_reads_exactly_the_standins_with_types(ros_master_uri: str, standin: StartStandIn) -> None:
+    talker, listener = standin(TALKER), standin(LISTENER)
+    graph = without_plumbing(read_live_graph(ros_master_uri))
+    assert graph.names == ("/listener", "/talker")
+    t, li = graph.node("/talker"), graph.node("/listener")
+    assert (t.publishes, t.subscribes, t.serves) == (("/a",), (), ("/s",))
+    assert (li.publishes, li.subscribes, li.serves) == ((), ("/a",), ())
+    assert dict(graph.topic_types) == {"/a": "std_msgs/String"}
+    assert (t.pid, li.pid) == (talker.process.pid, listener.process.pid)
+    assert all(n.uri is not None and n.uri.startswith("http://127.0.0.1:") for n in graph.nodes)
+
+
+@pytest.mark.ros
+def test_plumbing_is_kept_in_the_raw_graph(ros_master_uri: str, standin: StartStandIn) -> None:
+    standin(TALKER)
+    ros_harness.wait_until(
+        lambda: "/rosout" in read_live_graph(ros_master_uri).names, 10, "rosout registering"
+    )
+    graph = read_live_graph(ros_master_uri)
+    assert {"/rosout", "/rosout_agg"} <= set(graph.topic_types)
+    assert "/talker/get_loggers" in graph.node("/talker").serves
+    assert "/rosout" in graph.node("/talker").publishes
+
+
+@pytest.mark.ros
+def test_invented_type_is_what_the_master_reports(
+    ros_master_uri: str, standin: StartStandIn
+) -> None:
+    cmd = [{"topic": "/cmd", "type": "robot_arm_msgs/DcServoCommand"}]
+    standin({"name": "arm", "publish": cmd, "serve": [{"service": "/move", "type": "arm/Move"}]})
+    ctl = standin({"name": "ctl", "subscribe": cmd})
+    graph = read_live_graph(ros_master_uri)
+    assert graph.topic_types["/cmd"] == "robot_arm_msgs/DcServoCommand"
+    assert graph.node("/arm").serves[-1] == "/move"
+    ctl_api = xmlrpc.client.ServerProxy(graph.node("/ctl").uri or "")
+
+    def connected() -> bool:
+        bus: Any = ctl_api.getBusInfo("/test")
+        return any(c[4] == "/cmd" and c[5] for c in bus[2])
+
+    ros_harness.wait_until(connected, 10, "the invented-type subscriber connecting")
+    assert ctl.process.poll() is None
+
+
+@pytest.mark.ros
+def test_snapshot_round_trip_of_a_live_graph(ros_master_uri: str, standin: StartStandIn) -> None:
+    standin(TALKER)
+    standin(LISTENER)
+    graph = read_live_graph(ros_master_uri)
+    assert from_json(to_json(graph)) == graph
+    assert to_json(from_json(to_json(graph))) == to_json(graph)
+
+
+@pytest.mark.ros
+def test_stopped_node_leaves_at_once(ros_master_uri: str, standin: StartStandIn) -> None:
+    node = standin(LISTENER)
+    os.killpg(node.process.pid, signal.SIGTERM)
+    took = ros_harness.wait_until(
+        lambda: "/listener" not in read_live_graph(ros_master_uri).names, 5, "unregistering"
+    )
+    assert took < 5
+
+
+@pytest.mark.ros
+def test_killed_node_lingers_until_purged(ros_master_uri: str, standin: StartStandIn) -> None:
+    victim, survivor = standin(LISTENER), standin(TALKER)
+    before = read_live_graph(ros_master_uri).node("/listener")
+    assert alive(before)
+    os.killpg(victim.process.pid, signal.SIGKILL)
+    victim.process.wait(5)
+    time.sleep(2.0)  # the master never drops it by itself (measured: still there after 30 s)
+    graph = read_live_graph(ros_master_uri)
+    dead = graph.node("/listener")
+    assert dead.subscribes == ("/a",) and dead.pid is None and not alive(dead)
+    assert graph.node("/talker").pid == survivor.process.pid
+    assert purge_dead(ros_master_uri, graph) == ("/listener",)
+    after = read_live_graph(ros_master_uri)
+    assert "/listener" not in after.names and "/talker" in after.names
+    assert not any(
+        "/listener" in nodes for part in after_state(ros_master_uri) for _, nodes in part
+    )
+
+
+def after_state(uri: str) -> list[list[tuple[str, list[str]]]]:
+    """Return getSystemState's raw lists, straight from the master."""
+    return ros_harness.system_state(uri) or []
+
+
+@pytest.mark.ros
+def test_master_teardown_kills_everything_even_on_failure(tmp_path: Path) -> None:
+    if not ros_harness.ros_installed():
+        pytest.skip("ROS 1 is not installed: run scripts/system-deps.sh (as root)")
+    pids: set[int] = set()
+    failing = pytest.raises(RuntimeError, match="test body failed")
+    with failing, ros_harness.running_master(tmp_path / "ros") as master:
+        root = master.process.pid
+        ros_harness.wait_until(lambda: len(ros_harness.descendants(root)) >= 2, 10, "rosout")
+        pids = {root, *ros_harness.descendants(root)}
+        raise RuntimeError("test body failed")
+    assert len(pids) >= 3 and not any(ros_harness.running(p) for p in pids)
+
+
+def test_unreachable_master_names_the_uri() -> None:
+    uri = f"http://127.0.0.1:{ros_harness.free_port()}/"
+    with pytest.raises(ExternalToolError, match=uri):
+        read_live_graph(uri, timeout=1.0)
+
+
+def test_silent_master_times_out_naming_the_uri() -> None:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen(1)
+        uri = f"http://127.0.0.1:{s.getsockname()[1]}/"
+        start = time.monotonic()
+        with pytest.raises(ExternalToolError, match=f"{uri} did not answer getSystemState"):
+            read_live_graph(uri, timeout=0.3)
+        assert time.monotonic() - start < 2
+
+
+@pytest.fixture
+def fake_master() -> Iterator[xmlrpc.server.SimpleXMLRPCServer]:
+    server = xmlrpc.server.SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    yield server
+    server.shutdown()
+    server.server_close()
+    thread.join(5)
+
+
+@pytest.mark.parametrize(
+    ("answer", "message"),
+    [
+        ("nonsense", "not \\[code, status, value\\]"),
+        ([1, "ok", [[["/a", "not-a-list"]], [], []]], "unexpected"),
+        ([-1, "master is sad", 0], "master is sad"),
+    ],
+)
+def test_bad_answers_become_external_tool_errors(
+    fake_master: xmlrpc.server.SimpleXMLRPCServer, answer: object, message: str
+) -> None:
+    def get_system_state(_caller: Any) -> Any:
+        return answer
+
+    fake_master.register_function(get_system_state, "getSystemState")
+    uri = f"http://127.0.0.1:{fake_master.server_address[1]}/"
+    with pytest.raises(ExternalToolError, match=message) as err:
+        read_live_graph(uri)
+    assert uri in str(err.value)
+
+
+@pytest.mark.parametrize("uri", ["localhost:11311", "ftp://h:1/", "http://h/", "http://h:x/"])
+def test_malformed_master_uri_is_a_usage_error(uri: str) -> None:
+    with pytest.raises(UsageError, match="http://HOST:PORT/"):
+        read_live_graph(uri)
+
+
+def test_alive_is_false_for_nothing_listening() -> None:
+    assert not alive(f"http://127.0.0.1:{ros_harness.free_port()}/", timeout=0.5)
+
+
+def test_alive_wants_the_same_pid(fake_master: xmlrpc.server.SimpleXMLRPCServer) -> None:
+    def get_pid(_caller: Any) -> Any:
+        return [1, "", 4242]
+
+    fake_master.register_function(get_pid, "getPid")
+    uri = f"http://127.0.0.1:{fake_master.server_address[1]}/"
+    assert alive(uri) and alive(LiveNode("/n", uri, 4242)) and alive(LiveNode("/n", uri))
+    assert not alive(LiveNode("/n", uri, 17)) and not alive(LiveNode("/n", None, 4242))
