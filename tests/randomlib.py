@@ -1,0 +1,92 @@
+"""Small random libraries and schemas for property tests (hypothesis strategies)."""
+
+from __future__ import annotations
+
+import itertools
+
+from hypothesis import strategies as st
+
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Configuration,
+    Edge,
+    Interface,
+    InterfaceKind,
+    InteroperabilitySchema,
+    Requirement,
+    Role,
+    SystemGraph,
+)
+from rosreconf.validity import is_valid
+
+IFACES = [
+    Interface(InterfaceKind.TOPIC, "a", "m/A"),
+    Interface(InterfaceKind.TOPIC, "b", "m/B"),
+    Interface(InterfaceKind.SERVICE, "c", "m/C"),
+]
+
+
+@st.composite
+def problems(draw: st.DrawFn) -> tuple[ComponentLibrary, InteroperabilitySchema]:
+    """Draw a library of up to ~9 components and a schema of 2-4 roles over it."""
+    n_roles = draw(st.integers(2, 4))
+    labels = [f"l{i}" for i in range(n_roles)]
+    roles = tuple(Role(f"r{i}", labels[i]) for i in range(n_roles))
+    edges = []
+    for u, v in itertools.permutations(range(n_roles), 2):
+        if draw(st.booleans()) and draw(st.booleans()):
+            edges.append(Edge(f"r{u}", f"r{v}"))
+    comps: list[Component] = []
+    for i in range(n_roles):
+        for k in range(draw(st.integers(1, 3))):
+            provides = frozenset(draw(st.sets(st.sampled_from(IFACES), max_size=2)))
+            reqs = []
+            for _ in range(draw(st.integers(0, 2))):
+                opts = draw(st.lists(st.sampled_from(IFACES), min_size=1, max_size=2, unique=True))
+                reqs.append(Requirement(tuple(opts)))
+            comps.append(
+                Component(
+                    name=f"C{i}_{k}",
+                    abstraction=labels[i],
+                    provides=provides,
+                    requires=tuple(reqs),
+                    failure_probability=draw(st.sampled_from([0.0, 0.1, 0.3, 0.5])),
+                )
+            )
+    names = [c.name for c in comps]
+    final = []
+    for c in comps:
+        others = [n for n in names if n != c.name]
+        needs = frozenset(draw(st.sets(st.sampled_from(others), max_size=1)))
+        excludes = frozenset(draw(st.sets(st.sampled_from(others), max_size=1))) - needs
+        final.append(
+            Component(
+                c.name,
+                c.abstraction,
+                c.provides,
+                c.requires,
+                c.failure_probability,
+                needs,
+                excludes,
+            )
+        )
+    library = ComponentLibrary("random", tuple(final))
+    schema = InteroperabilitySchema("s", SystemGraph(roles, tuple(edges)), "skill", "env")
+    return library, schema
+
+
+def brute_force(
+    library: ComponentLibrary, schema: InteroperabilitySchema, failed: frozenset[str] = frozenset()
+) -> list[Configuration]:
+    """Return every valid configuration by trying every label-respecting assignment."""
+    roles = schema.graph.roles
+    doms = [[c.name for c in library.candidates(r.abstraction)] for r in roles]
+    out = []
+    for combo in itertools.product(*doms):
+        config = Configuration.of(
+            schema.name, dict(zip([r.name for r in roles], combo, strict=False)), roles
+        )
+        if is_valid(config, library, schema, failed):
+            out.append(config)
+    return out
