@@ -85,7 +85,7 @@ def brute_force(
     out = []
     for combo in itertools.product(*doms):
         config = Configuration.of(
-            schema.name, dict(zip([r.name for r in roles], combo, strict=False)), roles
+            schema.name, dict(zip([r.name for r in roles], combo, strict=True)), roles
         )
         if is_valid(config, library, schema, failed):
             out.append(config)
