@@ -19,6 +19,9 @@ system-deps:
 
 demo: $(STAMP)
 	$(BIN)/rosreconf validate
+	$(BIN)/rosreconf enumerate --only object_repositioning --only disc_loading
+	$(BIN)/rosreconf enumerate --only object_repositioning --only disc_loading --fail NSM3 || true
+	$(BIN)/rosreconf analyse --only object_repositioning
 
 test: $(STAMP) system-deps lint typecheck pytest
 

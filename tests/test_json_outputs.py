@@ -1,0 +1,46 @@
+"""Every command's --json output validates against its shipped JSON Schema."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import jsonschema
+import pytest
+from typer.testing import CliRunner
+
+from rosreconf.cli import app
+from rosreconf.resources import Bundle, bundled
+
+CASES = Path(__file__).parent / "cases"
+
+
+def schema_of(command: str) -> dict[str, Any]:
+    """Return the shipped JSON Schema of ``command``'s --json output."""
+    text = bundled(Bundle.DATA, f"output-{command}.schema.json").read_text(encoding="utf-8")
+    doc: dict[str, Any] = json.loads(text)
+    jsonschema.Draft202012Validator.check_schema(doc)
+    return doc
+
+
+RUNS = [
+    ("validate", ["validate", "--format", "json"], None),
+    ("validate", ["validate", ".", "--format", "json"], CASES / "invalid" / "schema_errors"),
+    ("enumerate", ["enumerate", "--json"], None),
+    ("enumerate", ["enumerate", "--json", "--fail", "NSM3", "--limit", "1"], None),
+    ("enumerate", ["enumerate", "--json", "--count"], None),
+    ("analyse", ["analyse", "--json"], None),
+    ("redundancy", ["redundancy", "--p", "0.1", "--n", "20", "--q", "0.99", "--json"], None),
+]
+
+
+@pytest.mark.parametrize(("command", "args", "where"), RUNS, ids=lambda x: str(x))
+def test_output_matches_schema(
+    runner: CliRunner, tmp_path: Path, command: str, args: list[str], where: Path | None
+) -> None:
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(where or tmp_path)
+        result = runner.invoke(app, args)
+    assert result.exit_code in (0, 1), result.stderr
+    jsonschema.validate(json.loads(result.stdout), schema_of(command))
