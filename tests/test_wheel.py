@@ -1,0 +1,68 @@
+"""The bundled example data, JSON Schemas and templates work from an installed wheel."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """Build the wheel and install it (without dependencies) into a private target folder."""
+    out = tmp_path_factory.mktemp("wheel")
+    # Build from a clean copy: a developer's build/ or .venv must not leak into the wheel.
+    source = out / "source"
+    skip = shutil.ignore_patterns(
+        ".venv", "build", "dist", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis"
+    )
+    shutil.copytree(REPO, source, ignore=skip)
+    build = [sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps"]
+    build += ["--no-build-isolation", "-w", str(out / "dist"), str(source)]
+    subprocess.run(build, check=True, cwd=out, capture_output=True)
+    [wheel] = (out / "dist").glob("rosreconf-*.whl")
+    target = out / "site"
+    with zipfile.ZipFile(wheel) as zf:
+        names = zf.namelist()
+        zf.extractall(target)
+    for expected in (
+        "rosreconf/libraries/robot_arms.yaml",
+        "rosreconf/schemas/object_repositioning.yaml",
+        "rosreconf/data/component-library.schema.json",
+        "rosreconf/data/output-enumerate.schema.json",
+    ):
+        assert expected in names
+    return target
+
+
+def test_installed_wheel_runs_on_bundled_example(installed: Path, tmp_path: Path) -> None:
+    env = {**os.environ, "PYTHONPATH": str(installed)}
+    result = subprocess.run(
+        [sys.executable, "-m", "rosreconf", "enumerate", "--json", "--only", "disc_loading"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert doc["files"][0].startswith("<bundled>/")
+    assert doc["schemas"][0]["count"] == 2
+    probe = subprocess.run(
+        [sys.executable, "-c", "import rosreconf.resources as r; print(r.__file__)"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert probe.stdout.startswith(str(installed))  # the wheel's copy, not the checkout's
