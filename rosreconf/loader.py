@@ -332,6 +332,7 @@ def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) ->
         return Problem(
             span,
             f"{where} must be {json.dumps(error.validator_value)}, not {_written(node)}",
+            hint,
             code="wrong-value",
         )
     if validator in ("minimum", "maximum"):

@@ -114,3 +114,12 @@ def test_missing_path_is_usage_error(runner: CliRunner, tmp_path: Path) -> None:
     code, _, err = _run(runner, tmp_path, "nope.yaml")
     assert code == 2
     assert "nope.yaml: no such file or folder" in err
+
+
+def test_size_cap(runner: CliRunner, tmp_path: Path) -> None:
+    big = "format: rosreconf/component-library\n# " + "x" * (5 * 1024 * 1024) + "\n"
+    (tmp_path / "big.yaml").write_text(big)
+    code, out, _ = _run(runner, tmp_path, ".")
+    assert code == 1
+    size = len(big.encode())
+    assert f"big.yaml:1:1: error: file is {size} bytes, over the limit of 4194304 bytes" in out
