@@ -80,12 +80,13 @@ def _root(
 
 def _register() -> None:
     from rosreconf.commands import enumerate as enumerate_
-    from rosreconf.commands import graph, validate
+    from rosreconf.commands import graph, launch, validate
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
         "enumerate": enumerate_.enumerate_command,
         "graph": graph.graph_command,
+        "launch": launch.launch_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
