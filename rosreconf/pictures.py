@@ -138,7 +138,7 @@ def ros_dot(
         for vertex in _vertices(new, old):
             kind, name = vertex
             data = _data(new, old, vertex)
-            status = _status(vertex in new, old is not None and vertex in old)
+            status = _status(vertex in new, old, vertex in old if old is not None else False)
             if kind is VertexKind.NODE and name in dead:
                 status = Status.FAILED
             seen.add(status)
@@ -157,7 +157,9 @@ def ros_dot(
             )
         for tail, head in _edges(new, old):
             data = _data(new, old, (tail, head))
-            status = _status(new.has_edge(tail, head), old is not None and old.has_edge(tail, head))
+            status = _status(
+                new.has_edge(tail, head), old, old is not None and old.has_edge(tail, head)
+            )
             if {tail[1], head[1]} & dead and status is not Status.STARTED:
                 status = Status.FAILED if status is Status.UNCHANGED else status
             # Every edge of a topic/service carries its one type (Def. 1): it is written on
@@ -265,7 +267,10 @@ def _data(new: RosGraph, old: RosGraph | None, item: Vertex | tuple[Vertex, Vert
     return graph.nodes[item] if isinstance(item[0], VertexKind) else graph.edges[item]
 
 
-def _status(in_new: bool, in_old: bool) -> Status:
+def _status(in_new: bool, old: RosGraph | None, in_old: bool) -> Status:
+    """Compare against the old graph; without one, everything drawn is simply running."""
+    if old is None:
+        return Status.UNCHANGED
     if in_new and not in_old:
         return Status.STARTED
     return Status.UNCHANGED if in_new else Status.STOPPED

@@ -4,6 +4,7 @@
 set -euo pipefail
 need=()
 command -v dot >/dev/null 2>&1 || need+=(graphviz)
+/usr/bin/python3 -c 'import roslaunch.xmlloader' >/dev/null 2>&1 || need+=(python3-roslaunch)
 if [ ${#need[@]} -eq 0 ]; then
   echo "system-deps: all present"
   exit 0
