@@ -9,6 +9,7 @@ set -euo pipefail
 need=()
 command -v dot >/dev/null 2>&1 || need+=(graphviz)
 command -v roscore >/dev/null 2>&1 || need+=(python3-roslaunch)
+/usr/bin/python3 -c 'import roslaunch.xmlloader' >/dev/null 2>&1 || need+=(python3-roslaunch)
 /usr/bin/python3 -c 'import rospy' >/dev/null 2>&1 || need+=(python3-rospy)
 /usr/bin/python3 -c 'import std_srvs.srv' >/dev/null 2>&1 || need+=(python3-std-srvs)
 if [ ${#need[@]} -eq 0 ]; then

@@ -13,9 +13,16 @@ from typing import Any
 
 import pytest
 import ros_harness
+from typer.testing import CliRunner
 
 FAKES = Path(__file__).parent / "fakes"
 DATA = Path(__file__).parent / "data"
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    """Return a CLI runner; stdout and stderr are kept apart so JSON can be parsed."""
+    return CliRunner(env={"COLUMNS": "200", "NO_COLOR": "1"})
 
 
 def live_members(pgid: int) -> list[int]:
@@ -116,11 +123,3 @@ def standin(ros_master: ros_harness.Master) -> Iterator[StartStandIn]:
 
     yield start
     ros_harness.stop(*(node.process for node in started))
-
-
-@pytest.fixture
-def runner() -> Any:
-    """Return a CLI runner; stdout and stderr are kept apart so JSON can be parsed."""
-    from typer.testing import CliRunner
-
-    return CliRunner(env={"COLUMNS": "200", "NO_COLOR": "1"})

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -24,6 +25,7 @@ from rosreconf.counting import CountTooHard, count
 from rosreconf.errors import ExitCode
 from rosreconf.instance import compile_instance, explain
 from rosreconf.model import Configuration, InteroperabilitySchema
+from rosreconf.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.solver import ClingoEngine
 from rosreconf.validity import graph_dict, ros_graph
 
@@ -40,6 +42,15 @@ def enumerate_command(
         bool, typer.Option("--count", help="Count exactly without listing.")
     ] = False,
     as_json: JsonOption = False,
+    graph: Annotated[
+        Path | None,
+        typer.Option(
+            "--graph",
+            help="Also draw the ROS-graph of each schema's first configuration into this file "
+            "(.dot, .svg or .png).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """List every valid configuration of each schema (or count them), with why-not reasons.
 
@@ -51,6 +62,7 @@ def enumerate_command(
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
     empty = 0
+    firsts: list[RosPicture] = []
     out = _JsonStream(sel, write_stdout) if as_json else None
     for s in sel.schemas:
         inst = compile_instance(sel.library, s, sel.failed)
@@ -68,12 +80,16 @@ def enumerate_command(
         if not count_only:
             with _progress(stderr, s, quiet=as_json) as tick:
                 for n, config in enumerate(ClingoEngine().configurations(inst, limit), start=1):
+                    if n == 1:
+                        firsts.append(RosPicture(s, config))
                     if out:
                         out.configuration(sel, s, config, n)
                     else:
                         write_stdout(f"  {n:>3}. {', '.join(config.components)}\n")
                     tick()
             total = n if limit is None or n < limit else None
+        elif graph is not None and total and (first := ClingoEngine().first(inst)):
+            firsts.append(RosPicture(s, first))
         why = explain(inst) if (total == 0) else None
         empty += total == 0
         if out:
@@ -82,6 +98,8 @@ def enumerate_command(
             write_stdout(_summary(total, n, why))
     if out:
         out.close()
+    if graph is not None:
+        write_picture(graph, ros_dot(sel.library, firsts, sel.failed))
     raise typer.Exit(ExitCode.FAILED if empty else ExitCode.OK)
 
 
