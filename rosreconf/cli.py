@@ -79,7 +79,7 @@ def _root(
 
 
 def _register() -> None:
-    from rosreconf.commands import analyse, redundancy, validate
+    from rosreconf.commands import analyse, live, redundancy, validate, watch
     from rosreconf.commands import enumerate as enumerate_
 
     commands: dict[str, Callable[..., object]] = {
@@ -87,6 +87,10 @@ def _register() -> None:
         "enumerate": enumerate_.enumerate_command,
         "analyse": analyse.analyse_command,
         "redundancy": redundancy.redundancy_command,
+        "snapshot": live.snapshot_command,
+        "import": live.import_command,
+        "inspect": live.inspect_command,
+        "watch": watch.watch_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
