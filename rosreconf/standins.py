@@ -24,6 +24,7 @@ import os
 import shutil
 from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import quoteattr
 
 from rosreconf.conformance import interface_live_name
@@ -55,7 +56,7 @@ def write_standin_package(parent: Path) -> Path:
     return parent
 
 
-def standin_spec(component: Component) -> dict[str, object]:
+def standin_spec(component: Component) -> dict[str, Any]:
     """Return the stand-in JSON spec acting out ``component``'s provisions and requirements."""
     publish, serve, subscribe = [], [], []
     for iface in sorted(component.provides):
