@@ -79,7 +79,7 @@ def _root(
 
 
 def _register() -> None:
-    from rosreconf.commands import analyse, graph, launch, redundancy, validate
+    from rosreconf.commands import analyse, graph, launch, live, redundancy, validate, watch
     from rosreconf.commands import enumerate as enumerate_
 
     commands: dict[str, Callable[..., object]] = {
@@ -89,6 +89,10 @@ def _register() -> None:
         "redundancy": redundancy.redundancy_command,
         "graph": graph.graph_command,
         "launch": launch.launch_command,
+        "snapshot": live.snapshot_command,
+        "import": live.import_command,
+        "inspect": live.inspect_command,
+        "watch": watch.watch_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))

@@ -28,7 +28,15 @@ from xml.parsers.expat import ExpatError
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.livegraph import LiveGraph, LiveNode
 
-__all__ = ["LiveGraph", "LiveNode", "alive", "node_pid", "purge_dead", "read_live_graph"]
+__all__ = [
+    "LiveGraph",
+    "LiveNode",
+    "alive",
+    "node_pid",
+    "purge_dead",
+    "read_live_graph",
+    "shutdown_node",
+]
 
 _PID_WORKERS = 8
 """How many nodes are asked for their pid at once, so hung nodes cost one timeout, not many."""
@@ -233,3 +241,19 @@ def purge_dead(
             ask("unregisterService", node.name, service, service_uri)
         purged.append(node.name)
     return tuple(purged)
+
+
+def shutdown_node(
+    node_uri: str, reason: str, *, timeout: float = 2.0, caller_id: str = "/rosreconf"
+) -> bool:
+    """Ask a node, through its own API, to shut down (what ``rosnode kill`` does).
+
+    Works for any rospy/roscpp node, whoever started it. Returns whether the node accepted;
+    a node that is already gone is not an error.
+    """
+    try:
+        _check_uri(node_uri, "node")
+        _call(node_uri, "node", timeout, "shutdown", caller_id, reason)
+    except (ExternalToolError, UsageError):
+        return False
+    return True

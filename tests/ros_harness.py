@@ -28,7 +28,7 @@ from typing import Any
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 """Debian's Python, the one with rospy (the project's venv has none)."""
-STANDIN = Path(__file__).with_name("standin_node.py")
+STANDIN = Path(__file__).parents[1] / "rosreconf" / "standin_node.py"
 MASTER_START_TIMEOUT = 20.0
 NODE_START_TIMEOUT = 15.0
 STOP_TIMEOUT = 5.0
@@ -239,7 +239,7 @@ class StandIn:
 
 
 def start_standin(master: Master, spec: dict[str, Any]) -> StandIn:
-    """Start ``tests/standin_node.py`` with ``spec``; return once the master lists it all."""
+    """Start ``rosreconf/standin_node.py`` with ``spec``; return once the master lists it all."""
     name = "/" + spec["name"].lstrip("/")
     spec_file = master.home / f"standin-{spec['name']}.json"
     spec_file.write_text(json.dumps(spec))

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Stand in for a library component on a real ROS 1 master, so tests need no real robot code.
 
-Run it with the system Python (``/usr/bin/python3``), which has rospy from Debian; the
+It ships inside rosreconf because ``rosreconf watch --stand-ins`` starts it through roslaunch
+(see ``rosreconf.standins``); it is a script, not part of the library, and is never imported
+by rosreconf. Run it with the system Python (``/usr/bin/python3``), which has rospy from Debian; the
 project's venv has none. The one argument is a JSON spec, inline or as a file path::
 
     {"name": "talker",
@@ -79,6 +81,7 @@ def answer(cls: Any, node: str) -> Any:
 
 def main(argv: list[str]) -> int:
     """Register the spec's topics and services, publish until told to stop."""
+    argv = rospy.myargv(argv)  # drop roslaunch's __name:= and __log:= arguments
     if len(argv) != 2:
         print(f"usage: {argv[0]} SPEC_JSON_OR_FILE", file=sys.stderr)
         return 2

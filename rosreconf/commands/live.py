@@ -1,0 +1,160 @@
+"""``rosreconf snapshot``, ``import`` and ``inspect``: read a running ROS 1 system."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rosreconf.commands.common import JsonOption, LibraryOption, SchemaOption, select
+from rosreconf.configfile import read_configurations
+from rosreconf.conformance import compare
+from rosreconf.errors import ExitCode, UsageError
+from rosreconf.importer import draft_library
+from rosreconf.livegraph import LiveGraph, from_json, to_json, without_plumbing
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.rosmaster import read_live_graph
+from rosreconf.validity import violations
+
+MasterOption = Annotated[
+    str,
+    typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
+]
+ConfigurationOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--configuration",
+        "-c",
+        help="Configuration file (enumerate/plan --json, or format: rosreconf/configuration). "
+        "Default: the schema's nominal configuration.",
+        show_default=False,
+    ),
+]
+OnlySchemaOption = Annotated[
+    str | None,
+    typer.Option("--only", help="The schema, when the configuration names several."),
+]
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temp file in its folder, so no reader sees half."""
+    folder = path.parent if str(path.parent) else Path()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as out:
+            out.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def target(
+    libraries: list[Path] | None,
+    schemas: list[Path] | None,
+    configuration: Path | None,
+    only: str | None,
+) -> tuple[ComponentLibrary, InteroperabilitySchema, Configuration]:
+    """Return the library, the one schema and the (valid) configuration a live command checks.
+
+    Raises:
+        UsageError: no single schema is named, or it has no configuration to use.
+        InvalidInputError: the files are invalid.
+    """
+    sel = select(libraries, schemas, None, [only] if only else None)
+    configs = read_configurations(configuration) if configuration else {}
+    names = [s.name for s in sel.schemas if not configs or s.name in configs]
+    if len(names) != 1:
+        choices = ", ".join(names) or "none"
+        raise UsageError(f"name one schema with --only (schemas to choose from: {choices})")
+    schema = next(s for s in sel.schemas if s.name == names[0])
+    mapping = configs.get(schema.name) or dict(schema.nominal)
+    if not mapping:
+        raise UsageError(f"{schema.name} has no nominal configuration: give --configuration")
+    for role in schema.graph.roles:
+        if role.name not in mapping:
+            raise UsageError(f"the configuration leaves role {role.name} of {schema.name} empty")
+    config = Configuration.of(schema.name, mapping, schema.graph.roles)
+    wrong = violations(config, sel.library, schema)
+    if wrong:
+        raise UsageError(f"the configuration of {schema.name} is not valid: {wrong[0]}")
+    return sel.library, schema, config
+
+
+def snapshot_command(
+    master: MasterOption,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
+    ] = None,
+) -> None:
+    """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
+    from rosreconf.cli import write_stdout
+
+    text = to_json(read_live_graph(master))
+    if output is None:
+        write_stdout(text)
+    else:
+        write_atomically(output, text)
+
+
+def import_command(
+    output: Annotated[Path, typer.Option("--output", "-o", help="The library file to write.")],
+    master: Annotated[
+        str | None, typer.Option("--master", help="Read this ROS master's URI.")
+    ] = None,
+    snapshot: Annotated[
+        Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
+    ] = None,
+    name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
+) -> None:
+    """Draft a component library (one component per live node) with TODOs to fill in."""
+    from rosreconf.cli import stderr
+
+    graph = _live(master, snapshot)
+    text = draft_library(graph, name)
+    write_atomically(output, text)
+    todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
+    stderr.print(
+        f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
+        markup=False,
+    )
+
+
+def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
+    """Read the live graph from exactly one of a master and a snapshot file."""
+    if (master is None) == (snapshot is None):
+        raise UsageError("give exactly one of --master URI and --snapshot FILE")
+    if snapshot is not None:
+        try:
+            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
+        except OSError as exc:
+            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
+    assert master is not None
+    return read_live_graph(master)
+
+
+def inspect_command(
+    master: MasterOption,
+    configuration: ConfigurationOption = None,
+    only: OnlySchemaOption = None,
+    library: LibraryOption = None,
+    schema: SchemaOption = None,
+    as_json: JsonOption = False,
+) -> None:
+    """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
+    from rosreconf.cli import write_stdout
+
+    lib, sch, config = target(library, schema, configuration, only)
+    result = compare(config, lib, sch, read_live_graph(master))
+    if as_json:
+        write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")
+    else:
+        head = "conforms to" if result.ok else "does NOT conform to"
+        write_stdout(f"{master}: the live system {head} the {sch.display_name} configuration\n")
+        for f in result.findings:
+            write_stdout(f"  {f.code}: {f.message}\n")
+    raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

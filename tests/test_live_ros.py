@@ -1,0 +1,128 @@
+"""The paper's use case on a real ROS 1 master: a servo dies, the robot reconfigures itself.
+
+Stand-ins of the nominal Object Repositioning configuration (NSM arm, camera 1) run on a
+private roscore; ``import`` and ``inspect`` read them; NSM3 is SIGKILLed (it lingers in the
+master); ``watch --apply --stand-ins`` runs as a real subprocess and must bring the DC-arm
+configuration up through the real roslaunch, which ``inspect`` then confirms. Everything
+started here is stopped at the end, and the master fixture asserts no process is left.
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+import ros_harness
+from conftest import StartStandIn
+
+from rosreconf.cli import app
+from rosreconf.configfile import render_configurations
+from rosreconf.errors import Severity
+from rosreconf.loader import check_loaded, load_bundled, load_paths
+from rosreconf.standins import standin_spec
+
+pytestmark = pytest.mark.ros
+
+SCHEMA = "object_repositioning"
+RECONFIGURE_TIMEOUT = 40.0
+
+
+def _events(path: Path) -> list[dict[str, Any]]:
+    if not path.exists():
+        return []
+    return [json.loads(line) for line in path.read_text().splitlines() if line.endswith("}")]
+
+
+def test_import_inspect_and_self_repair(
+    ros_master: ros_harness.Master, standin: StartStandIn, runner: Any, tmp_path: Path
+) -> None:
+    bundle = load_bundled()
+    library, schema = bundle.library, next(s for s in bundle.schemas if s.name == SCHEMA)
+    nodes = {c: standin(standin_spec(library[c])) for c in schema.nominal.values()}
+    uri = ros_master.uri
+
+    draft = tmp_path / "imported.yaml"
+    result = runner.invoke(app, ["import", "--master", uri, "-o", str(draft)])
+    assert result.exit_code == 0, result.stderr
+    assert draft.read_text().startswith("# yaml-language-server: $schema=")
+    loaded = load_paths([draft])
+    errors = [p for p in [*loaded.problems, *check_loaded(loaded)] if p.severity is Severity.ERROR]
+    assert not errors, errors
+    assert {c.name for c in loaded.library} == set(schema.nominal.values())
+    nsm3 = loaded.library["NSM3"]
+    assert {i.label for i in nsm3.provides} == {"/arm_servo/elbow/servo_command"}
+
+    inspect = ["inspect", "--master", uri, "--only", SCHEMA, "--json"]
+    result = runner.invoke(app, inspect)
+    assert result.exit_code == 0, result.stdout
+    assert json.loads(result.stdout)["conformant"] is True
+
+    nodes["NSM3"].process.send_signal(signal.SIGKILL)
+    nodes["NSM3"].process.wait(5)
+    result = runner.invoke(app, inspect)
+    assert result.exit_code == 1
+    report = json.loads(result.stdout)
+    assert {"code": "dead-node", "component": "NSM3"}.items() <= report["findings"][0].items()
+    assert any(
+        f["code"] == "unmet-requirement" and "NSM3" in f["message"] for f in report["findings"]
+    )
+
+    log = tmp_path / "watch.jsonl"
+    argv = [sys.executable, "-m", "rosreconf", "watch", "--master", uri, "--only", SCHEMA,
+            "--apply", "--stand-ins", "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
+    err = (tmp_path / "watch.err").open("wb")
+    watch = subprocess.Popen(
+        argv, env=ros_master.env(), stdout=subprocess.DEVNULL, stderr=err, start_new_session=True
+    )
+    try:
+        took = ros_harness.wait_until(
+            lambda: (
+                any(e["event"] == "conformant" for e in _events(log)) or watch.poll() is not None
+            ),
+            RECONFIGURE_TIMEOUT,
+            "reconfiguration",
+            interval=0.1,
+        )
+        events = _events(log)
+        assert [e["event"] for e in events][:3] == ["started", "failed", "purged"], events
+        (replanned,) = (e for e in events if e["event"] == "replanned")
+        new = replanned["configuration"]
+        assert [new[r] for r in ("base_joint", "elbow_joint", "gripper_joint")] == [
+            "NDC1", "NDC3", "NDC5"
+        ]  # fmt: skip
+        assert {new["positioning"], new["placing"]} == {"NFB11", "NFB14"}
+        assert new["camera"] == "NCA1" and new["reasoner"] == "NREA"
+        assert events[-1]["event"] == "conformant", events[-1]
+        print(f"kill -> conformant: {took:.2f} s after watch started")
+
+        config = tmp_path / "dc.json"
+        config.write_text(render_configurations({SCHEMA: new}))
+        result = runner.invoke(app, [*inspect, "--configuration", str(config)])
+        assert result.exit_code == 0, result.stdout
+        old = runner.invoke(app, inspect)
+        assert old.exit_code == 1  # the nominal configuration no longer runs
+
+        watch.send_signal(signal.SIGTERM)
+        assert watch.wait(15) == 143
+        assert _events(log)[-1]["event"] == "stopped"
+    finally:
+        if watch.poll() is None:
+            ros_harness.kill_group(watch.pid)
+            watch.wait(5)
+        err.close()
+    ros_master.remember_children()
+    ours = {n.process.pid for n in nodes.values()} | ros_master.pids | {ros_master.process.pid}
+    left = {p: _cmdline(p) for p in ros_harness.processes_using(ros_master.home) if p not in ours}
+    assert not left, f"watch left processes behind: {left}"
+
+
+def _cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+    except OSError:
+        return "?"
