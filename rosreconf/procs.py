@@ -1,0 +1,289 @@
+"""Run every external program rosreconf needs (planners, graphviz, roslaunch) the same way.
+
+One function owns the subprocess so that each rule below holds for all of them:
+
+- an argument list, never a shell, so no file or component name is ever interpreted;
+- a new session (``start_new_session=True``), so the program and everything it forks form one
+  process group that can be signalled as a whole, and a terminal's Ctrl-C reaches rosreconf
+  only, which then decides what to stop;
+- a wall-clock timeout that stops the whole group: SIGTERM, a short grace, then SIGKILL, which
+  also ends children that ignore SIGTERM; a KeyboardInterrupt or SIGTERM that reaches
+  rosreconf while it waits stops the group the same way and is then re-raised;
+- after every run, whatever is left of the group (a daemon the program forked) is killed;
+- optional address-space and CPU-time limits, set with ``setrlimit`` in the child; that is the
+  only thing the ``preexec_fn`` does, and it is used only when a limit is asked for;
+- stdout and stderr go to anonymous temporary files (no pipe can fill up and block the
+  program) and only their last ``max_output_bytes`` are kept;
+- an executable that does not exist is a result (``missing``), not an exception, so that a
+  planner adapter can say which package to install; ``ProgramResult.check`` turns any failure
+  into an ``ExternalToolError`` for callers that only want success.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import resource
+import shutil
+import signal
+import subprocess
+import tempfile
+import threading
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from types import FrameType
+from typing import IO
+
+from rosreconf.errors import ExternalToolError
+
+GRACE_SECONDS = 0.5
+"""How long a stopped program gets between SIGTERM and SIGKILL."""
+
+MAX_OUTPUT_BYTES = 1 << 20
+"""How much of each output stream is kept by default (its last MiB)."""
+
+MISSING_RETURNCODE = 127
+"""The return code reported for a program that could not be found (the shells' convention)."""
+
+
+class Terminated(SystemExit):
+    """Stop rosreconf cleanly when it receives SIGTERM while a program or a workdir is live.
+
+    Raised from a SIGTERM handler that ``run_program`` and ``private_workdir`` install in the
+    main thread (only when SIGTERM still has its default action), so that ``finally`` blocks
+    kill the program's group and remove temp dirs. It is a ``SystemExit`` with code 143
+    (128 + SIGTERM), so an uncaught one ends rosreconf the way the shell expects, silently.
+    """
+
+
+@dataclass(frozen=True)
+class ProgramResult:
+    """Describe how one run of an external program ended.
+
+    Attributes:
+        argv: the argument list that was run.
+        returncode: the exit status; negative (``-signal``) when a signal ended the program;
+            ``MISSING_RETURNCODE`` when it could not be found.
+        stdout: the (tail of the) standard output, decoded as UTF-8 with replacements.
+        stderr: the (tail of the) standard error, decoded likewise.
+        elapsed: wall-clock seconds from start to the end of the group.
+        timed_out: rosreconf stopped the program because the timeout passed.
+        missing: the executable (or its script interpreter) does not exist.
+        truncated: an output stream was longer than the bytes kept.
+    """
+
+    argv: tuple[str, ...]
+    returncode: int
+    stdout: str
+    stderr: str
+    elapsed: float
+    timed_out: bool = False
+    missing: bool = False
+    truncated: bool = False
+
+    @property
+    def ok(self) -> bool:
+        """Tell whether the program ran and exited 0 within its time."""
+        return not (self.missing or self.timed_out) and self.returncode == 0
+
+    @property
+    def signal(self) -> signal.Signals | None:
+        """Return the signal that ended the program, if one did."""
+        if self.returncode >= 0:
+            return None
+        try:
+            return signal.Signals(-self.returncode)
+        except ValueError:
+            return None
+
+    def check(self) -> ProgramResult:
+        """Return self if the program succeeded; otherwise raise ``ExternalToolError``."""
+        name = self.argv[0]
+        if self.missing:
+            raise ExternalToolError(f"{name} was not found (is it installed and on PATH?)")
+        if self.timed_out:
+            raise ExternalToolError(f"{name} did not finish within {self.elapsed:.1f} s")
+        if self.returncode != 0:
+            how = f"signal {self.signal.name}" if self.signal else f"exit code {self.returncode}"
+            last = self.stderr.strip().splitlines()[-1:] or ["no error output"]
+            raise ExternalToolError(f"{name} failed with {how}: {last[0]}")
+        return self
+
+
+def run_program(
+    argv: Sequence[str],
+    *,
+    timeout: float,
+    memory_limit_mb: int | None = None,
+    cpu_limit_s: int | None = None,
+    cwd: Path | None = None,
+    stdin: bytes | None = None,
+    env: Mapping[str, str] | None = None,
+    max_output_bytes: int = MAX_OUTPUT_BYTES,
+) -> ProgramResult:
+    """Run ``argv`` in its own process group and make sure none of the group outlives the call.
+
+    Args:
+        argv: the program and its arguments; ``argv[0]`` is looked up on PATH.
+        timeout: wall-clock seconds before the group is stopped (``timed_out``).
+        memory_limit_mb: RLIMIT_AS of the program (inherited by its children), or no limit.
+        cpu_limit_s: RLIMIT_CPU of the program: SIGXCPU at the limit, SIGKILL a second later.
+        cwd: working directory (it must exist); default: the current one.
+        stdin: bytes fed to the program; default: an empty stdin (``/dev/null``).
+        env: the program's whole environment; default: rosreconf's.
+        max_output_bytes: how many trailing bytes of each output stream to keep.
+
+    Raises:
+        ExternalToolError: ``cwd`` does not exist, or the program exists but cannot be run.
+        KeyboardInterrupt, Terminated: re-raised after the group has been killed.
+    """
+    if not argv:
+        raise ValueError("run_program needs a program to run")
+    if timeout <= 0:
+        raise ValueError(f"timeout must be positive, got {timeout}")
+    if cwd is not None and not Path(cwd).is_dir():
+        raise ExternalToolError(f"cannot run {argv[0]}: no directory {cwd}")
+    args = tuple(str(a) for a in argv)
+    with (
+        _sigterm_raises(),
+        tempfile.TemporaryFile() as out,
+        tempfile.TemporaryFile() as err,
+        tempfile.TemporaryFile() as inp,
+    ):
+        if stdin is not None:
+            inp.write(stdin)
+            inp.seek(0)
+        start = time.monotonic()
+        try:
+            proc = subprocess.Popen(
+                args,
+                stdin=inp if stdin is not None else subprocess.DEVNULL,
+                stdout=out,
+                stderr=err,
+                cwd=cwd,
+                env=None if env is None else dict(env),
+                start_new_session=True,
+                preexec_fn=_limits(memory_limit_mb, cpu_limit_s),
+            )
+        except FileNotFoundError:
+            return ProgramResult(args, MISSING_RETURNCODE, "", "", 0.0, missing=True)
+        except OSError as exc:
+            raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
+        timed_out = False
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+            _stop_group(proc)
+        except BaseException:  # KeyboardInterrupt, Terminated: stop the group, then re-raise
+            _stop_group(proc)
+            raise
+        finally:
+            _signal_group(proc.pid, signal.SIGKILL)  # leftovers, e.g. a forked daemon
+        elapsed = time.monotonic() - start
+        stdout, cut_out = _tail(out, max_output_bytes)
+        stderr, cut_err = _tail(err, max_output_bytes)
+    return ProgramResult(
+        args,
+        proc.returncode,
+        stdout,
+        stderr,
+        elapsed,
+        timed_out=timed_out,
+        truncated=cut_out or cut_err,
+    )
+
+
+@contextlib.contextmanager
+def private_workdir(parent: Path | None = None) -> Iterator[Path]:
+    """Give a run its own temp dir (mode 0700), removed on every way out of the block.
+
+    The directory is removed on normal exit, on exceptions, on KeyboardInterrupt and on SIGTERM
+    (turned into ``Terminated`` while the block runs in the main thread). ``parent`` chooses
+    where it is made (default: the system temp dir); tests use it to check nothing is left.
+    """
+    with _sigterm_raises():
+        path = Path(tempfile.mkdtemp(prefix="rosreconf-", dir=parent))
+        try:
+            yield path
+        finally:
+            shutil.rmtree(path, ignore_errors=True)
+
+
+def _limits(memory_limit_mb: int | None, cpu_limit_s: int | None) -> Callable[[], None] | None:
+    """Compute the rlimits in the parent; return a preexec_fn that only calls setrlimit."""
+    wanted: list[tuple[int, tuple[int, int]]] = []
+    if memory_limit_mb is not None:
+        size = memory_limit_mb << 20
+        wanted.append((resource.RLIMIT_AS, _clamp(resource.RLIMIT_AS, size, size)))
+    if cpu_limit_s is not None:  # SIGXCPU at the soft limit, SIGKILL at the hard one
+        wanted.append(
+            (resource.RLIMIT_CPU, _clamp(resource.RLIMIT_CPU, cpu_limit_s, cpu_limit_s + 1))
+        )
+    if not wanted:
+        return None
+
+    def set_limits() -> None:
+        for which, limits in wanted:
+            resource.setrlimit(which, limits)
+
+    return set_limits
+
+
+def _clamp(which: int, soft: int, hard: int) -> tuple[int, int]:
+    """Clamp limits to the current hard limit, which an unprivileged child cannot raise."""
+    ceiling = resource.getrlimit(which)[1]
+    if ceiling == resource.RLIM_INFINITY:
+        return soft, hard
+    return min(soft, ceiling), min(hard, ceiling)
+
+
+def _stop_group(proc: subprocess.Popen[bytes]) -> None:
+    """Ask the group to stop (SIGTERM), wait a short grace, then kill it (SIGKILL) and reap."""
+    try:
+        _signal_group(proc.pid, signal.SIGTERM)
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            proc.wait(timeout=GRACE_SECONDS)
+    finally:
+        _signal_group(proc.pid, signal.SIGKILL)
+        proc.wait()
+
+
+def _signal_group(pgid: int, sig: signal.Signals) -> None:
+    """Send ``sig`` to a process group; a group that is already gone is fine."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pgid, sig)
+
+
+def _tail(stream: IO[bytes], limit: int) -> tuple[str, bool]:
+    """Read the last ``limit`` bytes of a temp file; say whether anything was cut."""
+    size = stream.seek(0, os.SEEK_END)
+    stream.seek(max(0, size - limit))
+    return stream.read().decode("utf-8", errors="replace"), size > limit
+
+
+@contextlib.contextmanager
+def _sigterm_raises() -> Iterator[None]:
+    """Turn SIGTERM into ``Terminated`` while the block runs, so its cleanup code runs.
+
+    Only in the main thread (Python delivers signals there) and only when SIGTERM still has
+    its default action: an application's own handler is never replaced, and nested uses are
+    no-ops.
+    """
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGTERM) != signal.SIG_DFL
+    ):
+        yield
+        return
+
+    def handler(signum: int, frame: FrameType | None) -> None:
+        raise Terminated(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)

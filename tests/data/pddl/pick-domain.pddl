@@ -1,0 +1,23 @@
+; Pick one component for each role of a robot: a component can be picked only when the
+; service it needs is available, and picking it makes the service it offers available.
+; Pre-grounded STRIPS with action costs, the form rosreconf's templates produce.
+(define (domain pick-components)
+  (:requirements :strips :typing :action-costs)
+  (:types role component service)
+  (:predicates
+    (open ?r - role)
+    (filled ?r - role)
+    (candidate ?r - role ?c - component)
+    (needs ?c - component ?s - service)
+    (offers ?c - component ?s - service)
+    (available ?s - service)
+    (uses ?r - role ?c - component))
+  (:functions
+    (total-cost) - number
+    (price ?c - component) - number)
+  (:action pick
+    :parameters (?r - role ?c - component ?need - service ?offer - service)
+    :precondition (and (open ?r) (candidate ?r ?c) (needs ?c ?need) (available ?need)
+                       (offers ?c ?offer))
+    :effect (and (not (open ?r)) (filled ?r) (uses ?r ?c) (available ?offer)
+                 (increase (total-cost) (price ?c)))))

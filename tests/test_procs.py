@@ -1,0 +1,158 @@
+"""Tests for rosreconf.procs: limits, timeouts and interrupts must leave no process or dir."""
+
+from __future__ import annotations
+
+import os
+import signal
+import stat
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import FAKES, read_report, wait_until_gone
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.procs import (
+    GRACE_SECONDS,
+    MISSING_RETURNCODE,
+    Terminated,
+    private_workdir,
+    run_program,
+)
+
+PY = sys.executable
+
+
+def test_captures_output_exit_code_and_time() -> None:
+    code = "import sys; print('out'); print('err', file=sys.stderr); sys.exit(3)"
+    result = run_program([PY, "-c", code], timeout=10)
+    assert (result.returncode, result.stdout, result.stderr) == (3, "out\n", "err\n")
+    assert not result.ok and not result.timed_out and not result.missing
+    assert 0 < result.elapsed < 10
+
+
+def test_arguments_are_never_interpreted_by_a_shell(tmp_path: Path) -> None:
+    trap = f"$(touch {tmp_path}/pwned); echo hi > {tmp_path}/pwned2"
+    result = run_program([PY, "-c", "import sys; print(sys.argv[1])", trap], timeout=10)
+    assert result.stdout == trap + "\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_runs_in_a_new_session_with_stdin_cwd_and_env(tmp_path: Path) -> None:
+    code = (
+        "import os, sys; data = sys.stdin.read();"
+        "print(os.getsid(0) == os.getpid(), os.getcwd(), os.environ['ROSRECONF_X'], data)"
+    )
+    env = {**os.environ, "ROSRECONF_X": "42"}
+    result = run_program([PY, "-c", code], timeout=10, cwd=tmp_path, stdin=b"fed", env=env)
+    assert result.stdout.split() == ["True", str(tmp_path), "42", "fed"]
+
+
+def test_stdin_is_empty_by_default() -> None:
+    result = run_program([PY, "-c", "import sys; print(repr(sys.stdin.read()))"], timeout=10)
+    assert result.stdout == "''\n"
+
+
+def test_a_missing_program_is_a_result_and_check_raises() -> None:
+    result = run_program(["rosreconf-no-such-program"], timeout=10)
+    assert result.missing and result.returncode == MISSING_RETURNCODE
+    with pytest.raises(ExternalToolError, match="rosreconf-no-such-program was not found"):
+        result.check()
+
+
+def test_a_missing_working_directory_raises(tmp_path: Path) -> None:
+    with pytest.raises(ExternalToolError, match="no directory"):
+        run_program([PY, "-c", "pass"], timeout=10, cwd=tmp_path / "absent")
+
+
+def test_check_names_the_failure() -> None:
+    ok = run_program([PY, "-c", "pass"], timeout=10)
+    assert ok.check() is ok
+    failed = run_program([PY, "-c", "import sys; sys.exit('bad input')"], timeout=10)
+    with pytest.raises(ExternalToolError, match="exit code 1: bad input"):
+        failed.check()
+
+
+def test_output_keeps_only_the_tail() -> None:
+    code = "print('x' * 300000); print('THE END')"
+    result = run_program([PY, "-c", code], timeout=10, max_output_bytes=1000)
+    assert result.truncated and len(result.stdout) == 1000
+    assert result.stdout.endswith("THE END\n")
+
+
+def test_memory_limit_makes_allocation_fail() -> None:
+    code = "bytearray(600 << 20)"
+    assert run_program([PY, "-c", code], timeout=20).returncode == 0
+    limited = run_program([PY, "-c", code], timeout=20, memory_limit_mb=300)
+    assert limited.returncode == 1 and "MemoryError" in limited.stderr
+
+
+def test_cpu_limit_sends_sigxcpu() -> None:
+    result = run_program([PY, "-c", "while True: pass"], timeout=20, cpu_limit_s=1)
+    assert result.signal is signal.SIGXCPU and not result.timed_out
+    assert result.elapsed < 5
+
+
+def test_timeout_kills_the_whole_group_even_a_child_ignoring_sigterm(report: Path) -> None:
+    start = time.monotonic()
+    result = run_program([str(FAKES / "fork_ignore_term.py")], timeout=1.0)
+    assert result.timed_out and not result.ok
+    assert time.monotonic() - start < 1.0 + GRACE_SECONDS + 2
+    facts = read_report(report)
+    assert len(facts["pids"]) == 2 and facts["pids"][0] == facts["pgid"]
+    assert wait_until_gone(facts["pgid"]) == []
+
+
+def test_a_child_left_behind_by_a_finished_program_is_killed(
+    report: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("FAKE_PARENT_EXITS", "1")
+    result = run_program([str(FAKES / "fork_ignore_term.py")], timeout=10)
+    assert result.returncode == 0 and not result.timed_out
+    assert result.elapsed < 5  # did not wait for the child, which holds stdout open
+    assert wait_until_gone(read_report(report)["pgid"]) == []
+
+
+@pytest.mark.parametrize(
+    ("sig", "raised"), [(signal.SIGINT, KeyboardInterrupt), (signal.SIGTERM, Terminated)]
+)
+def test_an_interrupt_kills_the_group_and_removes_the_workdir(
+    report: Path, signal_when_started: Any, tmp_path: Path, sig: signal.Signals, raised: type
+) -> None:
+    if signal.getsignal(signal.SIGTERM) != signal.SIG_DFL:
+        pytest.skip("SIGTERM already has a handler in this test process")
+    parent = tmp_path / "work"
+    parent.mkdir()
+    signal_when_started(sig)
+    with pytest.raises(raised), private_workdir(parent) as workdir:
+        run_program([str(FAKES / "fork_ignore_term.py")], timeout=30, cwd=workdir)
+    facts = read_report(report)
+    assert facts["cwd"] == str(workdir)
+    assert wait_until_gone(facts["pgid"]) == []
+    assert list(parent.iterdir()) == []
+    assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL  # the handler was put back
+
+
+def test_terminated_exits_like_sigterm() -> None:
+    assert issubclass(Terminated, SystemExit)
+    assert Terminated(143).code == 128 + signal.SIGTERM
+
+
+def test_private_workdir_is_private_and_removed_on_success_and_error(tmp_path: Path) -> None:
+    with private_workdir(tmp_path) as workdir:
+        assert stat.S_IMODE(workdir.stat().st_mode) == 0o700
+        (workdir / "sub").mkdir()
+        (workdir / "sub" / "file").write_text("x")
+    assert not workdir.exists()
+    with pytest.raises(RuntimeError), private_workdir(tmp_path) as workdir:
+        raise RuntimeError("boom")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_arguments_are_programming_errors() -> None:
+    with pytest.raises(ValueError):
+        run_program([], timeout=1)
+    with pytest.raises(ValueError):
+        run_program([PY, "-c", "pass"], timeout=0)
