@@ -80,11 +80,13 @@ def _root(
 
 def _register() -> None:
     from rosreconf.commands import enumerate as enumerate_
-    from rosreconf.commands import validate
+    from rosreconf.commands import plan, render_pddl, validate
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
         "enumerate": enumerate_.enumerate_command,
+        "render-pddl": render_pddl.render_pddl,
+        "plan": plan.plan_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
