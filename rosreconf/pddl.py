@@ -11,16 +11,17 @@ Fast Downward's translator build an axiom per component pair (50 roles x 10 cand
                      cannot share an edge with c, not (chosen x) for every x that excludes
                      c or that c excludes
                      -> (filled r) (uses r c) (chosen c); cost: the objective's price
-    connect-r-q-v-p  (filled last role) (uses v p), where p meets requirement q along an
-                     edge r -> v  -> (met r q); cost 0
+    connect-r-q-v-p  (filled last role), (done previous role), not (met r q), (uses v p),
+                     where p meets requirement q along an edge r -> v  -> (met r q); cost 0
     finish-r-c       (filled last role), (done previous role), (uses r c), (met r q) for
                      every requirement q of c, (chosen d) for every d that c needs
                      -> (done r); cost 0
     goal             (done r) for every role
 
-Roles are chosen, and finished, in schema order: without that, every reordering of a plan is
-another plan and optimal searches drown in the symmetry (astar(lmcut()) on the paper's example:
-over 30 s unordered, 7 s ordered; seq-sat-lama-2011 proves the optimum in 0.4 s ordered).
+Roles are chosen, then connected and finished, in schema order: without that, every
+reordering of a plan is another plan and optimal searches drown in the symmetry
+(astar(lmcut()) on the paper's example: over 30 s unordered, 7 s ordered; seq-sat-lama-2011
+proves the optimum in 0.4 s ordered).
 
 Names map one way through ``PddlNames`` (model -> PDDL) and back (PDDL -> model). Model names
 are ``[A-Za-z][A-Za-z0-9_]*``, so ``-`` separates the parts of an action name unambiguously.
@@ -222,8 +223,11 @@ def render(
         inst: the compiled schema.
         objective: what choices cost (keep the current component: 0; change: more than every
             metric together; metrics: weighted, in hundredths). None: every plan costs 0.
-        forbid: configurations the plan must not produce (a negated conjunction in the goal;
-            used to enumerate by planning).
+        forbid: configurations the plan must not produce (used to enumerate by planning):
+            for each, the goal needs ``(avoided-K)``, which only an ``avoid-K-ROLE`` action
+            achieves, where ROLE holds another component than in the forbidden one. A
+            negated conjunction in the goal would do, but Fast Downward multiplies such
+            disjunctions out (13 roles, 4 configurations: 13^4 axiom rules).
     """
     objective = objective or Objective()
     names = PddlNames()
@@ -239,10 +243,9 @@ def render(
     actions += _finish_actions(inst, names, comps, roles, reqs)
     env = _environment()
     current = {r: c for r, c in objective.current.items() if r in inst.role_index}
-    forbidden = [
-        [f"(uses {names.role(r)} {c.lower()})" for r, c in f.assignment if c.lower() in comps]
-        for f in forbid
-    ]
+    avoided = _avoid_actions(inst, names, comps, roles, forbid)
+    actions += avoided
+    forbidden = sorted({a.eff[0] for a in avoided})
     context = {
         "schema": schema,
         "domain_name": f"rosreconf-{schema.name.lower()}",
@@ -253,7 +256,7 @@ def render(
         "failed": sorted(comps[n] for n in inst.failed if n in comps),
         "current": [(names.role(r), c) for r, c in current.items()],
         "weights": dict(objective.weights),
-        "forbid": forbidden,
+        "forbid": [f[1:-1] for f in forbidden],
     }
     return PddlTask(
         _template(env, "domain.pddl.j2").render(context),
@@ -356,7 +359,12 @@ def _connect_actions(
                 Action(
                     name,
                     f"{cv} ({inst.roles[v].name}) meets {inst.roles[u].name}'s need for {req}",
-                    [f"(filled {roles[-1]})", f"(uses {roles[v]} {comps[cv]})"],
+                    [
+                        f"(filled {roles[-1]})",
+                        *([f"(done {roles[u - 1]})"] if u else []),
+                        f"(not (met {roles[u]} {reqs[req]}))",
+                        f"(uses {roles[v]} {comps[cv]})",
+                    ],
                     [f"(met {roles[u]} {reqs[req]})"],
                     0,
                 )
@@ -389,6 +397,39 @@ def _finish_actions(
             out.append(
                 Action(
                     name, f"{c.name} has all it requires and needs", pre, [f"(done {roles[u]})"], 0
+                )
+            )
+    return out
+
+
+def _avoid_actions(
+    inst: Instance,
+    names: PddlNames,
+    comps: dict[str, str],
+    roles: list[str],
+    forbid: Sequence[Configuration],
+) -> list[Action]:
+    out = []
+    usable = [  # a configuration using a non-candidate cannot come out anyway
+        f
+        for f in forbid
+        if f.assignment and all(c in comps and r in inst.role_index for r, c in f.assignment)
+    ]
+    index = inst.role_index
+    for k, f in enumerate(usable, start=1):
+        for r, c in f.assignment:
+            role = roles[index[r]]
+            pre = [f"(done {roles[-1]})", f"(not (avoided-{k}))", f"(not (uses {role} {comps[c]}))"]
+            if k > 1:
+                pre.append(f"(avoided-{k - 1})")
+            name = names.action(f"avoid-{k}-{role}", Step("avoid", r, c))
+            out.append(
+                Action(
+                    name,
+                    f"not forbidden configuration {k}: {r} is not {c}",
+                    pre,
+                    [f"(avoided-{k})"],
+                    0,
                 )
             )
     return out
