@@ -316,14 +316,8 @@ def test_ff_output_is_read_faithfully(
     fake_ff(transcript, code)
     result = run(FF(), parent)
     assert (result.status, result.cost, len(result.actions)) == (status, cost, steps)
-    ff, o, domain, f, task = result.command
-    assert (Path(ff).name, o, Path(domain).name, f, Path(task).name) == (
-        "ff",
-        "-o",
-        "domain.pddl",
-        "-f",
-        "problem.pddl",
-    )
+    names = [Path(arg).name for arg in result.command]
+    assert names == ["ff", "-o", "domain.pddl", "-f", "problem.pddl"]
     if transcript == "metric_plan":
         assert result.actions == OPTIMAL
     if transcript == "syntax_error":
