@@ -17,7 +17,8 @@ from pathlib import Path
 from rosreconf.instance import compile_instance, explain
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.narrative import Change, changes, explain_impossible, explain_replan
-from rosreconf.pddl import PddlTask, Step, render
+from rosreconf.pddl import PddlTask, render
+from rosreconf.pddl_names import Step
 from rosreconf.planners import Planner, PlanResult, PlanStatus, solve
 from rosreconf.solver import ClingoEngine, Objective, best_configuration
 from rosreconf.validity import violations
