@@ -79,7 +79,17 @@ def _root(
 
 
 def _register() -> None:
-    from rosreconf.commands import analyse, graph, launch, live, redundancy, validate, watch
+    from rosreconf.commands import (
+        analyse,
+        graph,
+        launch,
+        live,
+        plan,
+        redundancy,
+        render_pddl,
+        validate,
+        watch,
+    )
     from rosreconf.commands import enumerate as enumerate_
 
     commands: dict[str, Callable[..., object]] = {
@@ -93,6 +103,8 @@ def _register() -> None:
         "import": live.import_command,
         "inspect": live.inspect_command,
         "watch": watch.watch_command,
+        "render-pddl": render_pddl.render_pddl,
+        "plan": plan.plan_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))

@@ -1,0 +1,2037 @@
+;; rosreconf: Object Repositioning (object_repositioning), pre-grounded STRIPS with action costs.
+;; choose-ROLE-COMPONENT fills a role; connect-ROLE-REQUIREMENT-PROVIDERROLE-PROVIDER meets a
+;; requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
+;; Generated from the templates in rosreconf; see docs/pddl.md.
+(define (domain rosreconf-object_repositioning)
+  (:requirements :strips :typing :negative-preconditions :action-costs)
+  (:types role component requirement)
+  (:constants
+    base_joint
+    shoulder_joint
+    elbow_joint
+    wrist_joint
+    gripper_joint
+    camera
+    gripper_sensor
+    perception
+    positioning
+    grasping
+    carrying
+    placing
+    reasoner
+    - role
+    nca1
+    nca2
+    nco1
+    nco2
+    ndc1
+    ndc2
+    ndc3
+    ndc4
+    ndc5
+    nfb11
+    nfb12
+    nfb13
+    nfb14
+    nfb21
+    nfb22
+    nfb23
+    nfb24
+    nrea
+    nsm1
+    nsm2
+    nsm3
+    nsm4
+    nsm5
+    nvp1
+    nvp2
+    - component
+    camera_image
+    dc_servo_command
+    dc_servo_command-or-digital_servo_command
+    digital_servo_command
+    gripper_feeling
+    visual_perception
+    - requirement
+  )
+  (:predicates
+    (filled ?r - role)
+    (uses ?r - role ?c - component)
+    (chosen ?c - component)
+    (met ?r - role ?q - requirement)
+    (done ?r - role)
+    (failed ?c - component)
+  )
+  (:functions (total-cost) - number)
+
+  ;; start NDC1 as base_joint
+  (:action choose-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (not (filled base_joint))
+      (not (chosen ndc1))
+      (not (uses positioning nfb21))
+      (not (uses grasping nfb22))
+      (not (uses carrying nfb23))
+      (not (uses placing nfb24))
+    )
+    :effect (and
+      (filled base_joint)
+      (uses base_joint ndc1)
+      (chosen ndc1)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NSM1 as base_joint
+  (:action choose-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (not (filled base_joint))
+      (not (chosen nsm1))
+      (not (uses positioning nfb11))
+      (not (uses grasping nfb12))
+      (not (uses carrying nfb13))
+      (not (uses placing nfb14))
+    )
+    :effect (and
+      (filled base_joint)
+      (uses base_joint nsm1)
+      (chosen nsm1)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NDC2 as shoulder_joint
+  (:action choose-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (not (filled shoulder_joint))
+      (not (chosen ndc2))
+      (filled base_joint)
+      (not (uses positioning nfb21))
+      (not (uses grasping nfb22))
+      (not (uses carrying nfb23))
+      (not (uses placing nfb24))
+    )
+    :effect (and
+      (filled shoulder_joint)
+      (uses shoulder_joint ndc2)
+      (chosen ndc2)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NSM2 as shoulder_joint
+  (:action choose-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (not (filled shoulder_joint))
+      (not (chosen nsm2))
+      (filled base_joint)
+      (not (uses positioning nfb11))
+      (not (uses grasping nfb12))
+      (not (uses carrying nfb13))
+      (not (uses placing nfb14))
+    )
+    :effect (and
+      (filled shoulder_joint)
+      (uses shoulder_joint nsm2)
+      (chosen nsm2)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NDC3 as elbow_joint
+  (:action choose-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (not (filled elbow_joint))
+      (not (chosen ndc3))
+      (filled shoulder_joint)
+      (not (uses positioning nfb21))
+      (not (uses grasping nfb22))
+      (not (uses carrying nfb23))
+      (not (uses placing nfb24))
+    )
+    :effect (and
+      (filled elbow_joint)
+      (uses elbow_joint ndc3)
+      (chosen ndc3)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NSM3 as elbow_joint
+  (:action choose-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (not (filled elbow_joint))
+      (not (chosen nsm3))
+      (filled shoulder_joint)
+      (not (uses positioning nfb11))
+      (not (uses grasping nfb12))
+      (not (uses carrying nfb13))
+      (not (uses placing nfb14))
+    )
+    :effect (and
+      (filled elbow_joint)
+      (uses elbow_joint nsm3)
+      (chosen nsm3)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NDC4 as wrist_joint
+  (:action choose-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (not (filled wrist_joint))
+      (not (chosen ndc4))
+      (filled elbow_joint)
+      (not (uses positioning nfb21))
+      (not (uses grasping nfb22))
+      (not (uses carrying nfb23))
+      (not (uses placing nfb24))
+    )
+    :effect (and
+      (filled wrist_joint)
+      (uses wrist_joint ndc4)
+      (chosen ndc4)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NSM4 as wrist_joint
+  (:action choose-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (not (filled wrist_joint))
+      (not (chosen nsm4))
+      (filled elbow_joint)
+      (not (uses positioning nfb11))
+      (not (uses grasping nfb12))
+      (not (uses carrying nfb13))
+      (not (uses placing nfb14))
+    )
+    :effect (and
+      (filled wrist_joint)
+      (uses wrist_joint nsm4)
+      (chosen nsm4)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NDC5 as gripper_joint
+  (:action choose-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (not (filled gripper_joint))
+      (not (chosen ndc5))
+      (filled wrist_joint)
+      (not (uses positioning nfb21))
+      (not (uses grasping nfb22))
+      (not (uses carrying nfb23))
+      (not (uses placing nfb24))
+    )
+    :effect (and
+      (filled gripper_joint)
+      (uses gripper_joint ndc5)
+      (chosen ndc5)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NSM5 as gripper_joint
+  (:action choose-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (not (filled gripper_joint))
+      (not (chosen nsm5))
+      (filled wrist_joint)
+      (not (uses positioning nfb11))
+      (not (uses grasping nfb12))
+      (not (uses carrying nfb13))
+      (not (uses placing nfb14))
+    )
+    :effect (and
+      (filled gripper_joint)
+      (uses gripper_joint nsm5)
+      (chosen nsm5)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; keep NCA1 as camera
+  (:action choose-camera-nca1
+    :parameters ()
+    :precondition (and
+      (not (filled camera))
+      (not (chosen nca1))
+      (filled gripper_joint)
+    )
+    :effect (and
+      (filled camera)
+      (uses camera nca1)
+      (chosen nca1)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NCA2 as camera
+  (:action choose-camera-nca2
+    :parameters ()
+    :precondition (and
+      (not (filled camera))
+      (not (chosen nca2))
+      (filled gripper_joint)
+    )
+    :effect (and
+      (filled camera)
+      (uses camera nca2)
+      (chosen nca2)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NCO1 as gripper_sensor
+  (:action choose-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (not (filled gripper_sensor))
+      (not (chosen nco1))
+      (filled camera)
+    )
+    :effect (and
+      (filled gripper_sensor)
+      (uses gripper_sensor nco1)
+      (chosen nco1)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NCO2 as gripper_sensor
+  (:action choose-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (not (filled gripper_sensor))
+      (not (chosen nco2))
+      (filled camera)
+    )
+    :effect (and
+      (filled gripper_sensor)
+      (uses gripper_sensor nco2)
+      (chosen nco2)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NVP1 as perception
+  (:action choose-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (not (filled perception))
+      (not (chosen nvp1))
+      (filled gripper_sensor)
+    )
+    :effect (and
+      (filled perception)
+      (uses perception nvp1)
+      (chosen nvp1)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NVP2 as perception
+  (:action choose-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (not (filled perception))
+      (not (chosen nvp2))
+      (filled gripper_sensor)
+    )
+    :effect (and
+      (filled perception)
+      (uses perception nvp2)
+      (chosen nvp2)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; start NFB11 as positioning
+  (:action choose-positioning-nfb11
+    :parameters ()
+    :precondition (and
+      (not (filled positioning))
+      (not (chosen nfb11))
+      (filled perception)
+      (not (uses base_joint nsm1))
+      (not (uses shoulder_joint nsm2))
+      (not (uses elbow_joint nsm3))
+      (not (uses wrist_joint nsm4))
+      (not (uses gripper_joint nsm5))
+    )
+    :effect (and
+      (filled positioning)
+      (uses positioning nfb11)
+      (chosen nfb11)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NFB21 as positioning
+  (:action choose-positioning-nfb21
+    :parameters ()
+    :precondition (and
+      (not (filled positioning))
+      (not (chosen nfb21))
+      (filled perception)
+      (not (uses base_joint ndc1))
+      (not (uses shoulder_joint ndc2))
+      (not (uses elbow_joint ndc3))
+      (not (uses wrist_joint ndc4))
+      (not (uses gripper_joint ndc5))
+    )
+    :effect (and
+      (filled positioning)
+      (uses positioning nfb21)
+      (chosen nfb21)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NFB12 as grasping
+  (:action choose-grasping-nfb12
+    :parameters ()
+    :precondition (and
+      (not (filled grasping))
+      (not (chosen nfb12))
+      (filled positioning)
+      (not (uses base_joint nsm1))
+      (not (uses shoulder_joint nsm2))
+      (not (uses elbow_joint nsm3))
+      (not (uses wrist_joint nsm4))
+      (not (uses gripper_joint nsm5))
+    )
+    :effect (and
+      (filled grasping)
+      (uses grasping nfb12)
+      (chosen nfb12)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NFB22 as grasping
+  (:action choose-grasping-nfb22
+    :parameters ()
+    :precondition (and
+      (not (filled grasping))
+      (not (chosen nfb22))
+      (filled positioning)
+      (not (uses base_joint ndc1))
+      (not (uses shoulder_joint ndc2))
+      (not (uses elbow_joint ndc3))
+      (not (uses wrist_joint ndc4))
+      (not (uses gripper_joint ndc5))
+    )
+    :effect (and
+      (filled grasping)
+      (uses grasping nfb22)
+      (chosen nfb22)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NFB13 as carrying
+  (:action choose-carrying-nfb13
+    :parameters ()
+    :precondition (and
+      (not (filled carrying))
+      (not (chosen nfb13))
+      (filled grasping)
+      (not (uses base_joint nsm1))
+      (not (uses shoulder_joint nsm2))
+      (not (uses elbow_joint nsm3))
+      (not (uses wrist_joint nsm4))
+      (not (uses gripper_joint nsm5))
+    )
+    :effect (and
+      (filled carrying)
+      (uses carrying nfb13)
+      (chosen nfb13)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NFB23 as carrying
+  (:action choose-carrying-nfb23
+    :parameters ()
+    :precondition (and
+      (not (filled carrying))
+      (not (chosen nfb23))
+      (filled grasping)
+      (not (uses base_joint ndc1))
+      (not (uses shoulder_joint ndc2))
+      (not (uses elbow_joint ndc3))
+      (not (uses wrist_joint ndc4))
+      (not (uses gripper_joint ndc5))
+    )
+    :effect (and
+      (filled carrying)
+      (uses carrying nfb23)
+      (chosen nfb23)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; start NFB14 as placing
+  (:action choose-placing-nfb14
+    :parameters ()
+    :precondition (and
+      (not (filled placing))
+      (not (chosen nfb14))
+      (filled carrying)
+      (not (uses base_joint nsm1))
+      (not (uses shoulder_joint nsm2))
+      (not (uses elbow_joint nsm3))
+      (not (uses wrist_joint nsm4))
+      (not (uses gripper_joint nsm5))
+    )
+    :effect (and
+      (filled placing)
+      (uses placing nfb14)
+      (chosen nfb14)
+      (increase (total-cost) 1)
+    )
+  )
+
+  ;; keep NFB24 as placing
+  (:action choose-placing-nfb24
+    :parameters ()
+    :precondition (and
+      (not (filled placing))
+      (not (chosen nfb24))
+      (filled carrying)
+      (not (uses base_joint ndc1))
+      (not (uses shoulder_joint ndc2))
+      (not (uses elbow_joint ndc3))
+      (not (uses wrist_joint ndc4))
+      (not (uses gripper_joint ndc5))
+    )
+    :effect (and
+      (filled placing)
+      (uses placing nfb24)
+      (chosen nfb24)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; keep NREA as reasoner
+  (:action choose-reasoner-nrea
+    :parameters ()
+    :precondition (and
+      (not (filled reasoner))
+      (not (chosen nrea))
+      (filled placing)
+    )
+    :effect (and
+      (filled reasoner)
+      (uses reasoner nrea)
+      (chosen nrea)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCA1 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
+  (:action connect-perception-camera_image-camera-nca1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done gripper_sensor)
+      (not (met perception camera_image))
+      (uses camera nca1)
+    )
+    :effect (and
+      (met perception camera_image)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCA2 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
+  (:action connect-perception-camera_image-camera-nca2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done gripper_sensor)
+      (not (met perception camera_image))
+      (uses camera nca2)
+    )
+    :effect (and
+      (met perception camera_image)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-perception-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done gripper_sensor)
+      (not (met perception gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met perception gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-perception-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done gripper_sensor)
+      (not (met perception gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met perception gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-positioning-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met positioning gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-positioning-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met positioning gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-positioning-visual_perception-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning visual_perception))
+      (uses perception nvp1)
+    )
+    :effect (and
+      (met positioning visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-positioning-visual_perception-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning visual_perception))
+      (uses perception nvp2)
+    )
+    :effect (and
+      (met positioning visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 (base_joint) meets positioning's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-dc_servo_command-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning dc_servo_command))
+      (uses base_joint ndc1)
+    )
+    :effect (and
+      (met positioning dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 (shoulder_joint) meets positioning's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-dc_servo_command-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning dc_servo_command))
+      (uses shoulder_joint ndc2)
+    )
+    :effect (and
+      (met positioning dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 (elbow_joint) meets positioning's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-dc_servo_command-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning dc_servo_command))
+      (uses elbow_joint ndc3)
+    )
+    :effect (and
+      (met positioning dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 (wrist_joint) meets positioning's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-dc_servo_command-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning dc_servo_command))
+      (uses wrist_joint ndc4)
+    )
+    :effect (and
+      (met positioning dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 (gripper_joint) meets positioning's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-dc_servo_command-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning dc_servo_command))
+      (uses gripper_joint ndc5)
+    )
+    :effect (and
+      (met positioning dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 (base_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-digital_servo_command-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning digital_servo_command))
+      (uses base_joint nsm1)
+    )
+    :effect (and
+      (met positioning digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 (shoulder_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-digital_servo_command-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning digital_servo_command))
+      (uses shoulder_joint nsm2)
+    )
+    :effect (and
+      (met positioning digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 (elbow_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-digital_servo_command-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning digital_servo_command))
+      (uses elbow_joint nsm3)
+    )
+    :effect (and
+      (met positioning digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 (wrist_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-digital_servo_command-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning digital_servo_command))
+      (uses wrist_joint nsm4)
+    )
+    :effect (and
+      (met positioning digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 (gripper_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-digital_servo_command-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done perception)
+      (not (met positioning digital_servo_command))
+      (uses gripper_joint nsm5)
+    )
+    :effect (and
+      (met positioning digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-grasping-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met grasping gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-grasping-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met grasping gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-grasping-visual_perception-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping visual_perception))
+      (uses perception nvp1)
+    )
+    :effect (and
+      (met grasping visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-grasping-visual_perception-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping visual_perception))
+      (uses perception nvp2)
+    )
+    :effect (and
+      (met grasping visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 (base_joint) meets grasping's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-dc_servo_command-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping dc_servo_command))
+      (uses base_joint ndc1)
+    )
+    :effect (and
+      (met grasping dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 (shoulder_joint) meets grasping's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-dc_servo_command-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping dc_servo_command))
+      (uses shoulder_joint ndc2)
+    )
+    :effect (and
+      (met grasping dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 (elbow_joint) meets grasping's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-dc_servo_command-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping dc_servo_command))
+      (uses elbow_joint ndc3)
+    )
+    :effect (and
+      (met grasping dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 (wrist_joint) meets grasping's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-dc_servo_command-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping dc_servo_command))
+      (uses wrist_joint ndc4)
+    )
+    :effect (and
+      (met grasping dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 (gripper_joint) meets grasping's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-dc_servo_command-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping dc_servo_command))
+      (uses gripper_joint ndc5)
+    )
+    :effect (and
+      (met grasping dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 (base_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-digital_servo_command-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping digital_servo_command))
+      (uses base_joint nsm1)
+    )
+    :effect (and
+      (met grasping digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 (shoulder_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-digital_servo_command-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping digital_servo_command))
+      (uses shoulder_joint nsm2)
+    )
+    :effect (and
+      (met grasping digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 (elbow_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-digital_servo_command-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping digital_servo_command))
+      (uses elbow_joint nsm3)
+    )
+    :effect (and
+      (met grasping digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 (wrist_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-digital_servo_command-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping digital_servo_command))
+      (uses wrist_joint nsm4)
+    )
+    :effect (and
+      (met grasping digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 (gripper_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-digital_servo_command-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done positioning)
+      (not (met grasping digital_servo_command))
+      (uses gripper_joint nsm5)
+    )
+    :effect (and
+      (met grasping digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-carrying-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met carrying gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-carrying-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met carrying gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-carrying-visual_perception-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying visual_perception))
+      (uses perception nvp1)
+    )
+    :effect (and
+      (met carrying visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-carrying-visual_perception-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying visual_perception))
+      (uses perception nvp2)
+    )
+    :effect (and
+      (met carrying visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 (base_joint) meets carrying's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-dc_servo_command-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying dc_servo_command))
+      (uses base_joint ndc1)
+    )
+    :effect (and
+      (met carrying dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 (shoulder_joint) meets carrying's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-dc_servo_command-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying dc_servo_command))
+      (uses shoulder_joint ndc2)
+    )
+    :effect (and
+      (met carrying dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 (elbow_joint) meets carrying's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-dc_servo_command-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying dc_servo_command))
+      (uses elbow_joint ndc3)
+    )
+    :effect (and
+      (met carrying dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 (wrist_joint) meets carrying's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-dc_servo_command-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying dc_servo_command))
+      (uses wrist_joint ndc4)
+    )
+    :effect (and
+      (met carrying dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 (gripper_joint) meets carrying's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-dc_servo_command-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying dc_servo_command))
+      (uses gripper_joint ndc5)
+    )
+    :effect (and
+      (met carrying dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 (base_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-digital_servo_command-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying digital_servo_command))
+      (uses base_joint nsm1)
+    )
+    :effect (and
+      (met carrying digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 (shoulder_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-digital_servo_command-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying digital_servo_command))
+      (uses shoulder_joint nsm2)
+    )
+    :effect (and
+      (met carrying digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 (elbow_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-digital_servo_command-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying digital_servo_command))
+      (uses elbow_joint nsm3)
+    )
+    :effect (and
+      (met carrying digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 (wrist_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-digital_servo_command-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying digital_servo_command))
+      (uses wrist_joint nsm4)
+    )
+    :effect (and
+      (met carrying digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 (gripper_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-digital_servo_command-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done grasping)
+      (not (met carrying digital_servo_command))
+      (uses gripper_joint nsm5)
+    )
+    :effect (and
+      (met carrying digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-placing-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met placing gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-placing-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met placing gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-placing-visual_perception-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing visual_perception))
+      (uses perception nvp1)
+    )
+    :effect (and
+      (met placing visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-placing-visual_perception-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing visual_perception))
+      (uses perception nvp2)
+    )
+    :effect (and
+      (met placing visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 (base_joint) meets placing's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-dc_servo_command-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing dc_servo_command))
+      (uses base_joint ndc1)
+    )
+    :effect (and
+      (met placing dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 (shoulder_joint) meets placing's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-dc_servo_command-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing dc_servo_command))
+      (uses shoulder_joint ndc2)
+    )
+    :effect (and
+      (met placing dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 (elbow_joint) meets placing's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-dc_servo_command-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing dc_servo_command))
+      (uses elbow_joint ndc3)
+    )
+    :effect (and
+      (met placing dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 (wrist_joint) meets placing's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-dc_servo_command-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing dc_servo_command))
+      (uses wrist_joint ndc4)
+    )
+    :effect (and
+      (met placing dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 (gripper_joint) meets placing's need for service 'dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-dc_servo_command-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing dc_servo_command))
+      (uses gripper_joint ndc5)
+    )
+    :effect (and
+      (met placing dc_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 (base_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-digital_servo_command-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing digital_servo_command))
+      (uses base_joint nsm1)
+    )
+    :effect (and
+      (met placing digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 (shoulder_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-digital_servo_command-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing digital_servo_command))
+      (uses shoulder_joint nsm2)
+    )
+    :effect (and
+      (met placing digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 (elbow_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-digital_servo_command-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing digital_servo_command))
+      (uses elbow_joint nsm3)
+    )
+    :effect (and
+      (met placing digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 (wrist_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-digital_servo_command-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing digital_servo_command))
+      (uses wrist_joint nsm4)
+    )
+    :effect (and
+      (met placing digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 (gripper_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-digital_servo_command-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done carrying)
+      (not (met placing digital_servo_command))
+      (uses gripper_joint nsm5)
+    )
+    :effect (and
+      (met placing digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-reasoner-visual_perception-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner visual_perception))
+      (uses perception nvp1)
+    )
+    :effect (and
+      (met reasoner visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-reasoner-visual_perception-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner visual_perception))
+      (uses perception nvp2)
+    )
+    :effect (and
+      (met reasoner visual_perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner gripper_feeling))
+      (uses gripper_sensor nco1)
+    )
+    :effect (and
+      (met reasoner gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner gripper_feeling))
+      (uses gripper_sensor nco2)
+    )
+    :effect (and
+      (met reasoner gripper_feeling)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 (base_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses base_joint ndc1)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 (base_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses base_joint nsm1)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 (shoulder_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses shoulder_joint ndc2)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 (shoulder_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses shoulder_joint nsm2)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 (elbow_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses elbow_joint ndc3)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 (elbow_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses elbow_joint nsm3)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 (wrist_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses wrist_joint ndc4)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 (wrist_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses wrist_joint nsm4)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 (gripper_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses gripper_joint ndc5)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 (gripper_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (filled reasoner)
+      (done placing)
+      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (uses gripper_joint nsm5)
+    )
+    :effect (and
+      (met reasoner dc_servo_command-or-digital_servo_command)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC1 has all it requires and needs
+  (:action finish-base_joint-ndc1
+    :parameters ()
+    :precondition (and
+      (uses base_joint ndc1)
+      (filled reasoner)
+    )
+    :effect (and
+      (done base_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM1 has all it requires and needs
+  (:action finish-base_joint-nsm1
+    :parameters ()
+    :precondition (and
+      (uses base_joint nsm1)
+      (filled reasoner)
+    )
+    :effect (and
+      (done base_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC2 has all it requires and needs
+  (:action finish-shoulder_joint-ndc2
+    :parameters ()
+    :precondition (and
+      (uses shoulder_joint ndc2)
+      (filled reasoner)
+      (done base_joint)
+    )
+    :effect (and
+      (done shoulder_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM2 has all it requires and needs
+  (:action finish-shoulder_joint-nsm2
+    :parameters ()
+    :precondition (and
+      (uses shoulder_joint nsm2)
+      (filled reasoner)
+      (done base_joint)
+    )
+    :effect (and
+      (done shoulder_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC3 has all it requires and needs
+  (:action finish-elbow_joint-ndc3
+    :parameters ()
+    :precondition (and
+      (uses elbow_joint ndc3)
+      (filled reasoner)
+      (done shoulder_joint)
+    )
+    :effect (and
+      (done elbow_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM3 has all it requires and needs
+  (:action finish-elbow_joint-nsm3
+    :parameters ()
+    :precondition (and
+      (uses elbow_joint nsm3)
+      (filled reasoner)
+      (done shoulder_joint)
+    )
+    :effect (and
+      (done elbow_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC4 has all it requires and needs
+  (:action finish-wrist_joint-ndc4
+    :parameters ()
+    :precondition (and
+      (uses wrist_joint ndc4)
+      (filled reasoner)
+      (done elbow_joint)
+    )
+    :effect (and
+      (done wrist_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM4 has all it requires and needs
+  (:action finish-wrist_joint-nsm4
+    :parameters ()
+    :precondition (and
+      (uses wrist_joint nsm4)
+      (filled reasoner)
+      (done elbow_joint)
+    )
+    :effect (and
+      (done wrist_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NDC5 has all it requires and needs
+  (:action finish-gripper_joint-ndc5
+    :parameters ()
+    :precondition (and
+      (uses gripper_joint ndc5)
+      (filled reasoner)
+      (done wrist_joint)
+    )
+    :effect (and
+      (done gripper_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NSM5 has all it requires and needs
+  (:action finish-gripper_joint-nsm5
+    :parameters ()
+    :precondition (and
+      (uses gripper_joint nsm5)
+      (filled reasoner)
+      (done wrist_joint)
+    )
+    :effect (and
+      (done gripper_joint)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCA1 has all it requires and needs
+  (:action finish-camera-nca1
+    :parameters ()
+    :precondition (and
+      (uses camera nca1)
+      (filled reasoner)
+      (done gripper_joint)
+    )
+    :effect (and
+      (done camera)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCA2 has all it requires and needs
+  (:action finish-camera-nca2
+    :parameters ()
+    :precondition (and
+      (uses camera nca2)
+      (filled reasoner)
+      (done gripper_joint)
+    )
+    :effect (and
+      (done camera)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO1 has all it requires and needs
+  (:action finish-gripper_sensor-nco1
+    :parameters ()
+    :precondition (and
+      (uses gripper_sensor nco1)
+      (filled reasoner)
+      (done camera)
+    )
+    :effect (and
+      (done gripper_sensor)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NCO2 has all it requires and needs
+  (:action finish-gripper_sensor-nco2
+    :parameters ()
+    :precondition (and
+      (uses gripper_sensor nco2)
+      (filled reasoner)
+      (done camera)
+    )
+    :effect (and
+      (done gripper_sensor)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP1 has all it requires and needs
+  (:action finish-perception-nvp1
+    :parameters ()
+    :precondition (and
+      (uses perception nvp1)
+      (filled reasoner)
+      (done gripper_sensor)
+      (met perception camera_image)
+      (met perception gripper_feeling)
+      (chosen nca1)
+      (chosen nco1)
+    )
+    :effect (and
+      (done perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NVP2 has all it requires and needs
+  (:action finish-perception-nvp2
+    :parameters ()
+    :precondition (and
+      (uses perception nvp2)
+      (filled reasoner)
+      (done gripper_sensor)
+      (met perception camera_image)
+      (met perception gripper_feeling)
+      (chosen nca2)
+      (chosen nco2)
+    )
+    :effect (and
+      (done perception)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB11 has all it requires and needs
+  (:action finish-positioning-nfb11
+    :parameters ()
+    :precondition (and
+      (uses positioning nfb11)
+      (filled reasoner)
+      (done perception)
+      (met positioning gripper_feeling)
+      (met positioning visual_perception)
+      (met positioning dc_servo_command)
+    )
+    :effect (and
+      (done positioning)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB21 has all it requires and needs
+  (:action finish-positioning-nfb21
+    :parameters ()
+    :precondition (and
+      (uses positioning nfb21)
+      (filled reasoner)
+      (done perception)
+      (met positioning gripper_feeling)
+      (met positioning visual_perception)
+      (met positioning digital_servo_command)
+    )
+    :effect (and
+      (done positioning)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB12 has all it requires and needs
+  (:action finish-grasping-nfb12
+    :parameters ()
+    :precondition (and
+      (uses grasping nfb12)
+      (filled reasoner)
+      (done positioning)
+      (met grasping gripper_feeling)
+      (met grasping visual_perception)
+      (met grasping dc_servo_command)
+    )
+    :effect (and
+      (done grasping)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB22 has all it requires and needs
+  (:action finish-grasping-nfb22
+    :parameters ()
+    :precondition (and
+      (uses grasping nfb22)
+      (filled reasoner)
+      (done positioning)
+      (met grasping gripper_feeling)
+      (met grasping visual_perception)
+      (met grasping digital_servo_command)
+    )
+    :effect (and
+      (done grasping)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB13 has all it requires and needs
+  (:action finish-carrying-nfb13
+    :parameters ()
+    :precondition (and
+      (uses carrying nfb13)
+      (filled reasoner)
+      (done grasping)
+      (met carrying gripper_feeling)
+      (met carrying visual_perception)
+      (met carrying dc_servo_command)
+    )
+    :effect (and
+      (done carrying)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB23 has all it requires and needs
+  (:action finish-carrying-nfb23
+    :parameters ()
+    :precondition (and
+      (uses carrying nfb23)
+      (filled reasoner)
+      (done grasping)
+      (met carrying gripper_feeling)
+      (met carrying visual_perception)
+      (met carrying digital_servo_command)
+    )
+    :effect (and
+      (done carrying)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB14 has all it requires and needs
+  (:action finish-placing-nfb14
+    :parameters ()
+    :precondition (and
+      (uses placing nfb14)
+      (filled reasoner)
+      (done carrying)
+      (met placing gripper_feeling)
+      (met placing visual_perception)
+      (met placing dc_servo_command)
+    )
+    :effect (and
+      (done placing)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NFB24 has all it requires and needs
+  (:action finish-placing-nfb24
+    :parameters ()
+    :precondition (and
+      (uses placing nfb24)
+      (filled reasoner)
+      (done carrying)
+      (met placing gripper_feeling)
+      (met placing visual_perception)
+      (met placing digital_servo_command)
+    )
+    :effect (and
+      (done placing)
+      (increase (total-cost) 0)
+    )
+  )
+
+  ;; NREA has all it requires and needs
+  (:action finish-reasoner-nrea
+    :parameters ()
+    :precondition (and
+      (uses reasoner nrea)
+      (filled reasoner)
+      (done placing)
+      (met reasoner visual_perception)
+      (met reasoner gripper_feeling)
+      (met reasoner dc_servo_command-or-digital_servo_command)
+    )
+    :effect (and
+      (done reasoner)
+      (increase (total-cost) 0)
+    )
+  )
+)

@@ -1,0 +1,118 @@
+"""Tests for rosreconf plan / render-pddl and rosreconf.planning on the bundled example."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from rosreconf.cli import app
+from rosreconf.configfile import read_configurations
+from rosreconf.planners import PLANNERS, FastDownward, TaskFiles
+
+FAKES = Path(__file__).parent / "fakes"
+
+
+def by_name(doc: dict[str, object]) -> dict[str, dict[str, object]]:
+    schemas = doc["schemas"]
+    assert isinstance(schemas, list)
+    return {s["name"]: s for s in schemas}
+
+
+@pytest.mark.planner
+def test_nsm3_failing_moves_repositioning_to_the_dc_arm_and_ends_disc_loading(
+    runner: CliRunner,
+) -> None:
+    result = runner.invoke(app, ["plan", "--fail", "NSM3", "--json"])
+    assert result.exit_code == 1, result.stderr  # one task is impossible: exit 1
+    schemas = by_name(json.loads(result.stdout))
+    moved = schemas["object_repositioning"]
+    assert moved["status"] == "solved"
+    new = moved["configurations"][0]["assignment"]  # type: ignore[index]
+    assert [new[r] for r in ("base_joint", "elbow_joint", "positioning")] == [
+        "NDC1",
+        "NDC3",
+        "NFB11",
+    ]
+    assert moved["fewest_changes"] == 9
+    text = " ".join(moved["explanation"])  # type: ignore[arg-type]
+    assert "NFB21 requires digital_servo_command, which only NSM1" in text
+    gone = schemas["disc_loading"]
+    assert gone["status"] == "unsolvable-proven" and gone["configurations"] == []
+    assert "NSM3 has failed" in str(gone["why_not"])
+    assert "Disc Loading is no longer possible" in " ".join(gone["explanation"])  # type: ignore[arg-type]
+
+
+@pytest.mark.planner
+def test_nca1_failing_changes_only_camera_sensor_and_perception(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    only = ["--only", "object_repositioning", "--only", "disc_loading"]
+    result = runner.invoke(app, ["plan", "--fail", "NCA1", *only, "--json"])
+    assert result.exit_code == 0, result.stderr
+    for s in by_name(json.loads(result.stdout)).values():
+        changed = {c["role"] for c in s["changes"] if c["kind"] != "keep"}  # type: ignore[attr-defined]
+        assert changed == {"camera", "gripper_sensor", "perception"}
+        assert s["configurations"][0]["assignment"]["camera"] == "NCA2"  # type: ignore[index]
+    saved = tmp_path / "now.json"
+    saved.write_text(result.stdout, encoding="utf-8")
+    assert read_configurations(saved)["disc_loading"]["perception"] == "NVP2"
+    again = runner.invoke(app, ["plan", "--fail", "NCA1", *only, "--current", str(saved)])
+    assert again.exit_code == 0, again.stderr
+    assert "Nothing has to change." in again.stdout
+
+
+@pytest.mark.planner
+def test_text_output_lists_steps_configuration_change_and_why(runner: CliRunner) -> None:
+    result = runner.invoke(app, ["plan", "--fail", "NSM3", "--only", "object_repositioning"])
+    assert result.exit_code == 0, result.stderr
+    for part in ("1. stop NSM1, start NDC1 as base_joint", "new configuration:", "change:", "why:"):
+        assert part in result.stdout
+    assert "connect NFB11 (positioning) to NDC1 (base_joint) for dc_servo_command" in result.stdout
+
+
+class FakeUnknown(FastDownward):
+    """Fake planner: a Fast Downward-shaped script that plans actions no domain declares."""
+
+    def __init__(self, search: str = "fake") -> None:
+        super().__init__("fake")
+
+    def command(self, files: TaskFiles, *, timeout: float, memory_limit_mb: int) -> list[str]:
+        script = str(FAKES / "unknown_actions.py")
+        return [script, "--plan-file", str(files.plan), str(files.domain), str(files.problem)]
+
+
+def test_a_plan_with_an_unknown_action_exits_3(
+    runner: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setitem(PLANNERS, "fake", FakeUnknown)
+    args = ["plan", "--fail", "NSM3", "--only", "object_repositioning", "--planner", "fake"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 3
+    assert "plan names unknown action (teleport robot_1 nowhere)" in result.stderr
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["plan"],
+        ["plan", "--fail", "NOPE"],
+        ["plan", "--fail", "NSM3", "--planner", "bogus"],
+        ["plan", "--fail", "NSM3", "--objective", "cost"],
+    ],
+)
+def test_usage_errors_exit_2(runner: CliRunner, args: list[str]) -> None:
+    assert runner.invoke(app, args).exit_code == 2
+
+
+def test_render_pddl_writes_every_schema(runner: CliRunner, tmp_path: Path) -> None:
+    result = runner.invoke(app, ["render-pddl", "--fail", "NSM3", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.stderr
+    for name in ("disc_loading", "object_repositioning", "indoor_navigation"):
+        assert (tmp_path / name / "domain.pddl").read_text().startswith(";; rosreconf")
+        assert "(failed nsm3)" in (tmp_path / name / "problem.pddl").read_text() or (
+            name == "indoor_navigation"
+        )
+    assert not list(tmp_path.rglob("*.tmp"))
