@@ -175,17 +175,22 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
     """List pairs of candidates that no configuration can hold together, with the reason."""
     out: dict[tuple[str, str], str] = {}
     for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
+        # Name only what the consumer could want from this provider's role.
+        offered = {i.label for c in inst.domains[v] for i in c.provides}
         for cu in inst.domains[u]:
+            wanted = [
+                " or ".join(o.label for o in r.options)
+                for r in cu.requires
+                if any(o.label in offered for o in r.options)
+            ]
             for cv in inst.domains[v]:
                 if (cu.name, cv.name) in ok:
                     continue
-                needs = (
-                    ", ".join(" or ".join(o.label for o in r.options) for r in cu.requires)
-                    or "nothing"
-                )
+                needs = ", ".join(wanted) or "nothing " + inst.roles[v].name + " offers"
                 has = ", ".join(sorted(i.label for i in cv.provides)) or "nothing"
                 out.setdefault(
-                    _key(cu.name, cv.name), f"{cu.name} requires {needs}; {cv.name} provides {has}"
+                    _key(cu.name, cv.name),
+                    f"{cu.name} requires {needs}; {cv.name} provides {has}",
                 )
     holders = {c.name: u for u, dom in enumerate(inst.domains) for c in dom}
     for u, dom in enumerate(inst.domains):

@@ -62,6 +62,12 @@ def _labels(req: Requirement) -> str:
     return " or ".join(o.label for o in req.options)
 
 
+def _names(names: list[str]) -> str:
+    """Join names as an operator reads them: "A", "A and B", "A, B and C"."""
+    names = list(dict.fromkeys(names))
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
 def _why_not_kept(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -70,7 +76,13 @@ def _why_not_kept(
     role: str,
     old: str,
 ) -> list[str]:
-    """Say what breaks if ``old`` is put back into ``role`` of the new configuration."""
+    """Say, in the fewest true words, what breaks if ``old`` is put back into ``role``.
+
+    Reasons come from the rules of ``rosreconf.validity`` and are given most causal first:
+    the failure itself; a need of ``old`` that only failed or departed parts meet; a coupling;
+    parts of the new configuration that need something ``old`` does not provide (grouped by
+    what they need); and, only when nothing else explains it, the unrealised edges.
+    """
     if old in failed:
         return [f"{old} has failed"]
     if old not in library:
@@ -78,29 +90,50 @@ def _why_not_kept(
     trial = {**new.mapping, role: old}
     chosen: dict[str, Component] = {r: library[c] for r, c in trial.items() if c in library}
     comp = library[old]
-    reasons = []
+    own: list[str] = []
     for req in comp.requires:
         if not requirement_met(req, role, schema, chosen):
             who = _providers(library, req)
             dead = [p for p in who if p in failed]
-            text = f"{old} requires {_labels(req)}, which only {', '.join(who) or 'nothing'} "
-            text += "provides" if len(who) == 1 else "provide"
-            if dead:
-                text += f" ({', '.join(dead)} failed)"
-            reasons.append(text)
+            text = f"it needs {_labels(req)}, which only {_names(who) or 'nothing'} "
+            text += ("provides" if len(who) == 1 else "provide") + (
+                f" and {_names(dead)} failed" if dead else ""
+            )
+            own.append(text)
+    own.sort(key=lambda t: "failed" not in t)  # the need a failure broke explains most
     config = Configuration.of(schema.name, trial, schema.graph.roles)
-    strangers: list[str] = []
-    for v in violations(config, library, schema, failed):  # the new one has none: all are old's
-        if v.code == "requirement-unmet" and v.components == (old,):
-            continue  # said above, with who could provide it
-        if v.code == "edge-unrealised":
-            strangers += [c for c in v.components if c != old]
+    couplings = [
+        v.message
+        for v in violations(config, library, schema, failed)
+        if v.code in ("needs", "excludes", "reused", "not-in-schema", "wrong-abstraction")
+    ]
+    others: dict[str, list[str]] = {}
+    for other_role, other in chosen.items():
+        if other_role == role:
             continue
-        reasons.append(v.message)
-    if strangers:
-        partners = ", ".join(dict.fromkeys(strangers))
-        reasons.append(f"it shares no interface with {partners} along their edges")
-    return list(dict.fromkeys(reasons))
+        for req in other.requires:
+            if not requirement_met(req, other_role, schema, chosen):
+                others.setdefault(_labels(req), []).append(other.name)
+    needed = [
+        f"{_names(users)} need{'s' if len(users) == 1 else ''} {labels}, which {old} "
+        "does not provide"
+        for labels, users in others.items()
+    ]
+    reasons = own[:1] + couplings + needed[:1]
+    hidden = len(own[1:]) + len(needed[1:])
+    if hidden:
+        reasons.append(f"and {hidden} more unmet need(s)")
+    if not reasons:
+        strangers = [
+            c
+            for v in violations(config, library, schema, failed)
+            if v.code == "edge-unrealised"
+            for c in v.components
+            if c != old
+        ]
+        if strangers:
+            reasons.append(f"it shares no interface with {_names(strangers)} along their edges")
+    return reasons
 
 
 def explain_replan(

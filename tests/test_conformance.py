@@ -42,7 +42,7 @@ def _running(config: Configuration, pid: int | None = 1) -> list[LiveNode]:
 
 def test_names_follow_remappings_and_namespaces() -> None:
     assert node_live_name(LIB["NSM3"]) == "/NSM3"
-    assert interface_live_name(LIB["NSM3"], "digital_servo_command") == (
+    assert interface_live_name(LIB["NSM3"], "elbow/digital_servo_command") == (
         "/arm_servo/elbow/servo_command"
     )
     launch = RosLaunch("p", "e", remappings=MappingProxyType({"a": "b/c"}), namespace="/arm")

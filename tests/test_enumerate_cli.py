@@ -122,7 +122,7 @@ def test_count_matches_listing_and_ros_graph_is_concrete(runner: CliRunner, tmp_
     graph = first["ros_graph"]
     assert {n["id"] for n in graph["nodes"]} == set(SM_CAM1)
     services = {s["id"] for s in graph["services"]}
-    assert "NSM3/digital_servo_command" in services and "NCA1/camera_image" in services
+    assert "NSM3/elbow/digital_servo_command" in services and "NCA1/camera_image" in services
     edges = {(e["from"], e["to"]) for e in graph["edges"]}
     # Information flows provider -> service -> consumer.
     assert ("NCA1", "NCA1/camera_image") in edges and ("NCA1/camera_image", "NVP1") in edges
@@ -150,8 +150,7 @@ def test_analyse_paper_questions(runner: CliRunner, tmp_path: Path) -> None:
     assert orep["orthogonal"] is False and orep["valid"] == 4 and orep["substitutions"] == 2**12
     reasons = {(p["first"], p["second"]): p["reason"] for p in orep["incompatible"]}
     assert reasons[("NDC3", "NFB21")] == (
-        "NFB21 requires gripper_feeling, visual_perception, digital_servo_command; "
-        "NDC3 provides dc_servo_command"
+        "NFB21 requires elbow/digital_servo_command; NDC3 provides elbow/dc_servo_command"
     )
     assert orep["single_points_of_failure"] == ["NREA"]
     pairs = {tuple(p) for p in orep["critical_pairs"]}

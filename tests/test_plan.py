@@ -38,7 +38,14 @@ def test_nsm3_failing_moves_repositioning_to_the_dc_arm_and_ends_disc_loading(
     ]
     assert moved["fewest_changes"] == 9
     text = " ".join(moved["explanation"])  # type: ignore[arg-type]
-    assert "NFB21 requires digital_servo_command, which only NSM1" in text
+    assert (
+        "positioning: NFB21 cannot stay (it needs elbow/digital_servo_command, which only NSM3 "
+        "provides and NSM3 failed" in text
+    )
+    assert (
+        "base_joint: NSM1 cannot stay (NFB11, NFB12, NFB13 and NFB14 need base/dc_servo_command, "
+        "which NSM1 does not provide); NDC1 takes over." in text
+    )
     gone = schemas["disc_loading"]
     assert gone["status"] == "unsolvable-proven" and gone["configurations"] == []
     assert "NSM3 has failed" in str(gone["why_not"])
@@ -70,7 +77,11 @@ def test_text_output_lists_steps_configuration_change_and_why(runner: CliRunner)
     assert result.exit_code == 0, result.stderr
     for part in ("1. stop NSM1, start NDC1 as base_joint", "new configuration:", "change:", "why:"):
         assert part in result.stdout
-    assert "connect NFB11 (positioning) to NDC1 (base_joint) for dc_servo_command" in result.stdout
+    # One connection per joint, as in the paper's Figure 8.
+    for joint in ("base", "shoulder", "elbow", "wrist", "gripper"):
+        step = "connect NFB11 (positioning) to NDC"
+        assert f"({joint}_joint) for {joint}/dc_servo_command" in result.stdout
+        assert step in result.stdout
 
 
 class FakeUnknown(FastDownward):

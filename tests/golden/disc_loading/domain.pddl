@@ -46,11 +46,19 @@
     nvp1
     nvp2
     - component
+    base__dc_servo_command-or-base__digital_servo_command
+    base__digital_servo_command
     camera_image
-    dc_servo_command-or-digital_servo_command
-    digital_servo_command
+    elbow__dc_servo_command-or-elbow__digital_servo_command
+    elbow__digital_servo_command
+    gripper__dc_servo_command-or-gripper__digital_servo_command
+    gripper__digital_servo_command
     gripper_feeling
+    shoulder__dc_servo_command-or-shoulder__digital_servo_command
+    shoulder__digital_servo_command
     visual_perception
+    wrist__dc_servo_command-or-wrist__digital_servo_command
+    wrist__digital_servo_command
     - requirement
   )
   (:predicates
@@ -438,77 +446,77 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-digital_servo_command-base_joint-nsm1
+  ;; NSM1 (base_joint) meets positioning's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-base__digital_servo_command-base_joint-nsm1
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done perception)
-      (not (met positioning digital_servo_command))
+      (not (met positioning base__digital_servo_command))
       (uses base_joint nsm1)
     )
     :effect (and
-      (met positioning digital_servo_command)
+      (met positioning base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-digital_servo_command-shoulder_joint-nsm2
+  ;; NSM2 (shoulder_joint) meets positioning's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-shoulder__digital_servo_command-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done perception)
-      (not (met positioning digital_servo_command))
+      (not (met positioning shoulder__digital_servo_command))
       (uses shoulder_joint nsm2)
     )
     :effect (and
-      (met positioning digital_servo_command)
+      (met positioning shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM3 (elbow_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-digital_servo_command-elbow_joint-nsm3
+  ;; NSM3 (elbow_joint) meets positioning's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-elbow__digital_servo_command-elbow_joint-nsm3
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done perception)
-      (not (met positioning digital_servo_command))
+      (not (met positioning elbow__digital_servo_command))
       (uses elbow_joint nsm3)
     )
     :effect (and
-      (met positioning digital_servo_command)
+      (met positioning elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM4 (wrist_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-digital_servo_command-wrist_joint-nsm4
+  ;; NSM4 (wrist_joint) meets positioning's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-wrist__digital_servo_command-wrist_joint-nsm4
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done perception)
-      (not (met positioning digital_servo_command))
+      (not (met positioning wrist__digital_servo_command))
       (uses wrist_joint nsm4)
     )
     :effect (and
-      (met positioning digital_servo_command)
+      (met positioning wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM5 (gripper_joint) meets positioning's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-digital_servo_command-gripper_joint-nsm5
+  ;; NSM5 (gripper_joint) meets positioning's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-gripper__digital_servo_command-gripper_joint-nsm5
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done perception)
-      (not (met positioning digital_servo_command))
+      (not (met positioning gripper__digital_servo_command))
       (uses gripper_joint nsm5)
     )
     :effect (and
-      (met positioning digital_servo_command)
+      (met positioning gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -573,77 +581,77 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-digital_servo_command-base_joint-nsm1
+  ;; NSM1 (base_joint) meets grasping's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-base__digital_servo_command-base_joint-nsm1
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done positioning)
-      (not (met grasping digital_servo_command))
+      (not (met grasping base__digital_servo_command))
       (uses base_joint nsm1)
     )
     :effect (and
-      (met grasping digital_servo_command)
+      (met grasping base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-digital_servo_command-shoulder_joint-nsm2
+  ;; NSM2 (shoulder_joint) meets grasping's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-shoulder__digital_servo_command-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done positioning)
-      (not (met grasping digital_servo_command))
+      (not (met grasping shoulder__digital_servo_command))
       (uses shoulder_joint nsm2)
     )
     :effect (and
-      (met grasping digital_servo_command)
+      (met grasping shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM3 (elbow_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-digital_servo_command-elbow_joint-nsm3
+  ;; NSM3 (elbow_joint) meets grasping's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-elbow__digital_servo_command-elbow_joint-nsm3
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done positioning)
-      (not (met grasping digital_servo_command))
+      (not (met grasping elbow__digital_servo_command))
       (uses elbow_joint nsm3)
     )
     :effect (and
-      (met grasping digital_servo_command)
+      (met grasping elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM4 (wrist_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-digital_servo_command-wrist_joint-nsm4
+  ;; NSM4 (wrist_joint) meets grasping's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-wrist__digital_servo_command-wrist_joint-nsm4
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done positioning)
-      (not (met grasping digital_servo_command))
+      (not (met grasping wrist__digital_servo_command))
       (uses wrist_joint nsm4)
     )
     :effect (and
-      (met grasping digital_servo_command)
+      (met grasping wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM5 (gripper_joint) meets grasping's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-digital_servo_command-gripper_joint-nsm5
+  ;; NSM5 (gripper_joint) meets grasping's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-gripper__digital_servo_command-gripper_joint-nsm5
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done positioning)
-      (not (met grasping digital_servo_command))
+      (not (met grasping gripper__digital_servo_command))
       (uses gripper_joint nsm5)
     )
     :effect (and
-      (met grasping digital_servo_command)
+      (met grasping gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -708,77 +716,77 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-digital_servo_command-base_joint-nsm1
+  ;; NSM1 (base_joint) meets carrying's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-base__digital_servo_command-base_joint-nsm1
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done grasping)
-      (not (met carrying digital_servo_command))
+      (not (met carrying base__digital_servo_command))
       (uses base_joint nsm1)
     )
     :effect (and
-      (met carrying digital_servo_command)
+      (met carrying base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-digital_servo_command-shoulder_joint-nsm2
+  ;; NSM2 (shoulder_joint) meets carrying's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-shoulder__digital_servo_command-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done grasping)
-      (not (met carrying digital_servo_command))
+      (not (met carrying shoulder__digital_servo_command))
       (uses shoulder_joint nsm2)
     )
     :effect (and
-      (met carrying digital_servo_command)
+      (met carrying shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM3 (elbow_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-digital_servo_command-elbow_joint-nsm3
+  ;; NSM3 (elbow_joint) meets carrying's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-elbow__digital_servo_command-elbow_joint-nsm3
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done grasping)
-      (not (met carrying digital_servo_command))
+      (not (met carrying elbow__digital_servo_command))
       (uses elbow_joint nsm3)
     )
     :effect (and
-      (met carrying digital_servo_command)
+      (met carrying elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM4 (wrist_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-digital_servo_command-wrist_joint-nsm4
+  ;; NSM4 (wrist_joint) meets carrying's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-wrist__digital_servo_command-wrist_joint-nsm4
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done grasping)
-      (not (met carrying digital_servo_command))
+      (not (met carrying wrist__digital_servo_command))
       (uses wrist_joint nsm4)
     )
     :effect (and
-      (met carrying digital_servo_command)
+      (met carrying wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM5 (gripper_joint) meets carrying's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-digital_servo_command-gripper_joint-nsm5
+  ;; NSM5 (gripper_joint) meets carrying's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-gripper__digital_servo_command-gripper_joint-nsm5
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done grasping)
-      (not (met carrying digital_servo_command))
+      (not (met carrying gripper__digital_servo_command))
       (uses gripper_joint nsm5)
     )
     :effect (and
-      (met carrying digital_servo_command)
+      (met carrying gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -843,77 +851,77 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-digital_servo_command-base_joint-nsm1
+  ;; NSM1 (base_joint) meets placing's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-base__digital_servo_command-base_joint-nsm1
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done carrying)
-      (not (met placing digital_servo_command))
+      (not (met placing base__digital_servo_command))
       (uses base_joint nsm1)
     )
     :effect (and
-      (met placing digital_servo_command)
+      (met placing base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-digital_servo_command-shoulder_joint-nsm2
+  ;; NSM2 (shoulder_joint) meets placing's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-shoulder__digital_servo_command-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done carrying)
-      (not (met placing digital_servo_command))
+      (not (met placing shoulder__digital_servo_command))
       (uses shoulder_joint nsm2)
     )
     :effect (and
-      (met placing digital_servo_command)
+      (met placing shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM3 (elbow_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-digital_servo_command-elbow_joint-nsm3
+  ;; NSM3 (elbow_joint) meets placing's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-elbow__digital_servo_command-elbow_joint-nsm3
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done carrying)
-      (not (met placing digital_servo_command))
+      (not (met placing elbow__digital_servo_command))
       (uses elbow_joint nsm3)
     )
     :effect (and
-      (met placing digital_servo_command)
+      (met placing elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM4 (wrist_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-digital_servo_command-wrist_joint-nsm4
+  ;; NSM4 (wrist_joint) meets placing's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-wrist__digital_servo_command-wrist_joint-nsm4
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done carrying)
-      (not (met placing digital_servo_command))
+      (not (met placing wrist__digital_servo_command))
       (uses wrist_joint nsm4)
     )
     :effect (and
-      (met placing digital_servo_command)
+      (met placing wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM5 (gripper_joint) meets placing's need for service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-digital_servo_command-gripper_joint-nsm5
+  ;; NSM5 (gripper_joint) meets placing's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-gripper__digital_servo_command-gripper_joint-nsm5
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done carrying)
-      (not (met placing digital_servo_command))
+      (not (met placing gripper__digital_servo_command))
       (uses gripper_joint nsm5)
     )
     :effect (and
-      (met placing digital_servo_command)
+      (met placing gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -978,77 +986,77 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-base_joint-nsm1
+  ;; NSM1 (base_joint) meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint-nsm1
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done placing)
-      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (not (met reasoner base__dc_servo_command-or-base__digital_servo_command))
       (uses base_joint nsm1)
     )
     :effect (and
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner base__dc_servo_command-or-base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-shoulder_joint-nsm2
+  ;; NSM2 (shoulder_joint) meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done placing)
-      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (not (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command))
       (uses shoulder_joint nsm2)
     )
     :effect (and
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM3 (elbow_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-elbow_joint-nsm3
+  ;; NSM3 (elbow_joint) meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint-nsm3
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done placing)
-      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (not (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command))
       (uses elbow_joint nsm3)
     )
     :effect (and
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM4 (wrist_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-wrist_joint-nsm4
+  ;; NSM4 (wrist_joint) meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint-nsm4
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done placing)
-      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (not (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command))
       (uses wrist_joint nsm4)
     )
     :effect (and
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NSM5 (gripper_joint) meets reasoner's need for any one of service 'dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-dc_servo_command-or-digital_servo_command-gripper_joint-nsm5
+  ;; NSM5 (gripper_joint) meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint-nsm5
     :parameters ()
     :precondition (and
       (filled reasoner)
       (done placing)
-      (not (met reasoner dc_servo_command-or-digital_servo_command))
+      (not (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command))
       (uses gripper_joint nsm5)
     )
     :effect (and
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -1223,7 +1231,11 @@
       (done perception)
       (met positioning gripper_feeling)
       (met positioning visual_perception)
-      (met positioning digital_servo_command)
+      (met positioning base__digital_servo_command)
+      (met positioning shoulder__digital_servo_command)
+      (met positioning elbow__digital_servo_command)
+      (met positioning wrist__digital_servo_command)
+      (met positioning gripper__digital_servo_command)
     )
     :effect (and
       (done positioning)
@@ -1240,7 +1252,11 @@
       (done positioning)
       (met grasping gripper_feeling)
       (met grasping visual_perception)
-      (met grasping digital_servo_command)
+      (met grasping base__digital_servo_command)
+      (met grasping shoulder__digital_servo_command)
+      (met grasping elbow__digital_servo_command)
+      (met grasping wrist__digital_servo_command)
+      (met grasping gripper__digital_servo_command)
     )
     :effect (and
       (done grasping)
@@ -1257,7 +1273,11 @@
       (done grasping)
       (met carrying gripper_feeling)
       (met carrying visual_perception)
-      (met carrying digital_servo_command)
+      (met carrying base__digital_servo_command)
+      (met carrying shoulder__digital_servo_command)
+      (met carrying elbow__digital_servo_command)
+      (met carrying wrist__digital_servo_command)
+      (met carrying gripper__digital_servo_command)
     )
     :effect (and
       (done carrying)
@@ -1274,7 +1294,11 @@
       (done carrying)
       (met placing gripper_feeling)
       (met placing visual_perception)
-      (met placing digital_servo_command)
+      (met placing base__digital_servo_command)
+      (met placing shoulder__digital_servo_command)
+      (met placing elbow__digital_servo_command)
+      (met placing wrist__digital_servo_command)
+      (met placing gripper__digital_servo_command)
     )
     :effect (and
       (done placing)
@@ -1291,7 +1315,11 @@
       (done placing)
       (met reasoner visual_perception)
       (met reasoner gripper_feeling)
-      (met reasoner dc_servo_command-or-digital_servo_command)
+      (met reasoner base__dc_servo_command-or-base__digital_servo_command)
+      (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
+      (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
+      (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
+      (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
     )
     :effect (and
       (done reasoner)
