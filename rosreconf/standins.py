@@ -1,11 +1,9 @@
-"""Write roslaunch files that start components, really or as stand-ins, and run roslaunch.
+"""Stand-in nodes for trying reconfiguration without the robot's packages, and roslaunch.
 
-The real path: each component's ``ros:`` entry becomes a ``<node pkg= type= name= ns=>`` with
-its parameters and remappings, started by Debian's (or any ROS 1) ``roslaunch``.
-
-The stand-in path, for trying things without the robot's packages: the same launch file, but
-every ``<node>`` runs ``rosreconf/standin_node.py`` from a package that exists only in a temp
-dir. roslaunch finds packages through ``ROS_PACKAGE_PATH`` (rospkg crawls it for
+``rosreconf.launchfiles`` writes the launch files (real or stand-in); this module supplies
+what the stand-in ones need and starts roslaunch. A stand-in ``<node>`` runs
+``rosreconf/standin_node.py`` from a package that exists only in a temp dir. roslaunch
+finds packages through ``ROS_PACKAGE_PATH`` (rospkg crawls it for
 ``package.xml``); no catkin workspace is needed. So ``write_standin_package`` makes::
 
     <dir>/rosreconf_standin/package.xml     a minimal format-2 manifest
@@ -19,16 +17,13 @@ the processes; only the node's body is fake.
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
-from xml.sax.saxutils import quoteattr
 
 from rosreconf.conformance import interface_live_name
-from rosreconf.errors import UsageError
 from rosreconf.model import Component, InterfaceKind
 from rosreconf.procs import Background, start_program
 
@@ -71,39 +66,6 @@ def standin_spec(component: Component) -> dict[str, Any]:
                 topic = interface_live_name(component, option.label)
                 subscribe.append({"topic": topic, "type": option.type})
     return {"name": component.name, "publish": publish, "serve": serve, "subscribe": subscribe}
-
-
-def launch_xml(components: Iterable[Component], *, stand_ins: bool) -> str:
-    """Return a roslaunch XML file starting ``components`` (as stand-ins, or really)."""
-    lines = ["<launch>"]
-    for comp in components:
-        launch = comp.launch
-        if launch is None and not stand_ins:
-            raise UsageError(f"{comp.name} has no ros: entry, so it cannot be launched")
-        attrs = {"name": comp.name}
-        if stand_ins:
-            attrs |= {"pkg": STANDIN_PACKAGE, "type": STANDIN_EXECUTABLE}
-            attrs["args"] = "'" + json.dumps(standin_spec(comp)).replace("'", "") + "'"
-        else:
-            assert launch is not None
-            attrs |= {"pkg": launch.package, "type": launch.executable}
-        if launch is not None and launch.namespace:
-            attrs["ns"] = launch.namespace
-        text = " ".join(f"{k}={quoteattr(v)}" for k, v in attrs.items())
-        lines.append(f'  <node {text} output="log">')
-        if launch is not None and not stand_ins:
-            for key, value in launch.parameters.items():
-                lines.append(f"    <param name={quoteattr(key)} value={quoteattr(_text(value))}/>")
-            for label, target in launch.remappings.items():
-                lines.append(f"    <remap from={quoteattr(label)} to={quoteattr(target)}/>")
-        lines.append("  </node>")
-    lines.append("</launch>")
-    return "\n".join(lines) + "\n"
-
-
-def _text(value: object) -> str:
-    """Write a parameter value as roslaunch reads it (booleans in lower case)."""
-    return str(value).lower() if isinstance(value, bool) else str(value)
 
 
 def start_roslaunch(

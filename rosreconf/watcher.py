@@ -26,11 +26,13 @@ from pathlib import Path
 from typing import Any
 
 from rosreconf.conformance import Conformance, compare, node_live_name
+from rosreconf.launchfiles import RosVersion, launch_file
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.narrative import explain_replan
 from rosreconf.procs import Background, stop_all
 from rosreconf.rosmaster import purge_dead, read_live_graph, shutdown_node
 from rosreconf.solver import Objective, best_configuration, why_not
-from rosreconf.standins import launch_xml, start_roslaunch, write_standin_package
+from rosreconf.standins import start_roslaunch, write_standin_package
 
 
 @dataclass(frozen=True)
@@ -165,6 +167,10 @@ class Watcher:
             configuration=new.mapping,
             changes=[{"role": r, "from": a, "to": b} for r, a, b in changes],
         )
+        for line in explain_replan(
+            self.library, self.schema, failed, old, new, fewest_changes=len(changes)
+        ):
+            self._say("why", line)
         if not self.apply:
             self.current = new
             return False
@@ -188,8 +194,15 @@ class Watcher:
         """Start ``components`` with one roslaunch process."""
         n = len(self.launches) + 1
         launch = self.workdir / f"step{n}.launch"
-        comps = [self.library[c] for c in components]
-        launch.write_text(launch_xml(comps, stand_ins=self.stand_ins), encoding="utf-8")
+        text = launch_file(
+            self.library,
+            self.schema,
+            self.current,
+            RosVersion.ROS1,
+            only=components,
+            stand_ins=self.stand_ins,
+        ).text
+        launch.write_text(text, encoding="utf-8")
         pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
         self.launches.append(start_roslaunch(launch, self.env, package_path=pkg))
         how = "stand-ins of " if self.stand_ins else ""

@@ -13,10 +13,11 @@ from rosreconf.cli import app
 from rosreconf.conformance import compare, interface_live_name, node_live_name
 from rosreconf.errors import Severity
 from rosreconf.importer import component_name, draft_library
+from rosreconf.launchfiles import RosVersion, launch_file
 from rosreconf.livegraph import LiveGraph, LiveNode, to_json
 from rosreconf.loader import Source, check_loaded, load_bundled, load_sources
 from rosreconf.model import Component, Configuration, RosLaunch
-from rosreconf.standins import STANDIN_PACKAGE, launch_xml, standin_spec
+from rosreconf.standins import STANDIN_PACKAGE, standin_spec
 
 WHEN = datetime(2026, 1, 1, tzinfo=UTC)
 BUNDLE = load_bundled()
@@ -141,12 +142,24 @@ def test_component_names_are_unique_case_insensitively() -> None:
 
 
 def test_launch_files_real_and_stand_in() -> None:
-    comps = [LIB["NSM3"], LIB["NVP1"]]
-    real = ET.fromstring(launch_xml(comps, stand_ins=False))
-    node = real.find("node")
-    assert node is not None and node.get("pkg") == "robot_arm_servo"
-    assert node.find("remap") is not None and node.find("param") is not None
-    fake = ET.fromstring(launch_xml(comps, stand_ins=True))
+    schema = BUNDLE.configurations.get("object_repositioning")
+    config = Configuration.of(schema.name, dict(schema.nominal), schema.graph.roles)
+    real = ET.fromstring(
+        launch_file(LIB, schema, config, RosVersion.ROS1, only={"NSM3", "NVP1"}).text
+    )
+    nodes = real.findall("node")
+    assert [n.get("name") for n in nodes] == ["NSM3", "NVP1"]
+    assert nodes[0].get("pkg") == "robot_arm_servo" and nodes[0].find("param") is not None
+    # NVP1 is wired to the camera and gripper sensor of the whole configuration.
+    assert {r.get("to") for r in nodes[1].findall("remap")} == {
+        "/camera1/image",
+        "/gripper1/feeling",
+    }
+    fake = ET.fromstring(
+        launch_file(
+            LIB, schema, config, RosVersion.ROS1, only={"NSM3", "NVP1"}, stand_ins=True
+        ).text
+    )
     nodes = fake.findall("node")
     assert [n.get("pkg") for n in nodes] == [STANDIN_PACKAGE] * 2
     spec = json.loads(str(nodes[0].get("args")).strip("'"))
