@@ -22,6 +22,7 @@ demo: $(STAMP)
 	$(BIN)/rosreconf enumerate --only object_repositioning --only disc_loading
 	$(BIN)/rosreconf enumerate --only object_repositioning --only disc_loading --fail NSM3 || true
 	$(BIN)/rosreconf analyse --only object_repositioning
+	$(BIN)/rosreconf plan --fail NSM3 --only object_repositioning --only disc_loading || true
 
 test: $(STAMP) system-deps lint typecheck pytest
 

@@ -23,6 +23,7 @@ LibraryOption = Annotated[
     typer.Option(
         "--library",
         "-l",
+        metavar="FILE",
         help="Component library file or folder (repeatable). Default: libraries/ here, "
         "else the bundled example.",
         show_default=False,
@@ -33,6 +34,7 @@ SchemaOption = Annotated[
     typer.Option(
         "--schema",
         "-s",
+        metavar="FILE",
         help="Interoperability schema file or folder (repeatable). Default: schemas/ here, "
         "else the bundled example.",
         show_default=False,
@@ -40,12 +42,18 @@ SchemaOption = Annotated[
 ]
 FailOption = Annotated[
     list[str] | None,
-    typer.Option("--fail", help="Treat this component as failed (repeatable).", show_default=False),
+    typer.Option(
+        "--fail",
+        metavar="COMPONENT",
+        help="Treat this component as failed (repeatable).",
+        show_default=False,
+    ),
 ]
 OnlyOption = Annotated[
     list[str] | None,
     typer.Option(
         "--only",
+        metavar="SCHEMA",
         help="Only this schema, by name (repeatable). Default: every schema.",
         show_default=False,
     ),

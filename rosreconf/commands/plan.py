@@ -30,6 +30,7 @@ CurrentOption = Annotated[
     Path | None,
     typer.Option(
         "--current",
+        metavar="FILE",
         help="What runs now (a configuration file, or the JSON of enumerate/plan). Default: "
         "each schema's declared nominal configuration, else its best by --objective.",
         show_default=False,
@@ -39,6 +40,7 @@ ObjectiveOption = Annotated[
     list[str] | None,
     typer.Option(
         "--objective",
+        metavar="METRIC=WEIGHT",
         help="metric=weight: after the fewest changes, minimise the weighted metric sum "
         "(repeatable).",
         show_default=False,
