@@ -17,6 +17,7 @@ from pathlib import Path
 from rosreconf.instance import compile_instance, explain
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.narrative import Change, changes, explain_impossible, explain_replan
+from rosreconf.outfiles import write_atomic
 from rosreconf.pddl import PddlTask, render
 from rosreconf.pddl_names import Step
 from rosreconf.planners import Planner, PlanResult, PlanStatus, solve
@@ -180,7 +181,5 @@ def write_task(task: PddlTask, folder: Path) -> Path:
     target = folder / task.schema
     target.mkdir(parents=True, exist_ok=True)
     for name, text in (("domain.pddl", task.domain), ("problem.pddl", task.problem)):
-        tmp = target / f".{name}.tmp"
-        tmp.write_text(text, encoding="utf-8")
-        tmp.replace(target / name)
+        write_atomic(target / name, text)
     return target

@@ -14,6 +14,7 @@ from rosreconf.cli import app
 from rosreconf.resources import Bundle, bundled
 
 CASES = Path(__file__).parent / "cases"
+SNAPSHOTS = Path(__file__).parent / "snapshots" / "valid"
 
 
 def schema_of(command: str) -> dict[str, Any]:
@@ -32,6 +33,18 @@ RUNS = [
     ("enumerate", ["enumerate", "--json", "--count"], None),
     ("analyse", ["analyse", "--json"], None),
     ("redundancy", ["redundancy", "--p", "0.1", "--n", "20", "--q", "0.99", "--json"], None),
+    (
+        "inspect",
+        [
+            "inspect",
+            "--snapshot",
+            str(SNAPSHOTS / "arm_and_reasoner.json"),
+            "--json",
+            "--only",
+            "object_repositioning",
+        ],
+        None,
+    ),
 ]
 
 
@@ -44,3 +57,16 @@ def test_output_matches_schema(
         result = runner.invoke(app, args)
     assert result.exit_code in (0, 1), result.stderr
     jsonschema.validate(json.loads(result.stdout), schema_of(command))
+
+
+@pytest.mark.planner
+def test_plan_output_matches_schema(runner: CliRunner, tmp_path: Path) -> None:
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(tmp_path)
+        result = runner.invoke(app, ["plan", "--fail", "NSM3", "--json"])
+    assert result.exit_code == 1, result.stderr  # Disc Loading is impossible
+    doc = json.loads(result.stdout)
+    jsonschema.validate(doc, schema_of("plan"))
+    statuses = {s["name"]: s["status"] for s in doc["schemas"]}
+    assert statuses["object_repositioning"] == "solved"
+    assert statuses["disc_loading"] == "unsolvable-proven"

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Annotated
 
@@ -17,6 +15,7 @@ from rosreconf.errors import ExitCode, UsageError
 from rosreconf.importer import draft_library
 from rosreconf.livegraph import LiveGraph, from_json, to_json, without_plumbing
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.outfiles import write_atomic
 from rosreconf.rosmaster import read_live_graph
 from rosreconf.validity import violations
 
@@ -38,19 +37,6 @@ OnlySchemaOption = Annotated[
     str | None,
     typer.Option("--only", help="The schema, when the configuration names several."),
 ]
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temp file in its folder, so no reader sees half."""
-    folder = path.parent if str(path.parent) else Path()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as out:
-            out.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def target(
@@ -98,7 +84,7 @@ def snapshot_command(
     if output is None:
         write_stdout(text)
     else:
-        write_atomically(output, text)
+        write_atomic(output, text)
 
 
 def import_command(
@@ -116,7 +102,7 @@ def import_command(
 
     graph = _live(master, snapshot)
     text = draft_library(graph, name)
-    write_atomically(output, text)
+    write_atomic(output, text)
     todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
     stderr.print(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
@@ -138,7 +124,14 @@ def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
 
 
 def inspect_command(
-    master: MasterOption,
+    master: Annotated[
+        str | None,
+        typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
+    ] = None,
+    snapshot: Annotated[
+        Path | None,
+        typer.Option("--snapshot", help="Inspect a saved 'rosreconf snapshot' instead."),
+    ] = None,
     configuration: ConfigurationOption = None,
     only: OnlySchemaOption = None,
     library: LibraryOption = None,
@@ -149,12 +142,14 @@ def inspect_command(
     from rosreconf.cli import write_stdout
 
     lib, sch, config = target(library, schema, configuration, only)
-    result = compare(config, lib, sch, read_live_graph(master))
+    graph = _live(master, snapshot)
+    result = compare(config, lib, sch, graph)
     if as_json:
         write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")
     else:
         head = "conforms to" if result.ok else "does NOT conform to"
-        write_stdout(f"{master}: the live system {head} the {sch.display_name} configuration\n")
+        where = graph.master_uri
+        write_stdout(f"{where}: the live system {head} the {sch.display_name} configuration\n")
         for f in result.findings:
             write_stdout(f"  {f.code}: {f.message}\n")
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)
