@@ -1,7 +1,7 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
 Each file goes through three steps: YAML -> positioned tree (``yamlsource``), structure
-checked against the shipped JSON Schema (``jsonschema``, errors mapped back to
+checked against the shipped JSON Schema (``structure``, errors mapped back to
 ``file:line:column``), then model objects (``model``). Problems are collected per file and
 across files; the caller gets the model of every well-formed file *and* the list of
 problems, so ``validate`` can report everything in one run while ``enumerate`` can refuse
@@ -10,18 +10,10 @@ to work on invalid input.
 
 from __future__ import annotations
 
-import difflib
-import enum
-import json
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from functools import cache
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
-
-import jsonschema
-import jsonschema.exceptions
 
 from rosreconf import yamlsource as ys
 from rosreconf.checks import check
@@ -37,33 +29,12 @@ from rosreconf.model import (
     Requirement,
     Role,
     RosLaunch,
-    Span,
     SystemGraph,
 )
 from rosreconf.resources import Bundle, bundled
+from rosreconf.structure import DocumentKind, kind_of, structure_problems
 
 YAML_SUFFIXES = (".yaml", ".yml")
-
-
-class DocumentKind(enum.StrEnum):
-    """The two file formats, named by their ``format:`` field."""
-
-    LIBRARY = "rosreconf/component-library"
-    SCHEMA = "rosreconf/interoperability-schema"
-
-
-JSON_SCHEMA_FILES = {
-    DocumentKind.LIBRARY: "component-library.schema.json",
-    DocumentKind.SCHEMA: "interoperability-schema.schema.json",
-}
-
-
-@cache
-def json_schema(kind: DocumentKind) -> dict[str, Any]:
-    """Return the shipped JSON Schema of ``kind`` (the same file editors use)."""
-    text = bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_text(encoding="utf-8")
-    schema: dict[str, Any] = json.loads(text)
-    return schema
 
 
 @dataclass(frozen=True)
@@ -145,12 +116,12 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
             loaded.problems.extend(exc.problems)
             loaded.library_complete = False
             continue
-        kind, problems = _kind_of(tree, src.name)
+        kind, problems = kind_of(tree, src.name)
         if kind is None or tree is None:
             loaded.problems.extend(problems)
             loaded.library_complete = False
             continue
-        structural = list(_structure_problems(tree, kind))
+        structural = list(structure_problems(tree, kind))
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
@@ -243,135 +214,6 @@ def load_checked(
     if errors:
         raise InvalidInputError(errors)
     return loaded
-
-
-# --- the format field -------------------------------------------------------------------
-
-
-def _kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
-    known = ", ".join(k.value for k in DocumentKind)
-    if not isinstance(tree, ys.YMapping):
-        span = tree.span if tree is not None else Span(name, 1, 1)
-        return None, [
-            Problem(
-                span,
-                "expected a mapping with a 'format' key at the top of the file",
-                f"start the file with 'format: <kind>' where kind is one of {known}",
-                code="not-a-document",
-            )
-        ]
-    fmt = tree.items.get("format")
-    if fmt is None:
-        return None, [
-            Problem(
-                tree.span,
-                "missing 'format' key",
-                f"add 'format: <kind>' where kind is one of {known}",
-                code="missing-format",
-            )
-        ]
-    raw = fmt.raw if isinstance(fmt, ys.YScalar) else ""
-    for kind in DocumentKind:
-        if raw == kind.value:
-            return kind, []
-    return None, [
-        Problem(
-            fmt.span,
-            f"unknown format '{raw}'",
-            f"use one of {known}",
-            code="unknown-format",
-        )
-    ]
-
-
-# --- structure: JSON Schema, with friendly positioned messages ---------------------------
-
-
-def _structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
-    validator = jsonschema.Draft202012Validator(json_schema(kind))
-    plain = ys.to_plain(tree)
-    for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):
-        yield _problem_of(error, tree)
-
-
-def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) -> Problem:
-    if error.validator in ("oneOf", "anyOf") and error.context:
-        hint = str(error.schema.get("x-hint", "")) if isinstance(error.schema, dict) else ""
-        best = jsonschema.exceptions.best_match(error.context)
-        problem = _problem_of(best, tree)
-        return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
-    path = list(error.absolute_path)
-    node = ys.lookup(tree, path)
-    span = node.span if node is not None else tree.span
-    where = _describe_path(path)
-    schema = error.schema if isinstance(error.schema, dict) else {}
-    hint = str(schema.get("x-hint", ""))
-    validator = error.validator
-    if validator == "required":
-        missing = str(error.message).split("'")[1] if "'" in error.message else "?"
-        return Problem(span, f"{where} is missing required key '{missing}'", code="missing-key")
-    if validator == "additionalProperties" and isinstance(error.instance, dict):
-        allowed = sorted(schema.get("properties", {}))
-        extra = sorted(set(error.instance) - set(allowed))
-        name = extra[0] if extra else "?"
-        kspan = ys.key_span(tree, [*path, name]) or span
-        close = difflib.get_close_matches(name, allowed, n=1)
-        fix = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(allowed)}"
-        return Problem(kspan, f"unknown key '{name}' in {where}", fix, code="unknown-key")
-    if validator == "type":
-        got = _written(node)
-        want = error.validator_value
-        wanted = " or ".join(want) if isinstance(want, list) else str(want)
-        fix = hint
-        if "string" in wanted and isinstance(node, ys.YScalar) and node.plain:
-            fix = f"quote it ('{node.raw}') if you mean the text"
-        return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
-    if validator == "pattern":
-        return Problem(span, f"{where} {_written(node)} is not valid", hint, code="bad-name")
-    if validator == "const":
-        return Problem(
-            span,
-            f"{where} must be {json.dumps(error.validator_value)}, not {_written(node)}",
-            hint,
-            code="wrong-value",
-        )
-    if validator in ("minimum", "maximum"):
-        return Problem(
-            span,
-            f"{where} is {_written(node)}, which is out of range",
-            f"{validator} is {error.validator_value}",
-            code="out-of-range",
-        )
-    if validator == "minItems":
-        return Problem(
-            span,
-            f"{where} needs at least {error.validator_value} item(s)",
-            code="too-few",
-        )
-    if validator == "uniqueItems":
-        return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
-    return Problem(span, f"{where}: {error.message}", hint, code="invalid")
-
-
-def _written(node: ys.YNode | None) -> str:
-    if isinstance(node, ys.YScalar):
-        kind = type(node.value).__name__.replace("NoneType", "null").replace("str", "text")
-        kind = {"int": "number", "float": "number", "bool": "boolean"}.get(kind, kind)
-        return f"{kind} {node.raw!r}" if node.raw else "empty value"
-    if isinstance(node, ys.YMapping):
-        return "a mapping"
-    if isinstance(node, ys.YSequence):
-        return "a list"
-    return "nothing"
-
-
-def _describe_path(path: Sequence[str | int]) -> str:
-    if not path:
-        return "the document"
-    parts = []
-    for step in path:
-        parts.append(f"[{step}]" if isinstance(step, int) else f".{step}")
-    return "'" + "".join(parts).lstrip(".") + "'"
 
 
 # --- building model objects from well-formed trees --------------------------------------
