@@ -80,11 +80,12 @@ def _root(
 
 def _register() -> None:
     from rosreconf.commands import enumerate as enumerate_
-    from rosreconf.commands import validate
+    from rosreconf.commands import generate, validate
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
         "enumerate": enumerate_.enumerate_command,
+        "generate": generate.generate_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
