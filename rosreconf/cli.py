@@ -80,12 +80,13 @@ def _root(
 
 def _register() -> None:
     from rosreconf.commands import enumerate as enumerate_
-    from rosreconf.commands import generate, validate
+    from rosreconf.commands import generate, validate, whatif
 
     commands: dict[str, Callable[..., object]] = {
         "validate": validate.validate,
         "enumerate": enumerate_.enumerate_command,
         "generate": generate.generate_command,
+        "whatif": whatif.whatif_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))
