@@ -15,6 +15,7 @@ in a process pool here or on Dask/Ray workers unchanged (docs/whatif.md).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -112,16 +113,14 @@ def evaluate_chunk(chunk: Chunk) -> list[Outcome]:
             for r, c in task.atoms.get(name, ())
         ]
         found: list[tuple[str, ...]] = []
-
-        def on_model(model: clingo.Model) -> None:
-            chosen = {
-                s.arguments[0].number: s.arguments[1].number for s in model.symbols(shown=True)
-            }
-            found.append(tuple(task.components[chosen[r]] for r in range(len(task.roles))))
-
-        ctl.solve(assumptions=assumptions, on_model=on_model)
+        ctl.solve(assumptions=assumptions, on_model=functools.partial(_keep, task, found))
         out.append(Outcome(tuple(failed), found[0] if found else None))
     return out
+
+
+def _keep(task: Task, found: list[tuple[str, ...]], model: clingo.Model) -> None:
+    chosen = {s.arguments[0].number: s.arguments[1].number for s in model.symbols(shown=True)}
+    found.append(tuple(task.components[chosen[r]] for r in range(len(task.roles))))
 
 
 def evaluate(task: Task, failed: Iterable[str]) -> Outcome:
@@ -170,9 +169,13 @@ class SchemaReport:
         pairs = []
         for a, b in itertools.combinations(self.relevant, 2):
             key = frozenset((a, b))
-            if key in self.outcomes and not self.outcomes[key].survives:
-                if self._survives(frozenset((a,))) and self._survives(frozenset((b,))):
-                    pairs.append((a, b))
+            if (
+                key in self.outcomes
+                and not self.outcomes[key].survives
+                and self._survives(frozenset((a,)))
+                and self._survives(frozenset((b,)))
+            ):
+                pairs.append((a, b))
         return pairs
 
     def _survives(self, failed: frozenset[str]) -> bool:

@@ -52,7 +52,8 @@ def test_matches_brute_force_on_generated_library(tmp_path: Path) -> None:
                 outcome = report.outcomes[key]
                 assert outcome.survives == (n > 0), failed
                 if outcome.configuration:
-                    mapping = dict(zip((r.name for r in schema.graph.roles), outcome.configuration))
+                    roles = [r.name for r in schema.graph.roles]
+                    mapping = dict(zip(roles, outcome.configuration, strict=True))
                     config = Configuration.of(schema.name, mapping, schema.graph.roles)
                     assert is_valid(config, library, schema, failed)
         assert report.survived(k) == (alive, len(list(itertools.combinations(names, k))))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -54,7 +55,7 @@ def whatif_command(
                 s,
                 max_failures,
                 pool if n > 1 else None,
-                lambda done, bar=bar: progress.advance(bar, done),
+                functools.partial(progress.advance, bar),
             )
             progress.update(bar, visible=False)
             reports.append(report)
