@@ -27,7 +27,7 @@ demo: $(STAMP)
 test: $(STAMP) system-deps lint typecheck pytest
 
 lint: $(STAMP)
-	$(BIN)/ruff check rosreconf tests
+	$(BIN)/ruff check rosreconf tests benchmarks
 	$(BIN)/ruff format --check rosreconf tests
 
 typecheck: $(STAMP)
@@ -35,6 +35,10 @@ typecheck: $(STAMP)
 
 pytest: $(STAMP)
 	$(BIN)/pytest
+
+## Measure count, first, optimal, whatif and clingo alone over the R x K grid.
+bench: $(STAMP)
+	$(PY) benchmarks/run.py
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache

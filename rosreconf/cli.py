@@ -81,6 +81,7 @@ def _root(
 def _register() -> None:
     from rosreconf.commands import (
         analyse,
+        generate,
         graph,
         launch,
         live,
@@ -89,6 +90,7 @@ def _register() -> None:
         render_pddl,
         validate,
         watch,
+        whatif,
     )
     from rosreconf.commands import enumerate as enumerate_
 
@@ -105,6 +107,8 @@ def _register() -> None:
         "watch": watch.watch_command,
         "render-pddl": render_pddl.render_pddl,
         "plan": plan.plan_command,
+        "generate": generate.generate_command,
+        "whatif": whatif.whatif_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))

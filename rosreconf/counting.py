@@ -17,8 +17,12 @@ Factors:
 
 from __future__ import annotations
 
+import functools
+import heapq
 import itertools
+import operator
 from collections import defaultdict
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from rosreconf.errors import RosreconfError
@@ -53,7 +57,9 @@ def count(inst: Instance) -> int:
     return _eliminate(factors, len(inst.roles), alive)
 
 
-def _table(scope: tuple[int, ...], alive: list[list[str]], keep: object) -> Factor:
+def _table(
+    scope: tuple[int, ...], alive: list[list[str]], keep: Callable[[tuple[str, ...]], bool]
+) -> Factor:
     size = 1
     for v in scope:
         size *= len(alive[v])
@@ -62,10 +68,7 @@ def _table(scope: tuple[int, ...], alive: list[list[str]], keep: object) -> Fact
             f"counting needs a table of {size} rows over {len(scope)} roles; "
             "the system graph is too densely connected to count exactly"
         )
-    rows = {}
-    for combo in itertools.product(*(alive[v] for v in scope)):
-        if keep(dict(zip(scope, combo, strict=True))):  # type: ignore[operator]
-            rows[combo] = 1
+    rows = {combo: 1 for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
     return Factor(scope, rows)
 
 
@@ -73,24 +76,9 @@ def _factors(inst: Instance, alive: list[list[str]]) -> list[Factor]:
     lib = inst.library
     out: list[Factor] = []
     for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
-        pairs = {(a, b) for a, b in ok}
-        out.append(_table((u, v), alive, lambda s, u=u, v=v, p=pairs: (s[u], s[v]) in p))
+        out.append(_table((u, v), alive, ok.__contains__))
     for u in range(len(inst.roles)):
-        scope_set: set[int] = set()
-        for cu in alive[u]:
-            for i in range(len(lib[cu].requires)):
-                scope_set.update(v for v, _ in inst.meets[(u, cu, i)])
-        if any(lib[cu].requires for cu in alive[u]):
-            scope = (u, *sorted(scope_set - {u}))
-
-            def met(s: dict[int, str], u: int = u) -> bool:
-                cu = s[u]
-                return all(
-                    any(s.get(v) == cv for v, cv in inst.meets[(u, cu, i)])
-                    for i in range(len(lib[cu].requires))
-                )
-
-            out.append(_table(scope, alive, met))
+        out.extend(_requirement_factors(inst, u, alive))
     holders: dict[str, list[int]] = defaultdict(list)
     for v, names in enumerate(alive):
         for n in names:
@@ -104,40 +92,77 @@ def _factors(inst: Instance, alive: list[list[str]]) -> list[Factor]:
                     _table(
                         (u, *where),
                         alive,
-                        lambda s, u=u, cu=cu, need=need, where=where: (
-                            s[u] != cu or any(s[w] == need for w in where)
-                        ),
+                        functools.partial(_needs_met, cu=cu, need=need),
                     )
                 )
             for ex in sorted(comp.excludes):
                 for w in holders.get(ex, []):
                     if w != u:
-                        out.append(
-                            _table(
-                                (u, w),
-                                alive,
-                                lambda s, u=u, w=w, cu=cu, ex=ex: not (s[u] == cu and s[w] == ex),
-                            )
-                        )
+                        out.append(_table((u, w), alive, (cu, ex).__ne__))
     for shared in holders.values():
         for u, w in itertools.combinations(shared, 2):
-            out.append(_table((u, w), alive, lambda s, u=u, w=w: s[u] != s[w]))
+            out.append(_table((u, w), alive, lambda s: s[0] != s[1]))
+    return out
+
+
+def _needs_met(s: tuple[str, ...], cu: str, need: str) -> bool:
+    return s[0] != cu or need in s[1:]
+
+
+def _requirement_factors(inst: Instance, u: int, alive: list[list[str]]) -> list[Factor]:
+    """Build "every requirement of u's component is met" as one factor per provider set.
+
+    A requirement of candidate ``cu`` is met by one of the provider roles in its ``meets``
+    table. Grouping the requirements by that set of roles and multiplying one factor per
+    group gives the same function as one factor over all of u's providers, but each table
+    is only as wide as one group (usually u and one provider: K^2 rows, not K^4).
+    """
+    groups: dict[tuple[int, ...], dict[str, list[set[tuple[int, str]]]]] = defaultdict(dict)
+    for cu in alive[u]:
+        for i in range(len(inst.library[cu].requires)):
+            pairs = inst.meets[(u, cu, i)]
+            roles = tuple(sorted({v for v, _ in pairs}))
+            groups[roles].setdefault(cu, []).append(set(pairs))
+    out = []
+    for roles, needs in groups.items():
+        scope = (u, *roles)
+
+        def met(
+            s: tuple[str, ...],
+            scope: tuple[int, ...] = scope,
+            needs: dict[str, list[set[tuple[int, str]]]] = needs,
+        ) -> bool:
+            reqs = needs.get(s[0])
+            if not reqs:
+                return True
+            have = set(zip(scope[1:], s[1:], strict=True))
+            return all(not have.isdisjoint(r) for r in reqs)
+
+        out.append(_table(scope, alive, met))
     return out
 
 
 def _eliminate(factors: list[Factor], n: int, alive: list[list[str]]) -> int:
-    by_var: dict[int, list[int]] = defaultdict(list)
+    by_var: dict[int, set[int]] = defaultdict(set)
     pool: dict[int, Factor] = dict(enumerate(factors))
     for k, f in pool.items():
         for v in f.scope:
-            by_var[v].append(k)
+            by_var[v].add(k)
     total = 1
     next_id = len(factors)
-    remaining = set(range(n))
-    while remaining:
-        var = min(remaining, key=lambda v: (_neighbours(v, by_var, pool), v))
-        remaining.discard(var)
-        ids = [k for k in by_var.pop(var, []) if k in pool]
+    heap = [(_neighbours(v, by_var, pool), v) for v in range(n)]
+    heapq.heapify(heap)
+    done: set[int] = set()
+    while heap:
+        score, var = heapq.heappop(heap)
+        if var in done:
+            continue
+        now = _neighbours(var, by_var, pool)
+        if now != score:  # stale entry: its neighbourhood changed since it was pushed
+            heapq.heappush(heap, (now, var))
+            continue
+        done.add(var)
+        ids = sorted(by_var.pop(var, ()))
         if not ids:
             total *= len(alive[var])
             continue
@@ -148,53 +173,67 @@ def _eliminate(factors: list[Factor], n: int, alive: list[list[str]]) -> int:
         summed = _sum_out(merged, var)
         if not summed.rows:
             return 0
+        touched = {v for f in mine for v in f.scope} - {var}
+        for v in touched:
+            by_var[v].difference_update(ids)
         if not summed.scope:
             total *= summed.rows[()]
-            continue
-        pool[next_id] = summed
-        for v in summed.scope:
-            by_var[v] = [k for k in by_var[v] if k in pool]
-            by_var[v].append(next_id)
-        next_id += 1
+        else:
+            pool[next_id] = summed
+            for v in summed.scope:
+                by_var[v].add(next_id)
+            next_id += 1
+        for v in touched:
+            heapq.heappush(heap, (_neighbours(v, by_var, pool), v))
     for f in pool.values():  # pragma: no cover - every factor has its variables eliminated
         total *= sum(f.rows.values())
     return total
 
 
-def _neighbours(v: int, by_var: dict[int, list[int]], pool: dict[int, Factor]) -> int:
+def _neighbours(v: int, by_var: dict[int, set[int]], pool: dict[int, Factor]) -> int:
     seen: set[int] = set()
-    for k in by_var.get(v, []):
-        if k in pool:
-            seen.update(pool[k].scope)
+    for k in by_var.get(v, ()):
+        seen.update(pool[k].scope)
     return len(seen)
+
+
+def _key(positions: list[int]) -> Callable[[tuple[str, ...]], tuple[str, ...]]:
+    """Return a fast row -> sub-row function (itemgetter, always returning a tuple)."""
+    if not positions:
+        return lambda row: ()
+    if len(positions) == 1:
+        p = positions[0]
+        return lambda row: (row[p],)
+    return operator.itemgetter(*positions)
 
 
 def _join(a: Factor, b: Factor) -> Factor:
     shared = [v for v in a.scope if v in b.scope]
     extra = [v for v in b.scope if v not in a.scope]
     scope = (*a.scope, *extra)
-    ia = [a.scope.index(v) for v in shared]
-    ib = [b.scope.index(v) for v in shared]
-    ie = [b.scope.index(v) for v in extra]
+    key_a = _key([a.scope.index(v) for v in shared])
+    key_b = _key([b.scope.index(v) for v in shared])
+    tail_b = _key([b.scope.index(v) for v in extra])
     index: dict[tuple[str, ...], list[tuple[tuple[str, ...], int]]] = defaultdict(list)
     for row, w in b.rows.items():
-        index[tuple(row[i] for i in ib)].append((tuple(row[i] for i in ie), w))
+        index[key_b(row)].append((tail_b(row), w))
     rows: dict[tuple[str, ...], int] = {}
     for row, w in a.rows.items():
-        for tail, w2 in index.get(tuple(row[i] for i in ia), ()):
+        for tail, w2 in index.get(key_a(row), ()):
             rows[row + tail] = w * w2
-            if len(rows) > MAX_FACTOR_ROWS:
-                raise CountTooHard(
-                    f"counting needs over {MAX_FACTOR_ROWS} rows; the system graph is too "
-                    "densely connected to count exactly"
-                )
+        if len(rows) > MAX_FACTOR_ROWS:
+            raise CountTooHard(
+                f"counting needs over {MAX_FACTOR_ROWS} rows; the system graph is too "
+                "densely connected to count exactly"
+            )
     return Factor(scope, rows)
 
 
 def _sum_out(f: Factor, var: int) -> Factor:
     pos = f.scope.index(var)
     scope = f.scope[:pos] + f.scope[pos + 1 :]
+    rest = _key([i for i in range(len(f.scope)) if i != pos])
     rows: dict[tuple[str, ...], int] = defaultdict(int)
     for row, w in f.rows.items():
-        rows[row[:pos] + row[pos + 1 :]] += w
+        rows[rest(row)] += w
     return Factor(scope, dict(rows))

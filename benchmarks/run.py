@@ -1,0 +1,180 @@
+"""Measure rosreconf at scale: count, first, optimal, whatif, clingo alone, import floor.
+
+Every measurement runs in a fresh subprocess (this script with ``--child``), which reports
+its wall time and its own peak RSS; the parent keeps the median of n runs per cell, prints
+a rich table and writes benchmarks/results.json. ``--quick`` runs a tiny grid for CI.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+FULL = [(r, k) for r in (10, 50, 200, 1000) for k in (2, 5, 10)]
+QUICK = [(8, 2), (12, 3)]
+
+
+def child(kind: str, folder: str) -> dict[str, Any]:
+    """Run one measurement in this process and return seconds and peak RSS (KiB)."""
+    from rosreconf.counting import count
+    from rosreconf.instance import compile_instance
+    from rosreconf.loader import load_paths
+    from rosreconf.solver import ClingoEngine, Objective, _control
+
+    d = Path(folder)
+    loaded = load_paths([d / "libraries", d / "schemas"])
+    lib, schema = loaded.library, loaded.schemas[0]
+    t = time.perf_counter()
+    extra: dict[str, Any] = {}
+    if kind == "count":
+        extra["digits"] = len(str(count(compile_instance(lib, schema))))
+    elif kind == "first":
+        extra["found"] = ClingoEngine().first(compile_instance(lib, schema)) is not None
+    elif kind == "optimal":
+        inst = compile_instance(lib, schema)
+        extra["found"] = ClingoEngine().best(inst, Objective(weights={"cost": 1})) is not None
+    elif kind == "clingo":  # the reference: clingo's own ground + solve, our compile excluded
+        inst = compile_instance(lib, schema)
+        t = time.perf_counter()
+        ctl = _control(inst, None, ["--models=1"])
+        extra["found"] = bool(ctl.solve().satisfiable)
+    elif kind == "whatif":
+        from concurrent.futures import ProcessPoolExecutor
+
+        from rosreconf.whatif import analyse
+
+        with ProcessPoolExecutor(2) as pool:
+            report = analyse(lib, schema, 2, pool)
+        extra["solver_calls"] = report.solver_calls
+    elif kind.startswith("list"):
+        n = int(kind[4:])
+        extra["listed"] = sum(
+            1 for _ in ClingoEngine().configurations(compile_instance(lib, schema), n)
+        )
+    seconds = time.perf_counter() - t
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return {"seconds": seconds, "rss_kib": rss, **extra}
+
+
+def measure(kind: str, folder: Path, runs: int, timeout: float) -> dict[str, Any]:
+    """Return the median of ``runs`` child runs of ``kind`` (or why it did not finish)."""
+    results = []
+    for _ in range(runs):
+        cmd = [sys.executable, str(Path(__file__)), "--child", kind, str(folder)]
+        try:
+            out = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, check=True)
+        except subprocess.TimeoutExpired:
+            return {"status": f"timeout {timeout:.0f} s"}
+        except subprocess.CalledProcessError as exc:
+            return {"status": "error: " + exc.stderr.strip().splitlines()[-1][:80]}
+        results.append(json.loads(out.stdout))
+    best = dict(results[0])
+    best["seconds"] = statistics.median(r["seconds"] for r in results)
+    best["rss_kib"] = max(r["rss_kib"] for r in results)
+    best["status"] = "ok"
+    return best
+
+
+def import_floor(runs: int) -> dict[str, float]:
+    """Time ``python -c pass`` against ``python -c 'import rosreconf'``."""
+
+    def wall(code: str) -> float:
+        times = []
+        for _ in range(runs):
+            t = time.perf_counter()
+            subprocess.run([sys.executable, "-c", code], check=True)
+            times.append(time.perf_counter() - t)
+        return statistics.median(times)
+
+    bare, ours = wall("pass"), wall("import rosreconf")
+    return {"python": bare, "import_rosreconf": ours, "ratio": ours / bare}
+
+
+def main() -> None:
+    """Run the grid and write the table and JSON."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--child", nargs=2)
+    ap.add_argument("--timeout", type=float, default=120.0)
+    ap.add_argument("--json", type=Path, default=HERE / "results.json")
+    args = ap.parse_args()
+    if args.child:
+        print(json.dumps(child(*args.child)))
+        return
+    from rich.console import Console
+    from rich.table import Table
+
+    from rosreconf.generate import generate, write
+
+    grid = QUICK if args.quick else FULL
+    rows = []
+    kinds = ["count", "first", "optimal", "clingo", "whatif"]
+    with tempfile.TemporaryDirectory() as tmp:
+        for r, k in grid:
+            folder = Path(tmp) / f"{r}x{k}"
+            write(generate(r, k, 0.2, seed=1), folder)
+            runs = 1 if args.quick or r * k >= 2000 else 3
+            row: dict[str, Any] = {"roles": r, "candidates": k}
+            for kind in kinds:
+                if kind == "whatif" and r > 50:
+                    row[kind] = {"status": "skipped (R > 50)"}
+                    continue
+                row[kind] = measure(kind, folder, runs, args.timeout)
+            row["fast_downward"] = {"status": "n/a: rosreconf.pddl not merged on this branch"}
+            rows.append(row)
+        big = grid[-1]
+        stream = Path(tmp) / f"{big[0]}x{big[1]}"
+        flat = {n: measure(f"list{n}", stream, 1, args.timeout) for n in (10, 1000)}
+    floor = import_floor(3 if args.quick else 5)
+    doc = {
+        "machine": machine(),
+        "grid": rows,
+        "streaming_rss_kib": {str(n): v.get("rss_kib") for n, v in flat.items()},
+        "import_floor": floor,
+    }
+    args.json.write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
+    table = Table(title="rosreconf benchmark (median seconds / peak RSS MiB)")
+    for col in ["R x K", *kinds, "overhead", "FD"]:
+        table.add_column(col)
+    for row in rows:
+        cells = [f"{row['roles']}x{row['candidates']}"]
+        for kind in kinds:
+            m = row[kind]
+            ok = m.get("status") == "ok"
+            cells.append(f"{m['seconds']:.2f} / {m['rss_kib'] / 1024:.0f}" if ok else m["status"])
+        f, c = row["first"], row["clingo"]
+        ok = f.get("status") == c.get("status") == "ok"
+        cells.append(f"{f['seconds'] / c['seconds']:.1f}x" if ok else "n/a")
+        cells.append("n/a")
+        table.add_row(*cells)
+    console = Console()
+    console.print(table)
+    console.print(f"import floor: {floor}; streaming RSS KiB: {doc['streaming_rss_kib']}")
+
+
+def machine() -> dict[str, Any]:
+    """Describe the machine: cores, CPU model, Python."""
+    import os
+
+    model = ""
+    cpuinfo = Path("/proc/cpuinfo")
+    if cpuinfo.exists():
+        for line in cpuinfo.read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    return {"cores": os.cpu_count(), "cpu": model, "python": platform.python_version()}
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,232 @@
+"""Generate large, valid, reproducible libraries and schemas to measure rosreconf at scale.
+
+The system graph is layered like the paper's Fig. 2: sensors -> perception -> control ->
+actuators, each role a consumer of one to three neighbouring roles of the layer before it
+(a band, so the graph's treewidth stays small and exact counting stays cheap). Every role
+has ``K`` candidates; a candidate provides its role's output in interface family ``a``,
+``b`` or both, and requires each provider's output in family ``a``, ``b`` or either, so only
+some candidate pairs are compatible. One candidate per role provides and accepts both
+families and takes part in no coupling: these form the nominal configuration, which is
+therefore always valid. Couplings (``needs``/``excludes``) join other candidates of
+neighbouring roles at density ``coupling`` (the share of edges carrying one).
+
+How names change across layers::
+
+    layer        role     abstraction   component    output topic (family a / b)
+    -----------  -------  ------------  -----------  ---------------------------
+    sensors      sen3     sen3          SEN3_C0..    sen3_a / sen3_b
+    perception   per3     per3          PER3_C0..    per3_a / per3_b
+    control      ctl3     ctl3          CTL3_C0..    ctl3_a / ctl3_b
+    actuators    act3     act3          ACT3_C0..    (provides nothing)
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import random
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+LAYERS = ("sen", "per", "ctl", "act")
+"""Layer prefixes in the order information flows (Fig. 2)."""
+
+FAMILY_TYPES = {"a": "gen_msgs/FamilyA", "b": "gen_msgs/FamilyB"}
+"""Message class of each interface family (one type per label, as the checks demand)."""
+
+LIBRARY_HEADER = "# yaml-language-server: $schema=../rosreconf/data/component-library.schema.json"
+SCHEMA_HEADER = (
+    "# yaml-language-server: $schema=../rosreconf/data/interoperability-schema.schema.json"
+)
+
+
+@dataclass
+class _Candidate:
+    """One generated component: its families, requirements and couplings."""
+
+    name: str
+    provides: tuple[str, ...]
+    requires: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    needs: set[str] = field(default_factory=set)
+    excludes: set[str] = field(default_factory=set)
+
+
+@dataclass(frozen=True)
+class Generated:
+    """The text of one generated library file and one schema file.
+
+    Attributes:
+        library: the component library YAML (docs/formats.md).
+        schema: the interoperability schema YAML, with a valid nominal configuration.
+    """
+
+    library: str
+    schema: str
+
+
+def layer_sizes(roles: int) -> list[int]:
+    """Split ``roles`` over the four layers as evenly as possible (earlier layers first)."""
+    return [roles // 4 + (1 if i < roles % 4 else 0) for i in range(4)]
+
+
+def generate(roles: int, candidates: int, coupling: float = 0.2, seed: int = 0) -> Generated:
+    """Return a library and schema of ``roles`` roles with ``candidates`` candidates each.
+
+    The same arguments always give the same bytes (``random.Random(seed)``).
+
+    Raises:
+        ValueError: a size below 1 or a coupling outside [0, 1].
+    """
+    if roles < 1 or candidates < 1:
+        raise ValueError("roles and candidates must be at least 1")
+    if not 0.0 <= coupling <= 1.0:
+        raise ValueError("coupling must be between 0 and 1")
+    rng = random.Random(seed)
+    layers = [
+        [f"{prefix}{i}" for i in range(n)]
+        for prefix, n in zip(LAYERS, layer_sizes(roles), strict=True)
+    ]
+    layers = [layer for layer in layers if layer]
+    edges: list[tuple[str, list[str]]] = []
+    for before, layer in itertools.pairwise(layers):
+        for j, consumer in enumerate(layer):
+            centre = j * len(before) // len(layer)
+            width = rng.choices((1, 2, 3), weights=(5, 4, 1))[0]
+            edges.append((consumer, before[centre : centre + width]))
+    last = {name for name in layers[-1]} if len(layers) > 1 else set()
+    cands: dict[str, list[_Candidate]] = {}
+    nominal: dict[str, str] = {}
+    for layer in layers:
+        for role in layer:
+            universal = rng.randrange(candidates)
+            row = []
+            for k in range(candidates):
+                if role in last:
+                    fams: tuple[str, ...] = ()
+                elif k == universal or rng.random() < 0.2:
+                    fams = ("a", "b")
+                else:
+                    fams = (rng.choice("ab"),)
+                row.append(_Candidate(f"{role.upper()}_C{k}", fams))
+            cands[role] = row
+            nominal[role] = row[universal].name
+    universal_names = set(nominal.values())
+    for consumer, providers in edges:
+        for cand in cands[consumer]:
+            for p in providers:
+                if cand.name in universal_names or rng.random() < 0.2:
+                    cand.requires[p] = ("a", "b")
+                else:
+                    cand.requires[p] = (rng.choice("ab"),)
+        for p in providers:
+            if candidates < 2 or rng.random() >= coupling:
+                continue
+            who = rng.choice([c for c in cands[consumer] if c.name not in universal_names])
+            other = rng.choice(cands[p]).name
+            if other in who.needs or other in who.excludes:
+                continue
+            (who.needs if rng.random() < 0.5 else who.excludes).add(other)
+    library = _library_text(roles, candidates, seed, layers, cands, rng)
+    schema = _schema_text(roles, candidates, seed, layers, edges, nominal)
+    return Generated(library, schema)
+
+
+def _library_text(
+    roles: int,
+    candidates: int,
+    seed: int,
+    layers: list[list[str]],
+    cands: dict[str, list[_Candidate]],
+    rng: random.Random,
+) -> str:
+    out = [
+        LIBRARY_HEADER,
+        f"# Generated by `rosreconf generate` (roles={roles}, candidates={candidates}, "
+        f"seed={seed}).",
+        "format: rosreconf/component-library",
+        "version: 1",
+        "name: generated",
+        f"description: Generated layered library, {roles} roles x {candidates} candidates.",
+        "components:",
+    ]
+    for layer in layers:
+        for role in layer:
+            for c in cands[role]:
+                out.append(f"  - name: {c.name}")
+                out.append(f"    abstraction: {role}")
+                if c.provides:
+                    out.append("    provides:")
+                    for fam in c.provides:
+                        out.append(f"      - {{topic: {role}_{fam}, type: {FAMILY_TYPES[fam]}}}")
+                if c.requires:
+                    out.append("    requires:")
+                    for p, fams in c.requires.items():
+                        opts = [f"{{topic: {p}_{f}, type: {FAMILY_TYPES[f]}}}" for f in fams]
+                        item = opts[0] if len(opts) == 1 else "{any_of: [" + ", ".join(opts) + "]}"
+                        out.append(f"      - {item}")
+                if c.needs:
+                    out.append(f"    needs: [{', '.join(sorted(c.needs))}]")
+                if c.excludes:
+                    out.append(f"    excludes: [{', '.join(sorted(c.excludes))}]")
+                out.append(f"    failure_probability: {rng.uniform(0.001, 0.05):.4f}")
+                cost, settle = rng.uniform(1.0, 10.0), rng.uniform(0.1, 2.0)
+                out.append(f"    metrics: {{cost: {cost:.2f}, settling_time: {settle:.3f}}}")
+    return "\n".join(out) + "\n"
+
+
+def _schema_text(
+    roles: int,
+    candidates: int,
+    seed: int,
+    layers: list[list[str]],
+    edges: list[tuple[str, list[str]]],
+    nominal: dict[str, str],
+) -> str:
+    out = [
+        SCHEMA_HEADER,
+        f"# Generated by `rosreconf generate` (roles={roles}, candidates={candidates}, "
+        f"seed={seed}).",
+        "format: rosreconf/interoperability-schema",
+        "version: 1",
+        "name: generated",
+        "title: Generated System",
+        "skill: Carry sensor readings through perception and control to the actuators.",
+        "environment: A synthetic benchmark world.",
+        "roles:",
+    ]
+    names = {"sen": "sensor", "per": "perception", "ctl": "control", "act": "actuator"}
+    for layer in layers:
+        for role in layer:
+            out.append(f"  - {{name: {role}, abstraction: {role}, description: {names[role[:3]]}}}")
+    if edges:
+        out.append("edges:")
+        for consumer, providers in edges:
+            out.append(f"  - {{consumer: {consumer}, providers: [{', '.join(providers)}]}}")
+    out.append("nominal:")
+    out.extend(f"  {role}: {comp}" for role, comp in nominal.items())
+    return "\n".join(out) + "\n"
+
+
+def write(generated: Generated, directory: Path) -> tuple[Path, Path]:
+    """Write ``libraries/generated.yaml`` and ``schemas/generated.yaml`` under ``directory``.
+
+    Each file is written to a temporary name beside it and renamed, so a reader never sees
+    half a file.
+    """
+    paths = (
+        directory / "libraries" / "generated.yaml",
+        directory / "schemas" / "generated.yaml",
+    )
+    for path, text in zip(paths, (generated.library, generated.schema), strict=True):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".generated-", suffix=".tmp", dir=path.parent)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.chmod(tmp, 0o644)
+            os.replace(tmp, path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+    return paths

@@ -1,0 +1,26 @@
+"""``benchmarks/run.py --quick``: the table and the JSON document come out."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+RUN = Path(__file__).resolve().parent.parent / "benchmarks" / "run.py"
+
+
+def test_quick_grid_writes_table_and_json(tmp_path: Path) -> None:
+    out = tmp_path / "results.json"
+    done = subprocess.run(
+        [sys.executable, str(RUN), "--quick", "--json", str(out)],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=120,
+    )
+    assert "rosreconf benchmark" in done.stdout
+    doc = json.loads(out.read_text())
+    assert [(r["roles"], r["candidates"]) for r in doc["grid"]] == [(8, 2), (12, 3)]
+    assert all(r["count"]["status"] == "ok" for r in doc["grid"])
+    assert doc["machine"]["cores"] >= 1
