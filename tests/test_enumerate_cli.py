@@ -179,3 +179,32 @@ def test_mobile_robot_is_not_orthogonal_because_of_sonar(runner: CliRunner, tmp_
     assert any("SONAR_RING provides sonar" in p["reason"] for p in nav["incompatible"])
     sensor = next(r for r in nav["redundancy"] if r["role"] == "range_sensor")
     assert len(sensor["candidates"]) == 3 and sensor["usable"] == ["HOKUYO_UST10", "SICK_TIM571"]
+
+
+def test_astronomical_count_is_exact_and_printable(runner: CliRunner, tmp_path: Path) -> None:
+    """A product over 400 independent roles of 3 candidates: 3**400, 191 digits (Theorem 9)."""
+    lib = ["format: rosreconf/component-library", "version: 1", "name: wide", "components:"]
+    roles = []
+    for r in range(400):
+        roles.append(f"  - {{name: r{r}, abstraction: a{r}}}")
+        for k in range(3):
+            lib.append(f"  - {{name: C{r}_{k}, abstraction: a{r}, provides: []}}")
+    schema = [
+        "format: rosreconf/interoperability-schema",
+        "version: 1",
+        "name: wide",
+        "skill: s",
+        "environment: e",
+        "roles:",
+        *roles,
+    ]
+    (tmp_path / "lib.yaml").write_text("\n".join(lib) + "\n")
+    (tmp_path / "schema.yaml").write_text("\n".join(schema) + "\n")
+    args = ["enumerate", "--count", "-l", str(tmp_path / "lib.yaml")]
+    args += ["-s", str(tmp_path / "schema.yaml")]
+    text = runner.invoke(app, args)
+    assert text.exit_code == 0, text.output
+    assert f"{3**400} configuration(s) (about 7.055e190, 191 digits)" in text.stdout
+    doc = runner.invoke(app, [*args, "--json"])
+    [schema_doc] = [s for s in json.loads(doc.stdout)["schemas"] if s["name"] == "wide"]
+    assert schema_doc["count"] == 3**400 and schema_doc["count_text"] == str(3**400)

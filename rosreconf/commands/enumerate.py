@@ -112,8 +112,10 @@ def _summary(total: int | None, listed: int, why: str | None) -> str:
         return f"  {listed} configuration(s) listed; stopped at --limit\n\n"
     if why:
         return f"  no configuration: {why}\n\n"
-    digits = len(str(total))
-    size = f" (about {float(total):.3e}, {digits} digits)" if digits > 15 else ""
+    digits = str(total)
+    # Counts can have a thousand digits, far beyond a float: write the estimate from the digits.
+    size = f" (about {digits[0]}.{digits[1:4]}e{len(digits) - 1}, {len(digits)} digits)"
+    size = size if len(digits) > 15 else ""
     return f"  {total} configuration(s){size}\n\n"
 
 
