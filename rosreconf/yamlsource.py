@@ -34,6 +34,11 @@ MAX_BYTES = 4 * 1024 * 1024
 MAX_DEPTH = 32
 """Deepest nesting accepted; rosreconf's formats need 6 levels."""
 
+FAST_LOADER: type[yaml.CSafeLoader] | None = (
+    yaml.CSafeLoader if getattr(yaml, "__with_libyaml__", False) else None
+)
+"""libyaml's parser when PyYAML was built with it (the wheels are), else None."""
+
 Scalar: TypeAlias = str | int | float | bool | None
 Plain: TypeAlias = "Scalar | dict[str, Plain] | list[Plain]"
 
@@ -46,14 +51,14 @@ _INF = re.compile(r"[-+]?\.(inf|Inf|INF)\Z")
 _NAN = re.compile(r"\.(nan|NaN|NAN)\Z")
 
 
-@dataclass
+@dataclass(slots=True)
 class YNode:
     """A value in the tree and where it starts."""
 
     span: Span
 
 
-@dataclass
+@dataclass(slots=True)
 class YScalar(YNode):
     """A scalar: its resolved value, the text as written, and whether it was plain."""
 
@@ -62,7 +67,7 @@ class YScalar(YNode):
     plain: bool
 
 
-@dataclass
+@dataclass(slots=True)
 class YMapping(YNode):
     """A mapping with string keys, in file order; ``key_spans`` says where each key is."""
 
@@ -70,15 +75,21 @@ class YMapping(YNode):
     key_spans: dict[str, Span] = field(default_factory=dict)
 
 
-@dataclass
+@dataclass(slots=True)
 class YSequence(YNode):
     """A sequence of values, in file order."""
 
     items: list[YNode] = field(default_factory=list)
 
 
+_MAY_BE_NON_TEXT = frozenset("~nNtTfF0123456789+-.")
+"""First characters of every YAML 1.2 core null, boolean, integer and float."""
+
+
 def resolve_plain(text: str) -> Scalar:
     """Resolve a plain scalar with YAML 1.2's core schema (never ``no`` -> False)."""
+    if text and text[0] not in _MAY_BE_NON_TEXT:
+        return text  # most names: no pattern can match, skip them all
     if text in ("", "~", "null", "Null", "NULL"):
         return None
     if text in ("true", "True", "TRUE"):
@@ -146,6 +157,18 @@ def parse(data: bytes, file: str) -> YNode | None:
                 )
             ]
         ) from None
+    if FAST_LOADER is not None and _fast_path_safe(text):
+        # libyaml parses about six times faster. On any problem the pure-Python parser reads the
+        # file again, so that messages and positions never depend on which parser is installed.
+        fast = _Builder(file)
+        try:
+            for event in yaml.parse(text, Loader=FAST_LOADER):
+                fast.feed(event)
+            clean = not fast.problems
+        except (_StopParsing, yaml.YAMLError):
+            clean = False
+        if clean:
+            return fast.root
     builder = _Builder(file)
     try:
         for event in yaml.parse(text, Loader=yaml.SafeLoader):
@@ -177,6 +200,20 @@ def parse(data: bytes, file: str) -> YNode | None:
     if builder.problems:
         raise InvalidInputError(builder.problems)
     return builder.root
+
+
+def _fast_path_safe(text: str) -> bool:
+    """Tell whether libyaml is known to read ``text`` exactly as PyYAML's pure parser does.
+
+    The two differ on tabs (libyaml accepts a tab inside a plain scalar, PyYAML's scanner
+    does not) and on characters PyYAML's reader refuses; such text takes the pure path.
+    tests/test_fast_paths.py searches for other differences.
+    """
+    return (
+        FAST_LOADER is not None
+        and "\t" not in text
+        and not yaml.reader.Reader.NON_PRINTABLE.search(text)
+    )
 
 
 class _StopParsing(Exception):
@@ -271,7 +308,8 @@ class _Builder:
         return False
 
     def _scalar(self, event: yaml.ScalarEvent, span: Span) -> YScalar:
-        plain = event.style is None and event.implicit[0]
+        # A plain scalar has no style: None from PyYAML's parser, "" from libyaml's.
+        plain = not event.style and event.implicit[0]
         if event.tag is not None and not self._check_tag(event.tag, span, collection=False):
             return YScalar(span, event.value, event.value, False)
         value: Scalar = resolve_plain(event.value) if plain and event.tag is None else event.value
