@@ -26,6 +26,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rosreconf.procs import descendants
+
 SYSTEM_PYTHON = "/usr/bin/python3"
 """Debian's Python, the one with rospy (the project's venv has none)."""
 STANDIN = Path(__file__).parents[1] / "rosreconf" / "standin_node.py"
@@ -133,20 +135,6 @@ def _stat(pid: int) -> tuple[str, int] | None:
         return None
     fields = text[text.rindex(")") + 2 :].split()
     return fields[0], int(fields[1])
-
-
-def descendants(root: int) -> set[int]:
-    """Return the pids of every living process below ``root``."""
-    parents: dict[int, int] = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit() and (st := _stat(int(entry.name))) is not None:
-            parents[int(entry.name)] = st[1]
-    found: set[int] = set()
-    frontier = {root}
-    while frontier:
-        frontier = {p for p, parent in parents.items() if parent in frontier} - found
-        found |= frontier
-    return found
 
 
 def running(pid: int) -> bool:

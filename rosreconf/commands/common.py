@@ -59,6 +59,24 @@ OnlyOption = Annotated[
     ),
 ]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout.")]
+ConfigurationOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--configuration",
+        "-c",
+        metavar="FILE",
+        help="Configuration file (enumerate/plan --json, or format: rosreconf/configuration). "
+        "Default: the schema's nominal configuration (under --fail, the valid one nearest to it).",
+        show_default=False,
+    ),
+]
+OutputOption = Annotated[
+    Path, typer.Option("--output", "-o", metavar="FILE", help="File to write.", show_default=False)
+]
+MasterOption = Annotated[
+    str,
+    typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
+]
 
 
 @dataclass(frozen=True)

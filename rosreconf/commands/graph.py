@@ -2,35 +2,22 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from rosreconf.commands.common import (
+    ConfigurationOption,
     FailOption,
     LibraryOption,
     OnlyOption,
+    OutputOption,
     SchemaOption,
     select,
 )
 from rosreconf.commands.target import targets
 from rosreconf.errors import ExitCode
 from rosreconf.pictures import RosPicture, View, library_dot, ros_dot, system_dot, write_picture
-
-ConfigurationOption = Annotated[
-    Path | None,
-    typer.Option(
-        "--configuration",
-        "-c",
-        help="Configuration file (enumerate/plan --json, or format: rosreconf/configuration). "
-        "Default: the nominal configuration, or the one nearest to it under --fail.",
-        show_default=False,
-    ),
-]
-OutputOption = Annotated[
-    Path, typer.Option("--output", "-o", help="File to write.", show_default=False)
-]
 
 
 def graph_command(

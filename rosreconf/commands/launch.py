@@ -7,13 +7,14 @@ from typing import Annotated
 import typer
 
 from rosreconf.commands.common import (
+    ConfigurationOption,
     FailOption,
     LibraryOption,
     OnlyOption,
+    OutputOption,
     SchemaOption,
     select,
 )
-from rosreconf.commands.graph import ConfigurationOption, OutputOption
 from rosreconf.commands.target import targets
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.launchfiles import RosVersion, launch_file

@@ -8,7 +8,14 @@ from typing import Annotated
 
 import typer
 
-from rosreconf.commands.common import JsonOption, LibraryOption, SchemaOption, select
+from rosreconf.commands.common import (
+    ConfigurationOption,
+    JsonOption,
+    LibraryOption,
+    MasterOption,
+    SchemaOption,
+    select,
+)
 from rosreconf.configfile import read_configurations
 from rosreconf.conformance import compare
 from rosreconf.errors import ExitCode, UsageError
@@ -19,20 +26,6 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.rosmaster import read_live_graph
 from rosreconf.validity import violations
 
-MasterOption = Annotated[
-    str,
-    typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
-]
-ConfigurationOption = Annotated[
-    Path | None,
-    typer.Option(
-        "--configuration",
-        "-c",
-        help="Configuration file (enumerate/plan --json, or format: rosreconf/configuration). "
-        "Default: the schema's nominal configuration.",
-        show_default=False,
-    ),
-]
 OnlySchemaOption = Annotated[
     str | None,
     typer.Option("--only", help="The schema, when the configuration names several."),

@@ -11,8 +11,14 @@ from typing import IO, Annotated
 
 import typer
 
-from rosreconf.commands.common import FailOption, LibraryOption, SchemaOption
-from rosreconf.commands.live import ConfigurationOption, MasterOption, OnlySchemaOption, target
+from rosreconf.commands.common import (
+    ConfigurationOption,
+    FailOption,
+    LibraryOption,
+    MasterOption,
+    SchemaOption,
+)
+from rosreconf.commands.live import OnlySchemaOption, target
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.watcher import Event, Watcher
