@@ -56,6 +56,8 @@ def child(kind: str, folder: str) -> dict[str, Any]:
         with ProcessPoolExecutor(2) as pool:
             report = analyse(lib, schema, 2, pool)
         extra["solver_calls"] = report.solver_calls
+    elif kind.startswith("fd-"):  # Fast Downward on the rendered task: the plan must be valid
+        extra.update(fast_downward(kind[3:], lib, schema))
     elif kind.startswith("list"):
         n = int(kind[4:])
         extra["listed"] = sum(
@@ -64,6 +66,32 @@ def child(kind: str, folder: str) -> dict[str, Any]:
     seconds = time.perf_counter() - t
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     return {"seconds": seconds, "rss_kib": rss, **extra}
+
+
+FD_TIMEOUT = 60.0
+"""Fast Downward's own time limit per cell (the anytime search uses all of it)."""
+
+
+def fast_downward(search: str, lib: Any, schema: Any) -> dict[str, Any]:
+    """Render the schema, plan with ``search`` and say whether the plan's configuration is valid."""
+    from rosreconf.instance import compile_instance
+    from rosreconf.model import Configuration
+    from rosreconf.pddl import render
+    from rosreconf.planners import FastDownward, solve
+    from rosreconf.solver import Objective
+    from rosreconf.validity import is_valid
+
+    objective = None if search == "lama-first" else Objective(dict(schema.nominal), {"cost": 1})
+    task = render(compile_instance(lib, schema), objective)
+    run = solve(
+        FastDownward(search), task.domain, task.problem, timeout=FD_TIMEOUT, memory_limit_mb=2048
+    )
+    if not run.solved:
+        return {"planned": run.status.value, "valid": False}
+    steps = [task.names.step(name) for name, _ in run.actions]
+    picks = {st.role: st.component for st in steps if st is not None and st.kind == "choose"}
+    config = Configuration.of(schema.name, picks, schema.graph.roles)
+    return {"planned": "solved", "cost": run.cost, "valid": is_valid(config, lib, schema)}
 
 
 def measure(kind: str, folder: Path, runs: int, timeout: float) -> dict[str, Any]:
@@ -130,7 +158,13 @@ def main() -> None:
                     row[kind] = {"status": "skipped (R > 50)"}
                     continue
                 row[kind] = measure(kind, folder, runs, args.timeout)
-            row["fast_downward"] = {"status": "n/a: rosreconf.pddl not merged on this branch"}
+            fd_runs = {"first": "fd-lama-first", "anytime": "fd-seq-sat-lama-2011"}
+            row["fast_downward"] = {
+                key: measure(kind, folder, 1, FD_TIMEOUT + 30)
+                if key == "first" or r <= 50
+                else {"status": "skipped (R > 50)"}
+                for key, kind in fd_runs.items()
+            }
             rows.append(row)
         big = grid[-1]
         stream = Path(tmp) / f"{big[0]}x{big[1]}"
@@ -144,7 +178,7 @@ def main() -> None:
     }
     args.json.write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
     table = Table(title="rosreconf benchmark (median seconds / peak RSS MiB)")
-    for col in ["R x K", *kinds, "overhead", "FD"]:
+    for col in ["R x K", *kinds, "overhead", "FD first", "FD anytime"]:
         table.add_column(col)
     for row in rows:
         cells = [f"{row['roles']}x{row['candidates']}"]
@@ -155,11 +189,21 @@ def main() -> None:
         f, c = row["first"], row["clingo"]
         ok = f.get("status") == c.get("status") == "ok"
         cells.append(f"{f['seconds'] / c['seconds']:.1f}x" if ok else "n/a")
-        cells.append("n/a")
+        cells += [fd_cell(row["fast_downward"][key], f) for key in ("first", "anytime")]
         table.add_row(*cells)
     console = Console()
     console.print(table)
     console.print(f"import floor: {floor}; streaming RSS KiB: {doc['streaming_rss_kib']}")
+
+
+def fd_cell(m: dict[str, Any], first: dict[str, Any]) -> str:
+    """Show a Fast Downward cell: seconds, whether the plan is valid, ratio to our first."""
+    if m.get("status") != "ok":
+        return str(m["status"])
+    if m["planned"] != "solved":
+        return f"{m['planned']} {m['seconds']:.1f} s"
+    ratio = f", {m['seconds'] / first['seconds']:.0f}x" if first.get("status") == "ok" else ""
+    return f"{m['seconds']:.2f} ({'valid' if m['valid'] else 'INVALID'}{ratio})"
 
 
 def machine() -> dict[str, Any]:

@@ -1,30 +1,30 @@
 """Render one compiled schema as a pre-grounded STRIPS task with action costs.
 
-Why pre-grounded: lifted ADL with two component variables inside a quantified condition makes
-Fast Downward's translator build an axiom per component pair (50 roles x 10 candidates: 39 s,
-950 MB); one parameter-free action per (role, candidate) with the compatibility tables of
-``rosreconf.instance`` compiled into its precondition plans 200 x 10 in under 2 s
-(see docs/pddl.md). The task, for every role ``r`` and candidate ``c`` of the instance::
+Why pre-grounded: lifted joins make Fast Downward's translator build an axiom per component
+pair (50 x 10: 39 s); one parameter-free action per (role, candidate), with the tables of
+``rosreconf.instance`` compiled in, avoids every join (see docs/pddl.md). Roles are chosen,
+then checked, in schema order; a token (``choosing r``, ``checking r``, ``finished``) walks
+along it. The task, for roles ``r_0 .. r_n`` and a candidate ``c`` of ``r_i``::
 
-    choose-r-c       (filled previous role), not (filled r), not (chosen c),
-                     not (uses v c') for every candidate c' of a neighbouring role v that
-                     cannot share an edge with c, not (chosen x) for every x that excludes
-                     c or that c excludes
-                     -> (filled r) (uses r c) (chosen c); cost: the objective's price
-    connect-r-q-v-p  (filled last role), (done previous role), not (met r q), (uses v p),
-                     where p meets requirement q along an edge r -> v  -> (met r q); cost 0
-    finish-r-c       (filled last role), (done previous role), (uses r c), (met r q) for
-                     every requirement q of c, (chosen d) for every d that c needs
-                     -> (done r); cost 0
-    goal             (done r) for every role
+    choose-r-c     (choosing r_i), not (uses v d) for every EARLIER role v holding a d that
+                   cannot share an edge with c, that c excludes or that excludes c, or that is
+                   c itself -> (uses r c), (serves r u q) for every requirement q of a
+                   consumer role u that c meets, (chosen c) if some candidate needs c,
+                   token to the next role; cost: the objective's price
+    connect-u-q-v  (checking u), not (met u q), (serves v u q) -> (met u q); cost 0
+    finish-r-c     (checking r), (uses r c), (met r q) for every requirement q of c,
+                   (chosen d) for every d that c needs -> token to the next role; cost 0
+    goal           (finished)
 
-Roles are chosen, then connected and finished, in schema order: without that, every
-reordering of a plan is another plan and optimal searches drown in the symmetry
-(astar(lmcut()) on the paper's example: over 30 s unordered, 7 s ordered; seq-sat-lama-2011
-proves the optimum in 0.4 s ordered).
+Only earlier roles are checked: when ``r_i`` is chosen exactly ``r_0 .. r_(i-1)`` are
+filled, and every later neighbour checks against ``r_i`` when its turn comes. Which provider
+meets which requirement is decided by the provider's own choose action (``serves``), so there
+is one connect action per (role, requirement, provider role), not one per provider candidate.
+Without the fixed order every reordering of a plan is another plan (optimal searches drown).
 
-Names map one way through ``PddlNames`` (model -> PDDL) and back (PDDL -> model). Model names
-are ``[A-Za-z][A-Za-z0-9_]*``, so ``-`` separates the parts of an action name unambiguously.
+``PddlNames`` maps names both ways; model names are ``[A-Za-z][A-Za-z0-9_]*``, so ``-``
+separates the parts of an action name. A connect step names the provider role; the choose
+step for that role names the provider component (``planning`` fills it in).
 """
 
 from __future__ import annotations
@@ -97,7 +97,7 @@ def _costs(inst: Instance, objective: Objective) -> _Costs:
     return _Costs(change, metric)
 
 
-def _environment() -> jinja2.Environment:
+def _template(name: str) -> jinja2.Template:
     env = jinja2.Environment(
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
@@ -105,10 +105,6 @@ def _environment() -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
-    return env
-
-
-def _template(env: jinja2.Environment, name: str) -> jinja2.Template:
     return env.from_string(bundled(Bundle.TEMPLATES, name).read_text(encoding="utf-8"))
 
 
@@ -136,34 +132,100 @@ def render(
     candidates = {c.name for dom in inst.domains for c in dom}
     extra = {n for u in range(len(inst.roles)) for n in inst.excluded[u]}
     comps = {n: names.component(n) for n in sorted(candidates | extra | set(inst.failed))}
-    reqs = _requirement_names(inst, names)
-    costs = _costs(inst, objective)
-    actions = _choose_actions(inst, names, comps, roles, objective, costs)
-    actions += _connect_actions(inst, names, comps, roles, reqs)
-    actions += _finish_actions(inst, names, comps, roles, reqs)
-    env = _environment()
-    current = {r: c for r, c in objective.current.items() if r in inst.role_index}
-    avoided = _avoid_actions(inst, names, comps, roles, forbid)
+    t = _Tables(inst, roles, comps, _requirement_names(inst, names))
+    actions = _choose_actions(inst, names, t, objective, _costs(inst, objective))
+    actions += _connect_actions(inst, names, t)
+    actions += _finish_actions(inst, names, t)
+    avoided = _avoid_actions(inst, names, t, forbid)
     actions += avoided
+    current = {r: c for r, c in objective.current.items() if r in inst.role_index}
     forbidden = sorted({a.eff[0] for a in avoided})
     context = {
         "schema": schema,
         "domain_name": f"rosreconf-{schema.name.lower()}",
         "roles": list(zip(roles, inst.roles, strict=True)),
         "components": sorted(comps.values()),
-        "requirements": sorted(reqs.values()),
+        "requirements": sorted(t.reqs.values()),
         "actions": actions,
+        "start": f"(choosing {roles[0]})" if roles else "(finished)",
         "failed": sorted(comps[n] for n in inst.failed if n in comps),
         "current": [(names.role(r), c) for r, c in current.items()],
         "weights": dict(objective.weights),
         "forbid": [f[1:-1] for f in forbidden],
     }
     return PddlTask(
-        _template(env, "domain.pddl.j2").render(context),
-        _template(env, "problem.pddl.j2").render(context),
+        _template("domain.pddl.j2").render(context),
+        _template("problem.pddl.j2").render(context),
         names,
         schema.name,
     )
+
+
+class _Tables:
+    """Index the instance the way the actions need it: holders, requirements, who serves whom.
+
+    Attributes:
+        roles: PDDL role names, in schema order.
+        comps: component name -> PDDL name.
+        reqs: requirement -> PDDL name.
+        holders: component name -> the roles whose domain holds it, ascending.
+        needed: the components some candidate needs.
+        foes: component name -> the components it excludes or that exclude it.
+        incident: per role, the indices of its edges.
+        served: (requirement's role, requirement) -> its provider roles, ascending.
+        serves: (provider role, provider) -> the (role, requirement) pairs it meets.
+    """
+
+    def __init__(
+        self,
+        inst: Instance,
+        roles: list[str],
+        comps: dict[str, str],
+        reqs: dict[Requirement, str],
+    ) -> None:
+        self.roles, self.comps, self.reqs = roles, comps, reqs
+        self.holders: dict[str, list[int]] = {}
+        for u, dom in enumerate(inst.domains):
+            for c in dom:
+                self.holders.setdefault(c.name, []).append(u)
+        self.needed = {d for dom in inst.domains for c in dom for d in c.needs}
+        self.foes: dict[str, set[str]] = {}
+        for dom in inst.domains:
+            for c in dom:
+                for x in c.excludes:
+                    self.foes.setdefault(c.name, set()).add(x)
+                    self.foes.setdefault(x, set()).add(c.name)
+        self.incident: list[list[int]] = [[] for _ in roles]
+        for k, (eu, ev) in enumerate(inst.edges):
+            self.incident[eu].append(k)
+            if ev != eu:
+                self.incident[ev].append(k)
+        self.served: dict[tuple[int, Requirement], list[int]] = {}
+        self.serves: dict[tuple[int, str], list[tuple[int, Requirement]]] = {}
+        for (u, cu, i), pairs in inst.meets.items():
+            req = inst.library[cu].requires[i]
+            if (u, req) in self.served:
+                continue  # the providers meeting a requirement do not depend on who requires it
+            self.served[(u, req)] = sorted({v for v, _ in pairs})
+            for v, cv in dict.fromkeys(pairs):
+                self.serves.setdefault((v, cv), []).append((u, req))
+
+    def earlier(self, name: str, u: int) -> list[str]:
+        """Return ``not (uses v name)`` for every role v before ``u`` that could hold it."""
+        return [
+            f"(not (uses {self.roles[v]} {self.comps[name]}))"
+            for v in self.holders.get(name, ())
+            if v < u
+        ]
+
+    def after(self, kind: str, u: int) -> list[str]:
+        """Move the token from role ``u`` of phase ``kind`` to the next role or phase."""
+        roles = self.roles
+        if u + 1 < len(roles):
+            following = f"({kind} {roles[u + 1]})"
+        else:
+            following = f"(checking {roles[0]})" if kind == "choosing" else "(finished)"
+        return [f"(not ({kind} {roles[u]}))", following]
 
 
 def _requirement_names(inst: Instance, names: PddlNames) -> dict[Requirement, str]:
@@ -180,156 +242,109 @@ def _requirement_names(inst: Instance, names: PddlNames) -> dict[Requirement, st
 
 
 def _choose_actions(
-    inst: Instance,
-    names: PddlNames,
-    comps: dict[str, str],
-    roles: list[str],
-    objective: Objective,
-    costs: _Costs,
+    inst: Instance, names: PddlNames, t: _Tables, objective: Objective, costs: _Costs
 ) -> list[Action]:
     out = []
-    chosen_names = {c.name for dom in inst.domains for c in dom}
+    roles, comps = t.roles, t.comps
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
         for c in dom:
-            pre = [f"(not (filled {roles[u]}))", f"(not (chosen {comps[c.name]}))"]
-            if u:  # roles are filled in schema order: no plan is a reordering of another
-                pre.append(f"(filled {roles[u - 1]})")
+            if c.name in c.excludes:
+                continue  # excludes itself: never valid
+            pre = [f"(choosing {roles[u]})", *t.earlier(c.name, u)]
             possible = True
-            for k, (eu, ev) in enumerate(inst.edges):
-                if eu != u and ev != u:
-                    continue
+            for k in t.incident[u]:
+                eu, ev = inst.edges[k]
                 ok = inst.edge_ok[k]
                 if eu == ev:  # a self-loop: c must realise it with itself
                     possible &= (c.name, c.name) in ok
                     continue
                 other = ev if eu == u else eu
+                if other > u:
+                    continue  # checked when the later role is chosen
                 for d in inst.domains[other]:
                     pair = (c.name, d.name) if eu == u else (d.name, c.name)
                     if pair not in ok:
                         pre.append(f"(not (uses {roles[other]} {comps[d.name]}))")
             if not possible:
                 continue
-            if c.name in c.excludes:
-                continue  # excludes itself: never valid
-            foes = {x for x in c.excludes if x in chosen_names} | {
-                x.name for dom2 in inst.domains for x in dom2 if c.name in x.excludes
-            }
-            pre += [f"(not (chosen {comps[x]}))" for x in sorted(foes)]
+            for x in sorted(t.foes.get(c.name, ())):
+                pre += t.earlier(x, u)
+            eff = [*t.after("choosing", u), f"(uses {roles[u]} {comps[c.name]})"]
+            if c.name in t.needed:
+                eff.append(f"(chosen {comps[c.name]})")
+            eff += [
+                f"(serves {roles[u]} {roles[w]} {t.reqs[q]})"
+                for w, q in t.serves.get((u, c.name), ())
+            ]
             keep = objective.current.get(role.name)
             cost = costs.metric[c.name] + (costs.change if keep and keep != c.name else 0)
             name = names.action(
                 f"choose-{roles[u]}-{comps[c.name]}", Step("choose", role.name, c.name)
             )
-            verb = "keep" if keep == c.name else "start"
-            out.append(
-                Action(
-                    name,
-                    f"{verb} {c.name} as {role.name}",
-                    list(dict.fromkeys(pre)),
-                    [
-                        f"(filled {roles[u]})",
-                        f"(uses {roles[u]} {comps[c.name]})",
-                        f"(chosen {comps[c.name]})",
-                    ],
-                    cost,
-                )
-            )
+            comment = f"{'keep' if keep == c.name else 'start'} {c.name} as {role.name}"
+            out.append(Action(name, comment, list(dict.fromkeys(pre)), eff, cost))
     return out
 
 
-def _connect_actions(
-    inst: Instance,
-    names: PddlNames,
-    comps: dict[str, str],
-    roles: list[str],
-    reqs: dict[Requirement, str],
-) -> list[Action]:
-    out = []
-    done: set[tuple[int, Requirement]] = set()
-    for (u, cu, i), pairs in inst.meets.items():
-        req = inst.library[cu].requires[i]
-        if (u, req) in done:
-            continue  # the providers meeting a requirement do not depend on who requires it
-        done.add((u, req))
-        for v, cv in pairs:
-            step = Step("connect", inst.roles[u].name, cv, req, inst.roles[v].name)
-            name = names.action(f"connect-{roles[u]}-{reqs[req]}-{roles[v]}-{comps[cv]}", step)
+def _connect_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Action]:
+    out, roles = [], t.roles
+    for (u, req), providers in t.served.items():
+        for v in providers:
+            step = Step("connect", inst.roles[u].name, "", req, inst.roles[v].name)
+            name = names.action(f"connect-{roles[u]}-{t.reqs[req]}-{roles[v]}", step)
             out.append(
                 Action(
                     name,
-                    f"{cv} ({inst.roles[v].name}) meets {inst.roles[u].name}'s need for {req}",
+                    f"{inst.roles[v].name} meets {inst.roles[u].name}'s need for {req}",
                     [
-                        f"(filled {roles[-1]})",
-                        *([f"(done {roles[u - 1]})"] if u else []),
-                        f"(not (met {roles[u]} {reqs[req]}))",
-                        f"(uses {roles[v]} {comps[cv]})",
+                        f"(checking {roles[u]})",
+                        f"(not (met {roles[u]} {t.reqs[req]}))",
+                        f"(serves {roles[v]} {roles[u]} {t.reqs[req]})",
                     ],
-                    [f"(met {roles[u]} {reqs[req]})"],
+                    [f"(met {roles[u]} {t.reqs[req]})"],
                     0,
                 )
             )
     return out
 
 
-def _finish_actions(
-    inst: Instance,
-    names: PddlNames,
-    comps: dict[str, str],
-    roles: list[str],
-    reqs: dict[Requirement, str],
-) -> list[Action]:
+def _finish_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Action]:
     out = []
+    roles, comps = t.roles, t.comps
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
         for c in dom:
-            missing = [d for d in c.needs if d not in comps or d in inst.failed]
-            if missing:
+            if any(d in inst.failed or not t.holders.get(d) for d in c.needs):
                 continue  # a needed component that cannot be chosen: c can never finish
-            pre = [f"(uses {roles[u]} {comps[c.name]})", f"(filled {roles[-1]})"]
-            if u:
-                pre.append(f"(done {roles[u - 1]})")
-            pre += [f"(met {roles[u]} {reqs[r]})" for r in dict.fromkeys(c.requires)]
+            pre = [f"(checking {roles[u]})", f"(uses {roles[u]} {comps[c.name]})"]
+            pre += [f"(met {roles[u]} {t.reqs[r]})" for r in dict.fromkeys(c.requires)]
             pre += [f"(chosen {comps[d]})" for d in sorted(c.needs)]
             name = names.action(
                 f"finish-{roles[u]}-{comps[c.name]}", Step("finish", role.name, c.name)
             )
-            out.append(
-                Action(
-                    name, f"{c.name} has all it requires and needs", pre, [f"(done {roles[u]})"], 0
-                )
-            )
+            comment = f"{c.name} has all it requires and needs"
+            out.append(Action(name, comment, pre, t.after("checking", u), 0))
     return out
 
 
 def _avoid_actions(
-    inst: Instance,
-    names: PddlNames,
-    comps: dict[str, str],
-    roles: list[str],
-    forbid: Sequence[Configuration],
+    inst: Instance, names: PddlNames, t: _Tables, forbid: Sequence[Configuration]
 ) -> list[Action]:
     out = []
+    index = inst.role_index
     usable = [  # a configuration using a non-candidate cannot come out anyway
         f
         for f in forbid
-        if f.assignment and all(c in comps and r in inst.role_index for r, c in f.assignment)
+        if f.assignment and all(c in t.comps and r in index for r, c in f.assignment)
     ]
-    index = inst.role_index
     for k, f in enumerate(usable, start=1):
         for r, c in f.assignment:
-            role = roles[index[r]]
-            pre = [f"(done {roles[-1]})", f"(not (avoided-{k}))", f"(not (uses {role} {comps[c]}))"]
+            role = t.roles[index[r]]
+            pre = ["(finished)", f"(not (avoided-{k}))", f"(not (uses {role} {t.comps[c]}))"]
             if k > 1:
                 pre.append(f"(avoided-{k - 1})")
             name = names.action(f"avoid-{k}-{role}", Step("avoid", r, c))
-            out.append(
-                Action(
-                    name,
-                    f"not forbidden configuration {k}: {r} is not {c}",
-                    pre,
-                    [f"(avoided-{k})"],
-                    0,
-                )
-            )
+            comment = f"not forbidden configuration {k}: {r} is not {c}"
+            out.append(Action(name, comment, pre, [f"(avoided-{k})"], 0))
     return out

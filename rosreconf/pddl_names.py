@@ -23,7 +23,8 @@ class Step:
     Attributes:
         kind: ``choose``, ``connect`` or ``finish``.
         role: the role the action fills or serves.
-        component: the chosen component (choose, finish) or the providing one (connect).
+        component: the chosen component (choose, finish), the providing one (connect: empty
+            in the name map, where only the provider role is known; ``planning`` fills it in).
         requirement: the requirement a connect action meets (None otherwise).
         provider_role: the providing role of a connect action (None otherwise).
     """

@@ -11,7 +11,7 @@ report can say whether the planner's plan is a minimal change.
 from __future__ import annotations
 
 from collections.abc import Collection, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from rosreconf.instance import compile_instance, explain
@@ -138,6 +138,13 @@ def _read_back(
     if missing:
         message = f"the plan leaves {', '.join(missing)} unfilled"
         return ReplanResult(schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run)
+    # A connect step names the provider role; the provider is whatever the plan chose there.
+    steps = [
+        replace(s, component=chosen[s.provider_role])
+        if s.kind == "connect" and s.provider_role in chosen
+        else s
+        for s in steps
+    ]
     config = Configuration.of(schema.name, chosen, roles)
     wrong = violations(config, library, schema, failed)
     if wrong:

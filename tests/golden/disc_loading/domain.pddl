@@ -1,6 +1,6 @@
 ;; rosreconf: Disc Loading (disc_loading), pre-grounded STRIPS with action costs.
-;; choose-ROLE-COMPONENT fills a role; connect-ROLE-REQUIREMENT-PROVIDERROLE-PROVIDER meets a
-;; requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
+;; choose-ROLE-COMPONENT fills a role (roles in schema order); connect-ROLE-REQUIREMENT-PROVIDERROLE
+;; meets a requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
 ;; Generated from the templates in rosreconf; see docs/pddl.md.
 (define (domain rosreconf-disc_loading)
   (:requirements :strips :typing :negative-preconditions :action-costs)
@@ -62,11 +62,13 @@
     - requirement
   )
   (:predicates
-    (filled ?r - role)
+    (choosing ?r - role)
+    (checking ?r - role)
+    (finished)
     (uses ?r - role ?c - component)
     (chosen ?c - component)
+    (serves ?p - role ?r - role ?q - requirement)
     (met ?r - role ?q - requirement)
-    (done ?r - role)
     (failed ?c - component)
   )
   (:functions (total-cost) - number)
@@ -75,13 +77,17 @@
   (:action choose-base_joint-nsm1
     :parameters ()
     :precondition (and
-      (not (filled base_joint))
-      (not (chosen nsm1))
+      (choosing base_joint)
     )
     :effect (and
-      (filled base_joint)
+      (not (choosing base_joint))
+      (choosing shoulder_joint)
       (uses base_joint nsm1)
-      (chosen nsm1)
+      (serves base_joint positioning base__digital_servo_command)
+      (serves base_joint grasping base__digital_servo_command)
+      (serves base_joint carrying base__digital_servo_command)
+      (serves base_joint placing base__digital_servo_command)
+      (serves base_joint reasoner base__dc_servo_command-or-base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -90,14 +96,17 @@
   (:action choose-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
-      (not (filled shoulder_joint))
-      (not (chosen nsm2))
-      (filled base_joint)
+      (choosing shoulder_joint)
     )
     :effect (and
-      (filled shoulder_joint)
+      (not (choosing shoulder_joint))
+      (choosing elbow_joint)
       (uses shoulder_joint nsm2)
-      (chosen nsm2)
+      (serves shoulder_joint positioning shoulder__digital_servo_command)
+      (serves shoulder_joint grasping shoulder__digital_servo_command)
+      (serves shoulder_joint carrying shoulder__digital_servo_command)
+      (serves shoulder_joint placing shoulder__digital_servo_command)
+      (serves shoulder_joint reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -106,14 +115,17 @@
   (:action choose-elbow_joint-nsm3
     :parameters ()
     :precondition (and
-      (not (filled elbow_joint))
-      (not (chosen nsm3))
-      (filled shoulder_joint)
+      (choosing elbow_joint)
     )
     :effect (and
-      (filled elbow_joint)
+      (not (choosing elbow_joint))
+      (choosing wrist_joint)
       (uses elbow_joint nsm3)
-      (chosen nsm3)
+      (serves elbow_joint positioning elbow__digital_servo_command)
+      (serves elbow_joint grasping elbow__digital_servo_command)
+      (serves elbow_joint carrying elbow__digital_servo_command)
+      (serves elbow_joint placing elbow__digital_servo_command)
+      (serves elbow_joint reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -122,14 +134,17 @@
   (:action choose-wrist_joint-nsm4
     :parameters ()
     :precondition (and
-      (not (filled wrist_joint))
-      (not (chosen nsm4))
-      (filled elbow_joint)
+      (choosing wrist_joint)
     )
     :effect (and
-      (filled wrist_joint)
+      (not (choosing wrist_joint))
+      (choosing gripper_joint)
       (uses wrist_joint nsm4)
-      (chosen nsm4)
+      (serves wrist_joint positioning wrist__digital_servo_command)
+      (serves wrist_joint grasping wrist__digital_servo_command)
+      (serves wrist_joint carrying wrist__digital_servo_command)
+      (serves wrist_joint placing wrist__digital_servo_command)
+      (serves wrist_joint reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -138,14 +153,17 @@
   (:action choose-gripper_joint-nsm5
     :parameters ()
     :precondition (and
-      (not (filled gripper_joint))
-      (not (chosen nsm5))
-      (filled wrist_joint)
+      (choosing gripper_joint)
     )
     :effect (and
-      (filled gripper_joint)
+      (not (choosing gripper_joint))
+      (choosing camera)
       (uses gripper_joint nsm5)
-      (chosen nsm5)
+      (serves gripper_joint positioning gripper__digital_servo_command)
+      (serves gripper_joint grasping gripper__digital_servo_command)
+      (serves gripper_joint carrying gripper__digital_servo_command)
+      (serves gripper_joint placing gripper__digital_servo_command)
+      (serves gripper_joint reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -154,14 +172,14 @@
   (:action choose-camera-nca1
     :parameters ()
     :precondition (and
-      (not (filled camera))
-      (not (chosen nca1))
-      (filled gripper_joint)
+      (choosing camera)
     )
     :effect (and
-      (filled camera)
+      (not (choosing camera))
+      (choosing gripper_sensor)
       (uses camera nca1)
       (chosen nca1)
+      (serves camera perception camera_image)
       (increase (total-cost) 0)
     )
   )
@@ -170,14 +188,14 @@
   (:action choose-camera-nca2
     :parameters ()
     :precondition (and
-      (not (filled camera))
-      (not (chosen nca2))
-      (filled gripper_joint)
+      (choosing camera)
     )
     :effect (and
-      (filled camera)
+      (not (choosing camera))
+      (choosing gripper_sensor)
       (uses camera nca2)
       (chosen nca2)
+      (serves camera perception camera_image)
       (increase (total-cost) 1)
     )
   )
@@ -186,14 +204,19 @@
   (:action choose-gripper_sensor-nco1
     :parameters ()
     :precondition (and
-      (not (filled gripper_sensor))
-      (not (chosen nco1))
-      (filled camera)
+      (choosing gripper_sensor)
     )
     :effect (and
-      (filled gripper_sensor)
+      (not (choosing gripper_sensor))
+      (choosing perception)
       (uses gripper_sensor nco1)
       (chosen nco1)
+      (serves gripper_sensor perception gripper_feeling)
+      (serves gripper_sensor positioning gripper_feeling)
+      (serves gripper_sensor grasping gripper_feeling)
+      (serves gripper_sensor carrying gripper_feeling)
+      (serves gripper_sensor placing gripper_feeling)
+      (serves gripper_sensor reasoner gripper_feeling)
       (increase (total-cost) 0)
     )
   )
@@ -202,14 +225,19 @@
   (:action choose-gripper_sensor-nco2
     :parameters ()
     :precondition (and
-      (not (filled gripper_sensor))
-      (not (chosen nco2))
-      (filled camera)
+      (choosing gripper_sensor)
     )
     :effect (and
-      (filled gripper_sensor)
+      (not (choosing gripper_sensor))
+      (choosing perception)
       (uses gripper_sensor nco2)
       (chosen nco2)
+      (serves gripper_sensor perception gripper_feeling)
+      (serves gripper_sensor positioning gripper_feeling)
+      (serves gripper_sensor grasping gripper_feeling)
+      (serves gripper_sensor carrying gripper_feeling)
+      (serves gripper_sensor placing gripper_feeling)
+      (serves gripper_sensor reasoner gripper_feeling)
       (increase (total-cost) 1)
     )
   )
@@ -218,14 +246,17 @@
   (:action choose-perception-nvp1
     :parameters ()
     :precondition (and
-      (not (filled perception))
-      (not (chosen nvp1))
-      (filled gripper_sensor)
+      (choosing perception)
     )
     :effect (and
-      (filled perception)
+      (not (choosing perception))
+      (choosing positioning)
       (uses perception nvp1)
-      (chosen nvp1)
+      (serves perception positioning visual_perception)
+      (serves perception grasping visual_perception)
+      (serves perception carrying visual_perception)
+      (serves perception placing visual_perception)
+      (serves perception reasoner visual_perception)
       (increase (total-cost) 0)
     )
   )
@@ -234,14 +265,17 @@
   (:action choose-perception-nvp2
     :parameters ()
     :precondition (and
-      (not (filled perception))
-      (not (chosen nvp2))
-      (filled gripper_sensor)
+      (choosing perception)
     )
     :effect (and
-      (filled perception)
+      (not (choosing perception))
+      (choosing positioning)
       (uses perception nvp2)
-      (chosen nvp2)
+      (serves perception positioning visual_perception)
+      (serves perception grasping visual_perception)
+      (serves perception carrying visual_perception)
+      (serves perception placing visual_perception)
+      (serves perception reasoner visual_perception)
       (increase (total-cost) 1)
     )
   )
@@ -250,14 +284,12 @@
   (:action choose-positioning-nfb21
     :parameters ()
     :precondition (and
-      (not (filled positioning))
-      (not (chosen nfb21))
-      (filled perception)
+      (choosing positioning)
     )
     :effect (and
-      (filled positioning)
+      (not (choosing positioning))
+      (choosing grasping)
       (uses positioning nfb21)
-      (chosen nfb21)
       (increase (total-cost) 0)
     )
   )
@@ -266,14 +298,12 @@
   (:action choose-grasping-nfb22
     :parameters ()
     :precondition (and
-      (not (filled grasping))
-      (not (chosen nfb22))
-      (filled positioning)
+      (choosing grasping)
     )
     :effect (and
-      (filled grasping)
+      (not (choosing grasping))
+      (choosing carrying)
       (uses grasping nfb22)
-      (chosen nfb22)
       (increase (total-cost) 0)
     )
   )
@@ -282,14 +312,12 @@
   (:action choose-carrying-nfb23
     :parameters ()
     :precondition (and
-      (not (filled carrying))
-      (not (chosen nfb23))
-      (filled grasping)
+      (choosing carrying)
     )
     :effect (and
-      (filled carrying)
+      (not (choosing carrying))
+      (choosing placing)
       (uses carrying nfb23)
-      (chosen nfb23)
       (increase (total-cost) 0)
     )
   )
@@ -298,14 +326,12 @@
   (:action choose-placing-nfb24
     :parameters ()
     :precondition (and
-      (not (filled placing))
-      (not (chosen nfb24))
-      (filled carrying)
+      (choosing placing)
     )
     :effect (and
-      (filled placing)
+      (not (choosing placing))
+      (choosing reasoner)
       (uses placing nfb24)
-      (chosen nfb24)
       (increase (total-cost) 0)
     )
   )
@@ -314,26 +340,23 @@
   (:action choose-reasoner-nrea
     :parameters ()
     :precondition (and
-      (not (filled reasoner))
-      (not (chosen nrea))
-      (filled placing)
+      (choosing reasoner)
     )
     :effect (and
-      (filled reasoner)
+      (not (choosing reasoner))
+      (checking base_joint)
       (uses reasoner nrea)
-      (chosen nrea)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NCA1 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
-  (:action connect-perception-camera_image-camera-nca1
+  ;; camera meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
+  (:action connect-perception-camera_image-camera
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
+      (checking perception)
       (not (met perception camera_image))
-      (uses camera nca1)
+      (serves camera perception camera_image)
     )
     :effect (and
       (met perception camera_image)
@@ -341,29 +364,13 @@
     )
   )
 
-  ;; NCA2 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
-  (:action connect-perception-camera_image-camera-nca2
+  ;; gripper_sensor meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-perception-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
-      (not (met perception camera_image))
-      (uses camera nca2)
-    )
-    :effect (and
-      (met perception camera_image)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-perception-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
+      (checking perception)
       (not (met perception gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor perception gripper_feeling)
     )
     :effect (and
       (met perception gripper_feeling)
@@ -371,29 +378,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-perception-gripper_feeling-gripper_sensor-nco2
+  ;; gripper_sensor meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-positioning-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
-      (not (met perception gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met perception gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-positioning-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor positioning gripper_feeling)
     )
     :effect (and
       (met positioning gripper_feeling)
@@ -401,29 +392,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-positioning-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-positioning-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
-      (not (met positioning gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met positioning gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-positioning-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning visual_perception))
-      (uses perception nvp1)
+      (serves perception positioning visual_perception)
     )
     :effect (and
       (met positioning visual_perception)
@@ -431,29 +406,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-positioning-visual_perception-perception-nvp2
+  ;; base_joint meets positioning's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
-      (not (met positioning visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met positioning visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM1 (base_joint) meets positioning's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-base__digital_servo_command-base_joint-nsm1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint positioning base__digital_servo_command)
     )
     :effect (and
       (met positioning base__digital_servo_command)
@@ -461,14 +420,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets positioning's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets positioning's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint positioning shoulder__digital_servo_command)
     )
     :effect (and
       (met positioning shoulder__digital_servo_command)
@@ -476,14 +434,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets positioning's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets positioning's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint positioning elbow__digital_servo_command)
     )
     :effect (and
       (met positioning elbow__digital_servo_command)
@@ -491,14 +448,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets positioning's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets positioning's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint positioning wrist__digital_servo_command)
     )
     :effect (and
       (met positioning wrist__digital_servo_command)
@@ -506,14 +462,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets positioning's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets positioning's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint positioning gripper__digital_servo_command)
     )
     :effect (and
       (met positioning gripper__digital_servo_command)
@@ -521,14 +476,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-grasping-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-grasping-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor grasping gripper_feeling)
     )
     :effect (and
       (met grasping gripper_feeling)
@@ -536,29 +490,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-grasping-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-grasping-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
-      (not (met grasping gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met grasping gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-grasping-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping visual_perception))
-      (uses perception nvp1)
+      (serves perception grasping visual_perception)
     )
     :effect (and
       (met grasping visual_perception)
@@ -566,29 +504,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-grasping-visual_perception-perception-nvp2
+  ;; base_joint meets grasping's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
-      (not (met grasping visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met grasping visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM1 (base_joint) meets grasping's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-base__digital_servo_command-base_joint-nsm1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint grasping base__digital_servo_command)
     )
     :effect (and
       (met grasping base__digital_servo_command)
@@ -596,14 +518,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets grasping's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets grasping's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint grasping shoulder__digital_servo_command)
     )
     :effect (and
       (met grasping shoulder__digital_servo_command)
@@ -611,14 +532,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets grasping's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets grasping's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint grasping elbow__digital_servo_command)
     )
     :effect (and
       (met grasping elbow__digital_servo_command)
@@ -626,14 +546,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets grasping's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets grasping's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint grasping wrist__digital_servo_command)
     )
     :effect (and
       (met grasping wrist__digital_servo_command)
@@ -641,14 +560,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets grasping's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets grasping's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint grasping gripper__digital_servo_command)
     )
     :effect (and
       (met grasping gripper__digital_servo_command)
@@ -656,14 +574,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-carrying-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-carrying-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor carrying gripper_feeling)
     )
     :effect (and
       (met carrying gripper_feeling)
@@ -671,29 +588,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-carrying-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-carrying-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
-      (not (met carrying gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met carrying gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-carrying-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying visual_perception))
-      (uses perception nvp1)
+      (serves perception carrying visual_perception)
     )
     :effect (and
       (met carrying visual_perception)
@@ -701,29 +602,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-carrying-visual_perception-perception-nvp2
+  ;; base_joint meets carrying's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
-      (not (met carrying visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met carrying visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM1 (base_joint) meets carrying's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-base__digital_servo_command-base_joint-nsm1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint carrying base__digital_servo_command)
     )
     :effect (and
       (met carrying base__digital_servo_command)
@@ -731,14 +616,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets carrying's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets carrying's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint carrying shoulder__digital_servo_command)
     )
     :effect (and
       (met carrying shoulder__digital_servo_command)
@@ -746,14 +630,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets carrying's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets carrying's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint carrying elbow__digital_servo_command)
     )
     :effect (and
       (met carrying elbow__digital_servo_command)
@@ -761,14 +644,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets carrying's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets carrying's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint carrying wrist__digital_servo_command)
     )
     :effect (and
       (met carrying wrist__digital_servo_command)
@@ -776,14 +658,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets carrying's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets carrying's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint carrying gripper__digital_servo_command)
     )
     :effect (and
       (met carrying gripper__digital_servo_command)
@@ -791,14 +672,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-placing-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-placing-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor placing gripper_feeling)
     )
     :effect (and
       (met placing gripper_feeling)
@@ -806,29 +686,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-placing-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-placing-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
-      (not (met placing gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met placing gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-placing-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing visual_perception))
-      (uses perception nvp1)
+      (serves perception placing visual_perception)
     )
     :effect (and
       (met placing visual_perception)
@@ -836,29 +700,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-placing-visual_perception-perception-nvp2
+  ;; base_joint meets placing's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
-      (not (met placing visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met placing visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM1 (base_joint) meets placing's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-base__digital_servo_command-base_joint-nsm1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint placing base__digital_servo_command)
     )
     :effect (and
       (met placing base__digital_servo_command)
@@ -866,14 +714,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets placing's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets placing's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint placing shoulder__digital_servo_command)
     )
     :effect (and
       (met placing shoulder__digital_servo_command)
@@ -881,14 +728,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets placing's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets placing's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint placing elbow__digital_servo_command)
     )
     :effect (and
       (met placing elbow__digital_servo_command)
@@ -896,14 +742,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets placing's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets placing's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint placing wrist__digital_servo_command)
     )
     :effect (and
       (met placing wrist__digital_servo_command)
@@ -911,14 +756,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets placing's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets placing's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint placing gripper__digital_servo_command)
     )
     :effect (and
       (met placing gripper__digital_servo_command)
@@ -926,14 +770,13 @@
     )
   )
 
-  ;; NVP1 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-reasoner-visual_perception-perception-nvp1
+  ;; perception meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-reasoner-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner visual_perception))
-      (uses perception nvp1)
+      (serves perception reasoner visual_perception)
     )
     :effect (and
       (met reasoner visual_perception)
@@ -941,29 +784,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-reasoner-visual_perception-perception-nvp2
+  ;; gripper_sensor meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-reasoner-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met reasoner visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor reasoner gripper_feeling)
     )
     :effect (and
       (met reasoner gripper_feeling)
@@ -971,29 +798,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco2
+  ;; base_joint meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met reasoner gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM1 (base_joint) meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint-nsm1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner base__dc_servo_command-or-base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint reasoner base__dc_servo_command-or-base__digital_servo_command)
     )
     :effect (and
       (met reasoner base__dc_servo_command-or-base__digital_servo_command)
@@ -1001,14 +812,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
     )
     :effect (and
       (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
@@ -1016,14 +826,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
     )
     :effect (and
       (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
@@ -1031,14 +840,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
     )
     :effect (and
       (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
@@ -1046,14 +854,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
     )
     :effect (and
       (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
@@ -1065,11 +872,12 @@
   (:action finish-base_joint-nsm1
     :parameters ()
     :precondition (and
+      (checking base_joint)
       (uses base_joint nsm1)
-      (filled reasoner)
     )
     :effect (and
-      (done base_joint)
+      (not (checking base_joint))
+      (checking shoulder_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1078,12 +886,12 @@
   (:action finish-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
+      (checking shoulder_joint)
       (uses shoulder_joint nsm2)
-      (filled reasoner)
-      (done base_joint)
     )
     :effect (and
-      (done shoulder_joint)
+      (not (checking shoulder_joint))
+      (checking elbow_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1092,12 +900,12 @@
   (:action finish-elbow_joint-nsm3
     :parameters ()
     :precondition (and
+      (checking elbow_joint)
       (uses elbow_joint nsm3)
-      (filled reasoner)
-      (done shoulder_joint)
     )
     :effect (and
-      (done elbow_joint)
+      (not (checking elbow_joint))
+      (checking wrist_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1106,12 +914,12 @@
   (:action finish-wrist_joint-nsm4
     :parameters ()
     :precondition (and
+      (checking wrist_joint)
       (uses wrist_joint nsm4)
-      (filled reasoner)
-      (done elbow_joint)
     )
     :effect (and
-      (done wrist_joint)
+      (not (checking wrist_joint))
+      (checking gripper_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1120,12 +928,12 @@
   (:action finish-gripper_joint-nsm5
     :parameters ()
     :precondition (and
+      (checking gripper_joint)
       (uses gripper_joint nsm5)
-      (filled reasoner)
-      (done wrist_joint)
     )
     :effect (and
-      (done gripper_joint)
+      (not (checking gripper_joint))
+      (checking camera)
       (increase (total-cost) 0)
     )
   )
@@ -1134,12 +942,12 @@
   (:action finish-camera-nca1
     :parameters ()
     :precondition (and
+      (checking camera)
       (uses camera nca1)
-      (filled reasoner)
-      (done gripper_joint)
     )
     :effect (and
-      (done camera)
+      (not (checking camera))
+      (checking gripper_sensor)
       (increase (total-cost) 0)
     )
   )
@@ -1148,12 +956,12 @@
   (:action finish-camera-nca2
     :parameters ()
     :precondition (and
+      (checking camera)
       (uses camera nca2)
-      (filled reasoner)
-      (done gripper_joint)
     )
     :effect (and
-      (done camera)
+      (not (checking camera))
+      (checking gripper_sensor)
       (increase (total-cost) 0)
     )
   )
@@ -1162,12 +970,12 @@
   (:action finish-gripper_sensor-nco1
     :parameters ()
     :precondition (and
+      (checking gripper_sensor)
       (uses gripper_sensor nco1)
-      (filled reasoner)
-      (done camera)
     )
     :effect (and
-      (done gripper_sensor)
+      (not (checking gripper_sensor))
+      (checking perception)
       (increase (total-cost) 0)
     )
   )
@@ -1176,12 +984,12 @@
   (:action finish-gripper_sensor-nco2
     :parameters ()
     :precondition (and
+      (checking gripper_sensor)
       (uses gripper_sensor nco2)
-      (filled reasoner)
-      (done camera)
     )
     :effect (and
-      (done gripper_sensor)
+      (not (checking gripper_sensor))
+      (checking perception)
       (increase (total-cost) 0)
     )
   )
@@ -1190,16 +998,16 @@
   (:action finish-perception-nvp1
     :parameters ()
     :precondition (and
+      (checking perception)
       (uses perception nvp1)
-      (filled reasoner)
-      (done gripper_sensor)
       (met perception camera_image)
       (met perception gripper_feeling)
       (chosen nca1)
       (chosen nco1)
     )
     :effect (and
-      (done perception)
+      (not (checking perception))
+      (checking positioning)
       (increase (total-cost) 0)
     )
   )
@@ -1208,16 +1016,16 @@
   (:action finish-perception-nvp2
     :parameters ()
     :precondition (and
+      (checking perception)
       (uses perception nvp2)
-      (filled reasoner)
-      (done gripper_sensor)
       (met perception camera_image)
       (met perception gripper_feeling)
       (chosen nca2)
       (chosen nco2)
     )
     :effect (and
-      (done perception)
+      (not (checking perception))
+      (checking positioning)
       (increase (total-cost) 0)
     )
   )
@@ -1226,9 +1034,8 @@
   (:action finish-positioning-nfb21
     :parameters ()
     :precondition (and
+      (checking positioning)
       (uses positioning nfb21)
-      (filled reasoner)
-      (done perception)
       (met positioning gripper_feeling)
       (met positioning visual_perception)
       (met positioning base__digital_servo_command)
@@ -1238,7 +1045,8 @@
       (met positioning gripper__digital_servo_command)
     )
     :effect (and
-      (done positioning)
+      (not (checking positioning))
+      (checking grasping)
       (increase (total-cost) 0)
     )
   )
@@ -1247,9 +1055,8 @@
   (:action finish-grasping-nfb22
     :parameters ()
     :precondition (and
+      (checking grasping)
       (uses grasping nfb22)
-      (filled reasoner)
-      (done positioning)
       (met grasping gripper_feeling)
       (met grasping visual_perception)
       (met grasping base__digital_servo_command)
@@ -1259,7 +1066,8 @@
       (met grasping gripper__digital_servo_command)
     )
     :effect (and
-      (done grasping)
+      (not (checking grasping))
+      (checking carrying)
       (increase (total-cost) 0)
     )
   )
@@ -1268,9 +1076,8 @@
   (:action finish-carrying-nfb23
     :parameters ()
     :precondition (and
+      (checking carrying)
       (uses carrying nfb23)
-      (filled reasoner)
-      (done grasping)
       (met carrying gripper_feeling)
       (met carrying visual_perception)
       (met carrying base__digital_servo_command)
@@ -1280,7 +1087,8 @@
       (met carrying gripper__digital_servo_command)
     )
     :effect (and
-      (done carrying)
+      (not (checking carrying))
+      (checking placing)
       (increase (total-cost) 0)
     )
   )
@@ -1289,9 +1097,8 @@
   (:action finish-placing-nfb24
     :parameters ()
     :precondition (and
+      (checking placing)
       (uses placing nfb24)
-      (filled reasoner)
-      (done carrying)
       (met placing gripper_feeling)
       (met placing visual_perception)
       (met placing base__digital_servo_command)
@@ -1301,7 +1108,8 @@
       (met placing gripper__digital_servo_command)
     )
     :effect (and
-      (done placing)
+      (not (checking placing))
+      (checking reasoner)
       (increase (total-cost) 0)
     )
   )
@@ -1310,9 +1118,8 @@
   (:action finish-reasoner-nrea
     :parameters ()
     :precondition (and
+      (checking reasoner)
       (uses reasoner nrea)
-      (filled reasoner)
-      (done placing)
       (met reasoner visual_perception)
       (met reasoner gripper_feeling)
       (met reasoner base__dc_servo_command-or-base__digital_servo_command)
@@ -1322,7 +1129,8 @@
       (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
     )
     :effect (and
-      (done reasoner)
+      (not (checking reasoner))
+      (finished)
       (increase (total-cost) 0)
     )
   )

@@ -1,6 +1,6 @@
 ;; rosreconf: Indoor Navigation (indoor_navigation), pre-grounded STRIPS with action costs.
-;; choose-ROLE-COMPONENT fills a role; connect-ROLE-REQUIREMENT-PROVIDERROLE-PROVIDER meets a
-;; requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
+;; choose-ROLE-COMPONENT fills a role (roles in schema order); connect-ROLE-REQUIREMENT-PROVIDERROLE
+;; meets a requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
 ;; Generated from the templates in rosreconf; see docs/pddl.md.
 (define (domain rosreconf-indoor_navigation)
   (:requirements :strips :typing :negative-preconditions :action-costs)
@@ -33,11 +33,13 @@
     - requirement
   )
   (:predicates
-    (filled ?r - role)
+    (choosing ?r - role)
+    (checking ?r - role)
+    (finished)
     (uses ?r - role ?c - component)
     (chosen ?c - component)
+    (serves ?p - role ?r - role ?q - requirement)
     (met ?r - role ?q - requirement)
-    (done ?r - role)
     (failed ?c - component)
   )
   (:functions (total-cost) - number)
@@ -46,13 +48,15 @@
   (:action choose-range_sensor-hokuyo_ust10
     :parameters ()
     :precondition (and
-      (not (filled range_sensor))
-      (not (chosen hokuyo_ust10))
+      (choosing range_sensor)
     )
     :effect (and
-      (filled range_sensor)
+      (not (choosing range_sensor))
+      (choosing odometry)
       (uses range_sensor hokuyo_ust10)
-      (chosen hokuyo_ust10)
+      (serves range_sensor localisation scan)
+      (serves range_sensor local_planner scan-or-sonar)
+      (serves range_sensor local_planner scan)
       (increase (total-cost) 0)
     )
   )
@@ -61,13 +65,15 @@
   (:action choose-range_sensor-sick_tim571
     :parameters ()
     :precondition (and
-      (not (filled range_sensor))
-      (not (chosen sick_tim571))
+      (choosing range_sensor)
     )
     :effect (and
-      (filled range_sensor)
+      (not (choosing range_sensor))
+      (choosing odometry)
       (uses range_sensor sick_tim571)
-      (chosen sick_tim571)
+      (serves range_sensor localisation scan)
+      (serves range_sensor local_planner scan-or-sonar)
+      (serves range_sensor local_planner scan)
       (increase (total-cost) 1)
     )
   )
@@ -76,16 +82,13 @@
   (:action choose-range_sensor-sonar_ring
     :parameters ()
     :precondition (and
-      (not (filled range_sensor))
-      (not (chosen sonar_ring))
-      (not (uses localisation amcl))
-      (not (uses localisation slam_toolbox))
-      (not (uses local_planner teb_planner))
+      (choosing range_sensor)
     )
     :effect (and
-      (filled range_sensor)
+      (not (choosing range_sensor))
+      (choosing odometry)
       (uses range_sensor sonar_ring)
-      (chosen sonar_ring)
+      (serves range_sensor local_planner scan-or-sonar)
       (increase (total-cost) 1)
     )
   )
@@ -94,14 +97,13 @@
   (:action choose-odometry-wheel_odom
     :parameters ()
     :precondition (and
-      (not (filled odometry))
-      (not (chosen wheel_odom))
-      (filled range_sensor)
+      (choosing odometry)
     )
     :effect (and
-      (filled odometry)
+      (not (choosing odometry))
+      (choosing localisation)
       (uses odometry wheel_odom)
-      (chosen wheel_odom)
+      (serves odometry localisation odom)
       (increase (total-cost) 1)
     )
   )
@@ -110,14 +112,14 @@
   (:action choose-odometry-ekf_odom
     :parameters ()
     :precondition (and
-      (not (filled odometry))
-      (not (chosen ekf_odom))
-      (filled range_sensor)
+      (choosing odometry)
     )
     :effect (and
-      (filled odometry)
+      (not (choosing odometry))
+      (choosing localisation)
       (uses odometry ekf_odom)
       (chosen ekf_odom)
+      (serves odometry localisation odom)
       (increase (total-cost) 0)
     )
   )
@@ -126,15 +128,14 @@
   (:action choose-localisation-amcl
     :parameters ()
     :precondition (and
-      (not (filled localisation))
-      (not (chosen amcl))
-      (filled odometry)
+      (choosing localisation)
       (not (uses range_sensor sonar_ring))
     )
     :effect (and
-      (filled localisation)
+      (not (choosing localisation))
+      (choosing local_planner)
       (uses localisation amcl)
-      (chosen amcl)
+      (serves localisation local_planner pose)
       (increase (total-cost) 0)
     )
   )
@@ -143,15 +144,14 @@
   (:action choose-localisation-slam_toolbox
     :parameters ()
     :precondition (and
-      (not (filled localisation))
-      (not (chosen slam_toolbox))
-      (filled odometry)
+      (choosing localisation)
       (not (uses range_sensor sonar_ring))
     )
     :effect (and
-      (filled localisation)
+      (not (choosing localisation))
+      (choosing local_planner)
       (uses localisation slam_toolbox)
-      (chosen slam_toolbox)
+      (serves localisation local_planner pose)
       (increase (total-cost) 1)
     )
   )
@@ -160,14 +160,13 @@
   (:action choose-local_planner-dwa_planner
     :parameters ()
     :precondition (and
-      (not (filled local_planner))
-      (not (chosen dwa_planner))
-      (filled localisation)
+      (choosing local_planner)
     )
     :effect (and
-      (filled local_planner)
+      (not (choosing local_planner))
+      (choosing base)
       (uses local_planner dwa_planner)
-      (chosen dwa_planner)
+      (serves local_planner base cmd_vel)
       (increase (total-cost) 1)
     )
   )
@@ -176,15 +175,14 @@
   (:action choose-local_planner-teb_planner
     :parameters ()
     :precondition (and
-      (not (filled local_planner))
-      (not (chosen teb_planner))
-      (filled localisation)
+      (choosing local_planner)
       (not (uses range_sensor sonar_ring))
     )
     :effect (and
-      (filled local_planner)
+      (not (choosing local_planner))
+      (choosing base)
       (uses local_planner teb_planner)
-      (chosen teb_planner)
+      (serves local_planner base cmd_vel)
       (increase (total-cost) 0)
     )
   )
@@ -193,14 +191,13 @@
   (:action choose-base-diff_drive
     :parameters ()
     :precondition (and
-      (not (filled base))
-      (not (chosen diff_drive))
-      (filled local_planner)
+      (choosing base)
     )
     :effect (and
-      (filled base)
+      (not (choosing base))
+      (checking range_sensor)
       (uses base diff_drive)
-      (chosen diff_drive)
+      (serves base odometry joint_states)
       (increase (total-cost) 0)
     )
   )
@@ -209,26 +206,24 @@
   (:action choose-base-roboclaw_base
     :parameters ()
     :precondition (and
-      (not (filled base))
-      (not (chosen roboclaw_base))
-      (filled local_planner)
+      (choosing base)
     )
     :effect (and
-      (filled base)
+      (not (choosing base))
+      (checking range_sensor)
       (uses base roboclaw_base)
-      (chosen roboclaw_base)
+      (serves base odometry joint_states)
       (increase (total-cost) 1)
     )
   )
 
-  ;; DIFF_DRIVE (base) meets odometry's need for topic 'joint_states' (sensor_msgs/JointState)
-  (:action connect-odometry-joint_states-base-diff_drive
+  ;; base meets odometry's need for topic 'joint_states' (sensor_msgs/JointState)
+  (:action connect-odometry-joint_states-base
     :parameters ()
     :precondition (and
-      (filled base)
-      (done range_sensor)
+      (checking odometry)
       (not (met odometry joint_states))
-      (uses base diff_drive)
+      (serves base odometry joint_states)
     )
     :effect (and
       (met odometry joint_states)
@@ -236,29 +231,13 @@
     )
   )
 
-  ;; ROBOCLAW_BASE (base) meets odometry's need for topic 'joint_states' (sensor_msgs/JointState)
-  (:action connect-odometry-joint_states-base-roboclaw_base
+  ;; range_sensor meets localisation's need for topic 'scan' (sensor_msgs/LaserScan)
+  (:action connect-localisation-scan-range_sensor
     :parameters ()
     :precondition (and
-      (filled base)
-      (done range_sensor)
-      (not (met odometry joint_states))
-      (uses base roboclaw_base)
-    )
-    :effect (and
-      (met odometry joint_states)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; HOKUYO_UST10 (range_sensor) meets localisation's need for topic 'scan' (sensor_msgs/LaserScan)
-  (:action connect-localisation-scan-range_sensor-hokuyo_ust10
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done odometry)
+      (checking localisation)
       (not (met localisation scan))
-      (uses range_sensor hokuyo_ust10)
+      (serves range_sensor localisation scan)
     )
     :effect (and
       (met localisation scan)
@@ -266,29 +245,13 @@
     )
   )
 
-  ;; SICK_TIM571 (range_sensor) meets localisation's need for topic 'scan' (sensor_msgs/LaserScan)
-  (:action connect-localisation-scan-range_sensor-sick_tim571
+  ;; odometry meets localisation's need for topic 'odom' (nav_msgs/Odometry)
+  (:action connect-localisation-odom-odometry
     :parameters ()
     :precondition (and
-      (filled base)
-      (done odometry)
-      (not (met localisation scan))
-      (uses range_sensor sick_tim571)
-    )
-    :effect (and
-      (met localisation scan)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; WHEEL_ODOM (odometry) meets localisation's need for topic 'odom' (nav_msgs/Odometry)
-  (:action connect-localisation-odom-odometry-wheel_odom
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done odometry)
+      (checking localisation)
       (not (met localisation odom))
-      (uses odometry wheel_odom)
+      (serves odometry localisation odom)
     )
     :effect (and
       (met localisation odom)
@@ -296,29 +259,13 @@
     )
   )
 
-  ;; EKF_ODOM (odometry) meets localisation's need for topic 'odom' (nav_msgs/Odometry)
-  (:action connect-localisation-odom-odometry-ekf_odom
+  ;; localisation meets local_planner's need for topic 'pose' (geometry_msgs/PoseWithCovarianceStamped)
+  (:action connect-local_planner-pose-localisation
     :parameters ()
     :precondition (and
-      (filled base)
-      (done odometry)
-      (not (met localisation odom))
-      (uses odometry ekf_odom)
-    )
-    :effect (and
-      (met localisation odom)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; AMCL (localisation) meets local_planner's need for topic 'pose' (geometry_msgs/PoseWithCovarianceStamped)
-  (:action connect-local_planner-pose-localisation-amcl
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done localisation)
+      (checking local_planner)
       (not (met local_planner pose))
-      (uses localisation amcl)
+      (serves localisation local_planner pose)
     )
     :effect (and
       (met local_planner pose)
@@ -326,29 +273,13 @@
     )
   )
 
-  ;; SLAM_TOOLBOX (localisation) meets local_planner's need for topic 'pose' (geometry_msgs/PoseWithCovarianceStamped)
-  (:action connect-local_planner-pose-localisation-slam_toolbox
+  ;; range_sensor meets local_planner's need for any one of topic 'scan' (sensor_msgs/LaserScan), topic 'sonar' (sensor_msgs/Range)
+  (:action connect-local_planner-scan-or-sonar-range_sensor
     :parameters ()
     :precondition (and
-      (filled base)
-      (done localisation)
-      (not (met local_planner pose))
-      (uses localisation slam_toolbox)
-    )
-    :effect (and
-      (met local_planner pose)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; HOKUYO_UST10 (range_sensor) meets local_planner's need for any one of topic 'scan' (sensor_msgs/LaserScan), topic 'sonar' (sensor_msgs/Range)
-  (:action connect-local_planner-scan-or-sonar-range_sensor-hokuyo_ust10
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done localisation)
+      (checking local_planner)
       (not (met local_planner scan-or-sonar))
-      (uses range_sensor hokuyo_ust10)
+      (serves range_sensor local_planner scan-or-sonar)
     )
     :effect (and
       (met local_planner scan-or-sonar)
@@ -356,44 +287,13 @@
     )
   )
 
-  ;; SICK_TIM571 (range_sensor) meets local_planner's need for any one of topic 'scan' (sensor_msgs/LaserScan), topic 'sonar' (sensor_msgs/Range)
-  (:action connect-local_planner-scan-or-sonar-range_sensor-sick_tim571
+  ;; range_sensor meets local_planner's need for topic 'scan' (sensor_msgs/LaserScan)
+  (:action connect-local_planner-scan-range_sensor
     :parameters ()
     :precondition (and
-      (filled base)
-      (done localisation)
-      (not (met local_planner scan-or-sonar))
-      (uses range_sensor sick_tim571)
-    )
-    :effect (and
-      (met local_planner scan-or-sonar)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; SONAR_RING (range_sensor) meets local_planner's need for any one of topic 'scan' (sensor_msgs/LaserScan), topic 'sonar' (sensor_msgs/Range)
-  (:action connect-local_planner-scan-or-sonar-range_sensor-sonar_ring
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done localisation)
-      (not (met local_planner scan-or-sonar))
-      (uses range_sensor sonar_ring)
-    )
-    :effect (and
-      (met local_planner scan-or-sonar)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; HOKUYO_UST10 (range_sensor) meets local_planner's need for topic 'scan' (sensor_msgs/LaserScan)
-  (:action connect-local_planner-scan-range_sensor-hokuyo_ust10
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done localisation)
+      (checking local_planner)
       (not (met local_planner scan))
-      (uses range_sensor hokuyo_ust10)
+      (serves range_sensor local_planner scan)
     )
     :effect (and
       (met local_planner scan)
@@ -401,44 +301,13 @@
     )
   )
 
-  ;; SICK_TIM571 (range_sensor) meets local_planner's need for topic 'scan' (sensor_msgs/LaserScan)
-  (:action connect-local_planner-scan-range_sensor-sick_tim571
+  ;; local_planner meets base's need for topic 'cmd_vel' (geometry_msgs/Twist)
+  (:action connect-base-cmd_vel-local_planner
     :parameters ()
     :precondition (and
-      (filled base)
-      (done localisation)
-      (not (met local_planner scan))
-      (uses range_sensor sick_tim571)
-    )
-    :effect (and
-      (met local_planner scan)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; DWA_PLANNER (local_planner) meets base's need for topic 'cmd_vel' (geometry_msgs/Twist)
-  (:action connect-base-cmd_vel-local_planner-dwa_planner
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done local_planner)
+      (checking base)
       (not (met base cmd_vel))
-      (uses local_planner dwa_planner)
-    )
-    :effect (and
-      (met base cmd_vel)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; TEB_PLANNER (local_planner) meets base's need for topic 'cmd_vel' (geometry_msgs/Twist)
-  (:action connect-base-cmd_vel-local_planner-teb_planner
-    :parameters ()
-    :precondition (and
-      (filled base)
-      (done local_planner)
-      (not (met base cmd_vel))
-      (uses local_planner teb_planner)
+      (serves local_planner base cmd_vel)
     )
     :effect (and
       (met base cmd_vel)
@@ -450,11 +319,12 @@
   (:action finish-range_sensor-hokuyo_ust10
     :parameters ()
     :precondition (and
+      (checking range_sensor)
       (uses range_sensor hokuyo_ust10)
-      (filled base)
     )
     :effect (and
-      (done range_sensor)
+      (not (checking range_sensor))
+      (checking odometry)
       (increase (total-cost) 0)
     )
   )
@@ -463,11 +333,12 @@
   (:action finish-range_sensor-sick_tim571
     :parameters ()
     :precondition (and
+      (checking range_sensor)
       (uses range_sensor sick_tim571)
-      (filled base)
     )
     :effect (and
-      (done range_sensor)
+      (not (checking range_sensor))
+      (checking odometry)
       (increase (total-cost) 0)
     )
   )
@@ -476,11 +347,12 @@
   (:action finish-range_sensor-sonar_ring
     :parameters ()
     :precondition (and
+      (checking range_sensor)
       (uses range_sensor sonar_ring)
-      (filled base)
     )
     :effect (and
-      (done range_sensor)
+      (not (checking range_sensor))
+      (checking odometry)
       (increase (total-cost) 0)
     )
   )
@@ -489,13 +361,13 @@
   (:action finish-odometry-wheel_odom
     :parameters ()
     :precondition (and
+      (checking odometry)
       (uses odometry wheel_odom)
-      (filled base)
-      (done range_sensor)
       (met odometry joint_states)
     )
     :effect (and
-      (done odometry)
+      (not (checking odometry))
+      (checking localisation)
       (increase (total-cost) 0)
     )
   )
@@ -504,13 +376,13 @@
   (:action finish-odometry-ekf_odom
     :parameters ()
     :precondition (and
+      (checking odometry)
       (uses odometry ekf_odom)
-      (filled base)
-      (done range_sensor)
       (met odometry joint_states)
     )
     :effect (and
-      (done odometry)
+      (not (checking odometry))
+      (checking localisation)
       (increase (total-cost) 0)
     )
   )
@@ -519,14 +391,14 @@
   (:action finish-localisation-amcl
     :parameters ()
     :precondition (and
+      (checking localisation)
       (uses localisation amcl)
-      (filled base)
-      (done odometry)
       (met localisation scan)
       (met localisation odom)
     )
     :effect (and
-      (done localisation)
+      (not (checking localisation))
+      (checking local_planner)
       (increase (total-cost) 0)
     )
   )
@@ -535,14 +407,14 @@
   (:action finish-localisation-slam_toolbox
     :parameters ()
     :precondition (and
+      (checking localisation)
       (uses localisation slam_toolbox)
-      (filled base)
-      (done odometry)
       (met localisation scan)
       (met localisation odom)
     )
     :effect (and
-      (done localisation)
+      (not (checking localisation))
+      (checking local_planner)
       (increase (total-cost) 0)
     )
   )
@@ -551,14 +423,14 @@
   (:action finish-local_planner-dwa_planner
     :parameters ()
     :precondition (and
+      (checking local_planner)
       (uses local_planner dwa_planner)
-      (filled base)
-      (done localisation)
       (met local_planner pose)
       (met local_planner scan-or-sonar)
     )
     :effect (and
-      (done local_planner)
+      (not (checking local_planner))
+      (checking base)
       (increase (total-cost) 0)
     )
   )
@@ -567,15 +439,15 @@
   (:action finish-local_planner-teb_planner
     :parameters ()
     :precondition (and
+      (checking local_planner)
       (uses local_planner teb_planner)
-      (filled base)
-      (done localisation)
       (met local_planner pose)
       (met local_planner scan)
       (chosen ekf_odom)
     )
     :effect (and
-      (done local_planner)
+      (not (checking local_planner))
+      (checking base)
       (increase (total-cost) 0)
     )
   )
@@ -584,13 +456,13 @@
   (:action finish-base-diff_drive
     :parameters ()
     :precondition (and
+      (checking base)
       (uses base diff_drive)
-      (filled base)
-      (done local_planner)
       (met base cmd_vel)
     )
     :effect (and
-      (done base)
+      (not (checking base))
+      (finished)
       (increase (total-cost) 0)
     )
   )
@@ -599,13 +471,13 @@
   (:action finish-base-roboclaw_base
     :parameters ()
     :precondition (and
+      (checking base)
       (uses base roboclaw_base)
-      (filled base)
-      (done local_planner)
       (met base cmd_vel)
     )
     :effect (and
-      (done base)
+      (not (checking base))
+      (finished)
       (increase (total-cost) 0)
     )
   )

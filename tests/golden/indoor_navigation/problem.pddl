@@ -8,14 +8,11 @@
 (define (problem rosreconf-indoor_navigation-task)
   (:domain rosreconf-indoor_navigation)
   (:init
+    (choosing range_sensor)
     (= (total-cost) 0)
   )
   (:goal (and
-    (done range_sensor)
-    (done odometry)
-    (done localisation)
-    (done local_planner)
-    (done base)
+    (finished)
   ))
   (:metric minimize (total-cost))
 )

@@ -1,6 +1,6 @@
 ;; rosreconf: Object Repositioning (object_repositioning), pre-grounded STRIPS with action costs.
-;; choose-ROLE-COMPONENT fills a role; connect-ROLE-REQUIREMENT-PROVIDERROLE-PROVIDER meets a
-;; requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
+;; choose-ROLE-COMPONENT fills a role (roles in schema order); connect-ROLE-REQUIREMENT-PROVIDERROLE
+;; meets a requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
 ;; Generated from the templates in rosreconf; see docs/pddl.md.
 (define (domain rosreconf-object_repositioning)
   (:requirements :strips :typing :negative-preconditions :action-costs)
@@ -67,11 +67,13 @@
     - requirement
   )
   (:predicates
-    (filled ?r - role)
+    (choosing ?r - role)
+    (checking ?r - role)
+    (finished)
     (uses ?r - role ?c - component)
     (chosen ?c - component)
+    (serves ?p - role ?r - role ?q - requirement)
     (met ?r - role ?q - requirement)
-    (done ?r - role)
     (failed ?c - component)
   )
   (:functions (total-cost) - number)
@@ -80,17 +82,17 @@
   (:action choose-base_joint-ndc1
     :parameters ()
     :precondition (and
-      (not (filled base_joint))
-      (not (chosen ndc1))
-      (not (uses positioning nfb21))
-      (not (uses grasping nfb22))
-      (not (uses carrying nfb23))
-      (not (uses placing nfb24))
+      (choosing base_joint)
     )
     :effect (and
-      (filled base_joint)
+      (not (choosing base_joint))
+      (choosing shoulder_joint)
       (uses base_joint ndc1)
-      (chosen ndc1)
+      (serves base_joint positioning base__dc_servo_command)
+      (serves base_joint grasping base__dc_servo_command)
+      (serves base_joint carrying base__dc_servo_command)
+      (serves base_joint placing base__dc_servo_command)
+      (serves base_joint reasoner base__dc_servo_command-or-base__digital_servo_command)
       (increase (total-cost) 1)
     )
   )
@@ -99,17 +101,17 @@
   (:action choose-base_joint-nsm1
     :parameters ()
     :precondition (and
-      (not (filled base_joint))
-      (not (chosen nsm1))
-      (not (uses positioning nfb11))
-      (not (uses grasping nfb12))
-      (not (uses carrying nfb13))
-      (not (uses placing nfb14))
+      (choosing base_joint)
     )
     :effect (and
-      (filled base_joint)
+      (not (choosing base_joint))
+      (choosing shoulder_joint)
       (uses base_joint nsm1)
-      (chosen nsm1)
+      (serves base_joint positioning base__digital_servo_command)
+      (serves base_joint grasping base__digital_servo_command)
+      (serves base_joint carrying base__digital_servo_command)
+      (serves base_joint placing base__digital_servo_command)
+      (serves base_joint reasoner base__dc_servo_command-or-base__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -118,18 +120,17 @@
   (:action choose-shoulder_joint-ndc2
     :parameters ()
     :precondition (and
-      (not (filled shoulder_joint))
-      (not (chosen ndc2))
-      (filled base_joint)
-      (not (uses positioning nfb21))
-      (not (uses grasping nfb22))
-      (not (uses carrying nfb23))
-      (not (uses placing nfb24))
+      (choosing shoulder_joint)
     )
     :effect (and
-      (filled shoulder_joint)
+      (not (choosing shoulder_joint))
+      (choosing elbow_joint)
       (uses shoulder_joint ndc2)
-      (chosen ndc2)
+      (serves shoulder_joint positioning shoulder__dc_servo_command)
+      (serves shoulder_joint grasping shoulder__dc_servo_command)
+      (serves shoulder_joint carrying shoulder__dc_servo_command)
+      (serves shoulder_joint placing shoulder__dc_servo_command)
+      (serves shoulder_joint reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
       (increase (total-cost) 1)
     )
   )
@@ -138,18 +139,17 @@
   (:action choose-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
-      (not (filled shoulder_joint))
-      (not (chosen nsm2))
-      (filled base_joint)
-      (not (uses positioning nfb11))
-      (not (uses grasping nfb12))
-      (not (uses carrying nfb13))
-      (not (uses placing nfb14))
+      (choosing shoulder_joint)
     )
     :effect (and
-      (filled shoulder_joint)
+      (not (choosing shoulder_joint))
+      (choosing elbow_joint)
       (uses shoulder_joint nsm2)
-      (chosen nsm2)
+      (serves shoulder_joint positioning shoulder__digital_servo_command)
+      (serves shoulder_joint grasping shoulder__digital_servo_command)
+      (serves shoulder_joint carrying shoulder__digital_servo_command)
+      (serves shoulder_joint placing shoulder__digital_servo_command)
+      (serves shoulder_joint reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -158,18 +158,17 @@
   (:action choose-elbow_joint-ndc3
     :parameters ()
     :precondition (and
-      (not (filled elbow_joint))
-      (not (chosen ndc3))
-      (filled shoulder_joint)
-      (not (uses positioning nfb21))
-      (not (uses grasping nfb22))
-      (not (uses carrying nfb23))
-      (not (uses placing nfb24))
+      (choosing elbow_joint)
     )
     :effect (and
-      (filled elbow_joint)
+      (not (choosing elbow_joint))
+      (choosing wrist_joint)
       (uses elbow_joint ndc3)
-      (chosen ndc3)
+      (serves elbow_joint positioning elbow__dc_servo_command)
+      (serves elbow_joint grasping elbow__dc_servo_command)
+      (serves elbow_joint carrying elbow__dc_servo_command)
+      (serves elbow_joint placing elbow__dc_servo_command)
+      (serves elbow_joint reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
       (increase (total-cost) 1)
     )
   )
@@ -178,18 +177,17 @@
   (:action choose-elbow_joint-nsm3
     :parameters ()
     :precondition (and
-      (not (filled elbow_joint))
-      (not (chosen nsm3))
-      (filled shoulder_joint)
-      (not (uses positioning nfb11))
-      (not (uses grasping nfb12))
-      (not (uses carrying nfb13))
-      (not (uses placing nfb14))
+      (choosing elbow_joint)
     )
     :effect (and
-      (filled elbow_joint)
+      (not (choosing elbow_joint))
+      (choosing wrist_joint)
       (uses elbow_joint nsm3)
-      (chosen nsm3)
+      (serves elbow_joint positioning elbow__digital_servo_command)
+      (serves elbow_joint grasping elbow__digital_servo_command)
+      (serves elbow_joint carrying elbow__digital_servo_command)
+      (serves elbow_joint placing elbow__digital_servo_command)
+      (serves elbow_joint reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -198,18 +196,17 @@
   (:action choose-wrist_joint-ndc4
     :parameters ()
     :precondition (and
-      (not (filled wrist_joint))
-      (not (chosen ndc4))
-      (filled elbow_joint)
-      (not (uses positioning nfb21))
-      (not (uses grasping nfb22))
-      (not (uses carrying nfb23))
-      (not (uses placing nfb24))
+      (choosing wrist_joint)
     )
     :effect (and
-      (filled wrist_joint)
+      (not (choosing wrist_joint))
+      (choosing gripper_joint)
       (uses wrist_joint ndc4)
-      (chosen ndc4)
+      (serves wrist_joint positioning wrist__dc_servo_command)
+      (serves wrist_joint grasping wrist__dc_servo_command)
+      (serves wrist_joint carrying wrist__dc_servo_command)
+      (serves wrist_joint placing wrist__dc_servo_command)
+      (serves wrist_joint reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
       (increase (total-cost) 1)
     )
   )
@@ -218,18 +215,17 @@
   (:action choose-wrist_joint-nsm4
     :parameters ()
     :precondition (and
-      (not (filled wrist_joint))
-      (not (chosen nsm4))
-      (filled elbow_joint)
-      (not (uses positioning nfb11))
-      (not (uses grasping nfb12))
-      (not (uses carrying nfb13))
-      (not (uses placing nfb14))
+      (choosing wrist_joint)
     )
     :effect (and
-      (filled wrist_joint)
+      (not (choosing wrist_joint))
+      (choosing gripper_joint)
       (uses wrist_joint nsm4)
-      (chosen nsm4)
+      (serves wrist_joint positioning wrist__digital_servo_command)
+      (serves wrist_joint grasping wrist__digital_servo_command)
+      (serves wrist_joint carrying wrist__digital_servo_command)
+      (serves wrist_joint placing wrist__digital_servo_command)
+      (serves wrist_joint reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -238,18 +234,17 @@
   (:action choose-gripper_joint-ndc5
     :parameters ()
     :precondition (and
-      (not (filled gripper_joint))
-      (not (chosen ndc5))
-      (filled wrist_joint)
-      (not (uses positioning nfb21))
-      (not (uses grasping nfb22))
-      (not (uses carrying nfb23))
-      (not (uses placing nfb24))
+      (choosing gripper_joint)
     )
     :effect (and
-      (filled gripper_joint)
+      (not (choosing gripper_joint))
+      (choosing camera)
       (uses gripper_joint ndc5)
-      (chosen ndc5)
+      (serves gripper_joint positioning gripper__dc_servo_command)
+      (serves gripper_joint grasping gripper__dc_servo_command)
+      (serves gripper_joint carrying gripper__dc_servo_command)
+      (serves gripper_joint placing gripper__dc_servo_command)
+      (serves gripper_joint reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
       (increase (total-cost) 1)
     )
   )
@@ -258,18 +253,17 @@
   (:action choose-gripper_joint-nsm5
     :parameters ()
     :precondition (and
-      (not (filled gripper_joint))
-      (not (chosen nsm5))
-      (filled wrist_joint)
-      (not (uses positioning nfb11))
-      (not (uses grasping nfb12))
-      (not (uses carrying nfb13))
-      (not (uses placing nfb14))
+      (choosing gripper_joint)
     )
     :effect (and
-      (filled gripper_joint)
+      (not (choosing gripper_joint))
+      (choosing camera)
       (uses gripper_joint nsm5)
-      (chosen nsm5)
+      (serves gripper_joint positioning gripper__digital_servo_command)
+      (serves gripper_joint grasping gripper__digital_servo_command)
+      (serves gripper_joint carrying gripper__digital_servo_command)
+      (serves gripper_joint placing gripper__digital_servo_command)
+      (serves gripper_joint reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
       (increase (total-cost) 0)
     )
   )
@@ -278,14 +272,14 @@
   (:action choose-camera-nca1
     :parameters ()
     :precondition (and
-      (not (filled camera))
-      (not (chosen nca1))
-      (filled gripper_joint)
+      (choosing camera)
     )
     :effect (and
-      (filled camera)
+      (not (choosing camera))
+      (choosing gripper_sensor)
       (uses camera nca1)
       (chosen nca1)
+      (serves camera perception camera_image)
       (increase (total-cost) 0)
     )
   )
@@ -294,14 +288,14 @@
   (:action choose-camera-nca2
     :parameters ()
     :precondition (and
-      (not (filled camera))
-      (not (chosen nca2))
-      (filled gripper_joint)
+      (choosing camera)
     )
     :effect (and
-      (filled camera)
+      (not (choosing camera))
+      (choosing gripper_sensor)
       (uses camera nca2)
       (chosen nca2)
+      (serves camera perception camera_image)
       (increase (total-cost) 1)
     )
   )
@@ -310,14 +304,19 @@
   (:action choose-gripper_sensor-nco1
     :parameters ()
     :precondition (and
-      (not (filled gripper_sensor))
-      (not (chosen nco1))
-      (filled camera)
+      (choosing gripper_sensor)
     )
     :effect (and
-      (filled gripper_sensor)
+      (not (choosing gripper_sensor))
+      (choosing perception)
       (uses gripper_sensor nco1)
       (chosen nco1)
+      (serves gripper_sensor perception gripper_feeling)
+      (serves gripper_sensor positioning gripper_feeling)
+      (serves gripper_sensor grasping gripper_feeling)
+      (serves gripper_sensor carrying gripper_feeling)
+      (serves gripper_sensor placing gripper_feeling)
+      (serves gripper_sensor reasoner gripper_feeling)
       (increase (total-cost) 0)
     )
   )
@@ -326,14 +325,19 @@
   (:action choose-gripper_sensor-nco2
     :parameters ()
     :precondition (and
-      (not (filled gripper_sensor))
-      (not (chosen nco2))
-      (filled camera)
+      (choosing gripper_sensor)
     )
     :effect (and
-      (filled gripper_sensor)
+      (not (choosing gripper_sensor))
+      (choosing perception)
       (uses gripper_sensor nco2)
       (chosen nco2)
+      (serves gripper_sensor perception gripper_feeling)
+      (serves gripper_sensor positioning gripper_feeling)
+      (serves gripper_sensor grasping gripper_feeling)
+      (serves gripper_sensor carrying gripper_feeling)
+      (serves gripper_sensor placing gripper_feeling)
+      (serves gripper_sensor reasoner gripper_feeling)
       (increase (total-cost) 1)
     )
   )
@@ -342,14 +346,17 @@
   (:action choose-perception-nvp1
     :parameters ()
     :precondition (and
-      (not (filled perception))
-      (not (chosen nvp1))
-      (filled gripper_sensor)
+      (choosing perception)
     )
     :effect (and
-      (filled perception)
+      (not (choosing perception))
+      (choosing positioning)
       (uses perception nvp1)
-      (chosen nvp1)
+      (serves perception positioning visual_perception)
+      (serves perception grasping visual_perception)
+      (serves perception carrying visual_perception)
+      (serves perception placing visual_perception)
+      (serves perception reasoner visual_perception)
       (increase (total-cost) 0)
     )
   )
@@ -358,14 +365,17 @@
   (:action choose-perception-nvp2
     :parameters ()
     :precondition (and
-      (not (filled perception))
-      (not (chosen nvp2))
-      (filled gripper_sensor)
+      (choosing perception)
     )
     :effect (and
-      (filled perception)
+      (not (choosing perception))
+      (choosing positioning)
       (uses perception nvp2)
-      (chosen nvp2)
+      (serves perception positioning visual_perception)
+      (serves perception grasping visual_perception)
+      (serves perception carrying visual_perception)
+      (serves perception placing visual_perception)
+      (serves perception reasoner visual_perception)
       (increase (total-cost) 1)
     )
   )
@@ -374,9 +384,7 @@
   (:action choose-positioning-nfb11
     :parameters ()
     :precondition (and
-      (not (filled positioning))
-      (not (chosen nfb11))
-      (filled perception)
+      (choosing positioning)
       (not (uses base_joint nsm1))
       (not (uses shoulder_joint nsm2))
       (not (uses elbow_joint nsm3))
@@ -384,9 +392,9 @@
       (not (uses gripper_joint nsm5))
     )
     :effect (and
-      (filled positioning)
+      (not (choosing positioning))
+      (choosing grasping)
       (uses positioning nfb11)
-      (chosen nfb11)
       (increase (total-cost) 1)
     )
   )
@@ -395,9 +403,7 @@
   (:action choose-positioning-nfb21
     :parameters ()
     :precondition (and
-      (not (filled positioning))
-      (not (chosen nfb21))
-      (filled perception)
+      (choosing positioning)
       (not (uses base_joint ndc1))
       (not (uses shoulder_joint ndc2))
       (not (uses elbow_joint ndc3))
@@ -405,9 +411,9 @@
       (not (uses gripper_joint ndc5))
     )
     :effect (and
-      (filled positioning)
+      (not (choosing positioning))
+      (choosing grasping)
       (uses positioning nfb21)
-      (chosen nfb21)
       (increase (total-cost) 0)
     )
   )
@@ -416,9 +422,7 @@
   (:action choose-grasping-nfb12
     :parameters ()
     :precondition (and
-      (not (filled grasping))
-      (not (chosen nfb12))
-      (filled positioning)
+      (choosing grasping)
       (not (uses base_joint nsm1))
       (not (uses shoulder_joint nsm2))
       (not (uses elbow_joint nsm3))
@@ -426,9 +430,9 @@
       (not (uses gripper_joint nsm5))
     )
     :effect (and
-      (filled grasping)
+      (not (choosing grasping))
+      (choosing carrying)
       (uses grasping nfb12)
-      (chosen nfb12)
       (increase (total-cost) 1)
     )
   )
@@ -437,9 +441,7 @@
   (:action choose-grasping-nfb22
     :parameters ()
     :precondition (and
-      (not (filled grasping))
-      (not (chosen nfb22))
-      (filled positioning)
+      (choosing grasping)
       (not (uses base_joint ndc1))
       (not (uses shoulder_joint ndc2))
       (not (uses elbow_joint ndc3))
@@ -447,9 +449,9 @@
       (not (uses gripper_joint ndc5))
     )
     :effect (and
-      (filled grasping)
+      (not (choosing grasping))
+      (choosing carrying)
       (uses grasping nfb22)
-      (chosen nfb22)
       (increase (total-cost) 0)
     )
   )
@@ -458,9 +460,7 @@
   (:action choose-carrying-nfb13
     :parameters ()
     :precondition (and
-      (not (filled carrying))
-      (not (chosen nfb13))
-      (filled grasping)
+      (choosing carrying)
       (not (uses base_joint nsm1))
       (not (uses shoulder_joint nsm2))
       (not (uses elbow_joint nsm3))
@@ -468,9 +468,9 @@
       (not (uses gripper_joint nsm5))
     )
     :effect (and
-      (filled carrying)
+      (not (choosing carrying))
+      (choosing placing)
       (uses carrying nfb13)
-      (chosen nfb13)
       (increase (total-cost) 1)
     )
   )
@@ -479,9 +479,7 @@
   (:action choose-carrying-nfb23
     :parameters ()
     :precondition (and
-      (not (filled carrying))
-      (not (chosen nfb23))
-      (filled grasping)
+      (choosing carrying)
       (not (uses base_joint ndc1))
       (not (uses shoulder_joint ndc2))
       (not (uses elbow_joint ndc3))
@@ -489,9 +487,9 @@
       (not (uses gripper_joint ndc5))
     )
     :effect (and
-      (filled carrying)
+      (not (choosing carrying))
+      (choosing placing)
       (uses carrying nfb23)
-      (chosen nfb23)
       (increase (total-cost) 0)
     )
   )
@@ -500,9 +498,7 @@
   (:action choose-placing-nfb14
     :parameters ()
     :precondition (and
-      (not (filled placing))
-      (not (chosen nfb14))
-      (filled carrying)
+      (choosing placing)
       (not (uses base_joint nsm1))
       (not (uses shoulder_joint nsm2))
       (not (uses elbow_joint nsm3))
@@ -510,9 +506,9 @@
       (not (uses gripper_joint nsm5))
     )
     :effect (and
-      (filled placing)
+      (not (choosing placing))
+      (choosing reasoner)
       (uses placing nfb14)
-      (chosen nfb14)
       (increase (total-cost) 1)
     )
   )
@@ -521,9 +517,7 @@
   (:action choose-placing-nfb24
     :parameters ()
     :precondition (and
-      (not (filled placing))
-      (not (chosen nfb24))
-      (filled carrying)
+      (choosing placing)
       (not (uses base_joint ndc1))
       (not (uses shoulder_joint ndc2))
       (not (uses elbow_joint ndc3))
@@ -531,9 +525,9 @@
       (not (uses gripper_joint ndc5))
     )
     :effect (and
-      (filled placing)
+      (not (choosing placing))
+      (choosing reasoner)
       (uses placing nfb24)
-      (chosen nfb24)
       (increase (total-cost) 0)
     )
   )
@@ -542,26 +536,23 @@
   (:action choose-reasoner-nrea
     :parameters ()
     :precondition (and
-      (not (filled reasoner))
-      (not (chosen nrea))
-      (filled placing)
+      (choosing reasoner)
     )
     :effect (and
-      (filled reasoner)
+      (not (choosing reasoner))
+      (checking base_joint)
       (uses reasoner nrea)
-      (chosen nrea)
       (increase (total-cost) 0)
     )
   )
 
-  ;; NCA1 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
-  (:action connect-perception-camera_image-camera-nca1
+  ;; camera meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
+  (:action connect-perception-camera_image-camera
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
+      (checking perception)
       (not (met perception camera_image))
-      (uses camera nca1)
+      (serves camera perception camera_image)
     )
     :effect (and
       (met perception camera_image)
@@ -569,29 +560,13 @@
     )
   )
 
-  ;; NCA2 (camera) meets perception's need for service 'camera_image' (robot_arm_msgs/CameraImage)
-  (:action connect-perception-camera_image-camera-nca2
+  ;; gripper_sensor meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-perception-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
-      (not (met perception camera_image))
-      (uses camera nca2)
-    )
-    :effect (and
-      (met perception camera_image)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-perception-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
+      (checking perception)
       (not (met perception gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor perception gripper_feeling)
     )
     :effect (and
       (met perception gripper_feeling)
@@ -599,29 +574,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets perception's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-perception-gripper_feeling-gripper_sensor-nco2
+  ;; gripper_sensor meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-positioning-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done gripper_sensor)
-      (not (met perception gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met perception gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-positioning-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor positioning gripper_feeling)
     )
     :effect (and
       (met positioning gripper_feeling)
@@ -629,29 +588,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets positioning's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-positioning-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-positioning-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
-      (not (met positioning gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met positioning gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-positioning-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning visual_perception))
-      (uses perception nvp1)
+      (serves perception positioning visual_perception)
     )
     :effect (and
       (met positioning visual_perception)
@@ -659,29 +602,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets positioning's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-positioning-visual_perception-perception-nvp2
+  ;; base_joint meets positioning's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-base__dc_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
-      (not (met positioning visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met positioning visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC1 (base_joint) meets positioning's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-positioning-base__dc_servo_command-base_joint-ndc1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning base__dc_servo_command))
-      (uses base_joint ndc1)
+      (serves base_joint positioning base__dc_servo_command)
     )
     :effect (and
       (met positioning base__dc_servo_command)
@@ -689,14 +616,13 @@
     )
   )
 
-  ;; NDC2 (shoulder_joint) meets positioning's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-positioning-shoulder__dc_servo_command-shoulder_joint-ndc2
+  ;; shoulder_joint meets positioning's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-shoulder__dc_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning shoulder__dc_servo_command))
-      (uses shoulder_joint ndc2)
+      (serves shoulder_joint positioning shoulder__dc_servo_command)
     )
     :effect (and
       (met positioning shoulder__dc_servo_command)
@@ -704,14 +630,13 @@
     )
   )
 
-  ;; NDC3 (elbow_joint) meets positioning's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-positioning-elbow__dc_servo_command-elbow_joint-ndc3
+  ;; elbow_joint meets positioning's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-elbow__dc_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning elbow__dc_servo_command))
-      (uses elbow_joint ndc3)
+      (serves elbow_joint positioning elbow__dc_servo_command)
     )
     :effect (and
       (met positioning elbow__dc_servo_command)
@@ -719,14 +644,13 @@
     )
   )
 
-  ;; NDC4 (wrist_joint) meets positioning's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-positioning-wrist__dc_servo_command-wrist_joint-ndc4
+  ;; wrist_joint meets positioning's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-wrist__dc_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning wrist__dc_servo_command))
-      (uses wrist_joint ndc4)
+      (serves wrist_joint positioning wrist__dc_servo_command)
     )
     :effect (and
       (met positioning wrist__dc_servo_command)
@@ -734,14 +658,13 @@
     )
   )
 
-  ;; NDC5 (gripper_joint) meets positioning's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-positioning-gripper__dc_servo_command-gripper_joint-ndc5
+  ;; gripper_joint meets positioning's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-positioning-gripper__dc_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning gripper__dc_servo_command))
-      (uses gripper_joint ndc5)
+      (serves gripper_joint positioning gripper__dc_servo_command)
     )
     :effect (and
       (met positioning gripper__dc_servo_command)
@@ -749,14 +672,13 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets positioning's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-base__digital_servo_command-base_joint-nsm1
+  ;; base_joint meets positioning's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint positioning base__digital_servo_command)
     )
     :effect (and
       (met positioning base__digital_servo_command)
@@ -764,14 +686,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets positioning's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets positioning's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint positioning shoulder__digital_servo_command)
     )
     :effect (and
       (met positioning shoulder__digital_servo_command)
@@ -779,14 +700,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets positioning's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets positioning's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint positioning elbow__digital_servo_command)
     )
     :effect (and
       (met positioning elbow__digital_servo_command)
@@ -794,14 +714,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets positioning's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets positioning's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint positioning wrist__digital_servo_command)
     )
     :effect (and
       (met positioning wrist__digital_servo_command)
@@ -809,14 +728,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets positioning's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-positioning-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets positioning's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-positioning-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done perception)
+      (checking positioning)
       (not (met positioning gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint positioning gripper__digital_servo_command)
     )
     :effect (and
       (met positioning gripper__digital_servo_command)
@@ -824,14 +742,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-grasping-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-grasping-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor grasping gripper_feeling)
     )
     :effect (and
       (met grasping gripper_feeling)
@@ -839,29 +756,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets grasping's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-grasping-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-grasping-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
-      (not (met grasping gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met grasping gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-grasping-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping visual_perception))
-      (uses perception nvp1)
+      (serves perception grasping visual_perception)
     )
     :effect (and
       (met grasping visual_perception)
@@ -869,29 +770,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets grasping's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-grasping-visual_perception-perception-nvp2
+  ;; base_joint meets grasping's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-base__dc_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
-      (not (met grasping visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met grasping visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC1 (base_joint) meets grasping's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-grasping-base__dc_servo_command-base_joint-ndc1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping base__dc_servo_command))
-      (uses base_joint ndc1)
+      (serves base_joint grasping base__dc_servo_command)
     )
     :effect (and
       (met grasping base__dc_servo_command)
@@ -899,14 +784,13 @@
     )
   )
 
-  ;; NDC2 (shoulder_joint) meets grasping's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-grasping-shoulder__dc_servo_command-shoulder_joint-ndc2
+  ;; shoulder_joint meets grasping's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-shoulder__dc_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping shoulder__dc_servo_command))
-      (uses shoulder_joint ndc2)
+      (serves shoulder_joint grasping shoulder__dc_servo_command)
     )
     :effect (and
       (met grasping shoulder__dc_servo_command)
@@ -914,14 +798,13 @@
     )
   )
 
-  ;; NDC3 (elbow_joint) meets grasping's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-grasping-elbow__dc_servo_command-elbow_joint-ndc3
+  ;; elbow_joint meets grasping's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-elbow__dc_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping elbow__dc_servo_command))
-      (uses elbow_joint ndc3)
+      (serves elbow_joint grasping elbow__dc_servo_command)
     )
     :effect (and
       (met grasping elbow__dc_servo_command)
@@ -929,14 +812,13 @@
     )
   )
 
-  ;; NDC4 (wrist_joint) meets grasping's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-grasping-wrist__dc_servo_command-wrist_joint-ndc4
+  ;; wrist_joint meets grasping's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-wrist__dc_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping wrist__dc_servo_command))
-      (uses wrist_joint ndc4)
+      (serves wrist_joint grasping wrist__dc_servo_command)
     )
     :effect (and
       (met grasping wrist__dc_servo_command)
@@ -944,14 +826,13 @@
     )
   )
 
-  ;; NDC5 (gripper_joint) meets grasping's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-grasping-gripper__dc_servo_command-gripper_joint-ndc5
+  ;; gripper_joint meets grasping's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-grasping-gripper__dc_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping gripper__dc_servo_command))
-      (uses gripper_joint ndc5)
+      (serves gripper_joint grasping gripper__dc_servo_command)
     )
     :effect (and
       (met grasping gripper__dc_servo_command)
@@ -959,14 +840,13 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets grasping's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-base__digital_servo_command-base_joint-nsm1
+  ;; base_joint meets grasping's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint grasping base__digital_servo_command)
     )
     :effect (and
       (met grasping base__digital_servo_command)
@@ -974,14 +854,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets grasping's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets grasping's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint grasping shoulder__digital_servo_command)
     )
     :effect (and
       (met grasping shoulder__digital_servo_command)
@@ -989,14 +868,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets grasping's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets grasping's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint grasping elbow__digital_servo_command)
     )
     :effect (and
       (met grasping elbow__digital_servo_command)
@@ -1004,14 +882,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets grasping's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets grasping's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint grasping wrist__digital_servo_command)
     )
     :effect (and
       (met grasping wrist__digital_servo_command)
@@ -1019,14 +896,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets grasping's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-grasping-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets grasping's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-grasping-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done positioning)
+      (checking grasping)
       (not (met grasping gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint grasping gripper__digital_servo_command)
     )
     :effect (and
       (met grasping gripper__digital_servo_command)
@@ -1034,14 +910,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-carrying-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-carrying-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor carrying gripper_feeling)
     )
     :effect (and
       (met carrying gripper_feeling)
@@ -1049,29 +924,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets carrying's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-carrying-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-carrying-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
-      (not (met carrying gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met carrying gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-carrying-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying visual_perception))
-      (uses perception nvp1)
+      (serves perception carrying visual_perception)
     )
     :effect (and
       (met carrying visual_perception)
@@ -1079,29 +938,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets carrying's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-carrying-visual_perception-perception-nvp2
+  ;; base_joint meets carrying's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-base__dc_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
-      (not (met carrying visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met carrying visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC1 (base_joint) meets carrying's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-carrying-base__dc_servo_command-base_joint-ndc1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying base__dc_servo_command))
-      (uses base_joint ndc1)
+      (serves base_joint carrying base__dc_servo_command)
     )
     :effect (and
       (met carrying base__dc_servo_command)
@@ -1109,14 +952,13 @@
     )
   )
 
-  ;; NDC2 (shoulder_joint) meets carrying's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-carrying-shoulder__dc_servo_command-shoulder_joint-ndc2
+  ;; shoulder_joint meets carrying's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-shoulder__dc_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying shoulder__dc_servo_command))
-      (uses shoulder_joint ndc2)
+      (serves shoulder_joint carrying shoulder__dc_servo_command)
     )
     :effect (and
       (met carrying shoulder__dc_servo_command)
@@ -1124,14 +966,13 @@
     )
   )
 
-  ;; NDC3 (elbow_joint) meets carrying's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-carrying-elbow__dc_servo_command-elbow_joint-ndc3
+  ;; elbow_joint meets carrying's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-elbow__dc_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying elbow__dc_servo_command))
-      (uses elbow_joint ndc3)
+      (serves elbow_joint carrying elbow__dc_servo_command)
     )
     :effect (and
       (met carrying elbow__dc_servo_command)
@@ -1139,14 +980,13 @@
     )
   )
 
-  ;; NDC4 (wrist_joint) meets carrying's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-carrying-wrist__dc_servo_command-wrist_joint-ndc4
+  ;; wrist_joint meets carrying's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-wrist__dc_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying wrist__dc_servo_command))
-      (uses wrist_joint ndc4)
+      (serves wrist_joint carrying wrist__dc_servo_command)
     )
     :effect (and
       (met carrying wrist__dc_servo_command)
@@ -1154,14 +994,13 @@
     )
   )
 
-  ;; NDC5 (gripper_joint) meets carrying's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-carrying-gripper__dc_servo_command-gripper_joint-ndc5
+  ;; gripper_joint meets carrying's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-carrying-gripper__dc_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying gripper__dc_servo_command))
-      (uses gripper_joint ndc5)
+      (serves gripper_joint carrying gripper__dc_servo_command)
     )
     :effect (and
       (met carrying gripper__dc_servo_command)
@@ -1169,14 +1008,13 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets carrying's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-base__digital_servo_command-base_joint-nsm1
+  ;; base_joint meets carrying's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint carrying base__digital_servo_command)
     )
     :effect (and
       (met carrying base__digital_servo_command)
@@ -1184,14 +1022,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets carrying's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets carrying's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint carrying shoulder__digital_servo_command)
     )
     :effect (and
       (met carrying shoulder__digital_servo_command)
@@ -1199,14 +1036,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets carrying's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets carrying's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint carrying elbow__digital_servo_command)
     )
     :effect (and
       (met carrying elbow__digital_servo_command)
@@ -1214,14 +1050,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets carrying's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets carrying's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint carrying wrist__digital_servo_command)
     )
     :effect (and
       (met carrying wrist__digital_servo_command)
@@ -1229,14 +1064,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets carrying's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-carrying-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets carrying's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-carrying-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done grasping)
+      (checking carrying)
       (not (met carrying gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint carrying gripper__digital_servo_command)
     )
     :effect (and
       (met carrying gripper__digital_servo_command)
@@ -1244,14 +1078,13 @@
     )
   )
 
-  ;; NCO1 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-placing-gripper_feeling-gripper_sensor-nco1
+  ;; gripper_sensor meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-placing-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor placing gripper_feeling)
     )
     :effect (and
       (met placing gripper_feeling)
@@ -1259,29 +1092,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets placing's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-placing-gripper_feeling-gripper_sensor-nco2
+  ;; perception meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-placing-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
-      (not (met placing gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met placing gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NVP1 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-placing-visual_perception-perception-nvp1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing visual_perception))
-      (uses perception nvp1)
+      (serves perception placing visual_perception)
     )
     :effect (and
       (met placing visual_perception)
@@ -1289,29 +1106,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets placing's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-placing-visual_perception-perception-nvp2
+  ;; base_joint meets placing's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-base__dc_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
-      (not (met placing visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met placing visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC1 (base_joint) meets placing's need for service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-placing-base__dc_servo_command-base_joint-ndc1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing base__dc_servo_command))
-      (uses base_joint ndc1)
+      (serves base_joint placing base__dc_servo_command)
     )
     :effect (and
       (met placing base__dc_servo_command)
@@ -1319,14 +1120,13 @@
     )
   )
 
-  ;; NDC2 (shoulder_joint) meets placing's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-placing-shoulder__dc_servo_command-shoulder_joint-ndc2
+  ;; shoulder_joint meets placing's need for service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-shoulder__dc_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing shoulder__dc_servo_command))
-      (uses shoulder_joint ndc2)
+      (serves shoulder_joint placing shoulder__dc_servo_command)
     )
     :effect (and
       (met placing shoulder__dc_servo_command)
@@ -1334,14 +1134,13 @@
     )
   )
 
-  ;; NDC3 (elbow_joint) meets placing's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-placing-elbow__dc_servo_command-elbow_joint-ndc3
+  ;; elbow_joint meets placing's need for service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-elbow__dc_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing elbow__dc_servo_command))
-      (uses elbow_joint ndc3)
+      (serves elbow_joint placing elbow__dc_servo_command)
     )
     :effect (and
       (met placing elbow__dc_servo_command)
@@ -1349,14 +1148,13 @@
     )
   )
 
-  ;; NDC4 (wrist_joint) meets placing's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-placing-wrist__dc_servo_command-wrist_joint-ndc4
+  ;; wrist_joint meets placing's need for service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-wrist__dc_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing wrist__dc_servo_command))
-      (uses wrist_joint ndc4)
+      (serves wrist_joint placing wrist__dc_servo_command)
     )
     :effect (and
       (met placing wrist__dc_servo_command)
@@ -1364,14 +1162,13 @@
     )
   )
 
-  ;; NDC5 (gripper_joint) meets placing's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
-  (:action connect-placing-gripper__dc_servo_command-gripper_joint-ndc5
+  ;; gripper_joint meets placing's need for service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand)
+  (:action connect-placing-gripper__dc_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing gripper__dc_servo_command))
-      (uses gripper_joint ndc5)
+      (serves gripper_joint placing gripper__dc_servo_command)
     )
     :effect (and
       (met placing gripper__dc_servo_command)
@@ -1379,14 +1176,13 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets placing's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-base__digital_servo_command-base_joint-nsm1
+  ;; base_joint meets placing's need for service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing base__digital_servo_command))
-      (uses base_joint nsm1)
+      (serves base_joint placing base__digital_servo_command)
     )
     :effect (and
       (met placing base__digital_servo_command)
@@ -1394,14 +1190,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets placing's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; shoulder_joint meets placing's need for service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
+      (serves shoulder_joint placing shoulder__digital_servo_command)
     )
     :effect (and
       (met placing shoulder__digital_servo_command)
@@ -1409,14 +1204,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets placing's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; elbow_joint meets placing's need for service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
+      (serves elbow_joint placing elbow__digital_servo_command)
     )
     :effect (and
       (met placing elbow__digital_servo_command)
@@ -1424,14 +1218,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets placing's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; wrist_joint meets placing's need for service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
+      (serves wrist_joint placing wrist__digital_servo_command)
     )
     :effect (and
       (met placing wrist__digital_servo_command)
@@ -1439,14 +1232,13 @@
     )
   )
 
-  ;; NSM5 (gripper_joint) meets placing's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-placing-gripper__digital_servo_command-gripper_joint-nsm5
+  ;; gripper_joint meets placing's need for service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-placing-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done carrying)
+      (checking placing)
       (not (met placing gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint placing gripper__digital_servo_command)
     )
     :effect (and
       (met placing gripper__digital_servo_command)
@@ -1454,14 +1246,13 @@
     )
   )
 
-  ;; NVP1 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-reasoner-visual_perception-perception-nvp1
+  ;; perception meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
+  (:action connect-reasoner-visual_perception-perception
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner visual_perception))
-      (uses perception nvp1)
+      (serves perception reasoner visual_perception)
     )
     :effect (and
       (met reasoner visual_perception)
@@ -1469,29 +1260,13 @@
     )
   )
 
-  ;; NVP2 (perception) meets reasoner's need for service 'visual_perception' (robot_arm_msgs/VisualPerception)
-  (:action connect-reasoner-visual_perception-perception-nvp2
+  ;; gripper_sensor meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
+  (:action connect-reasoner-gripper_feeling-gripper_sensor
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner visual_perception))
-      (uses perception nvp2)
-    )
-    :effect (and
-      (met reasoner visual_perception)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NCO1 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner gripper_feeling))
-      (uses gripper_sensor nco1)
+      (serves gripper_sensor reasoner gripper_feeling)
     )
     :effect (and
       (met reasoner gripper_feeling)
@@ -1499,29 +1274,13 @@
     )
   )
 
-  ;; NCO2 (gripper_sensor) meets reasoner's need for service 'gripper_feeling' (robot_arm_msgs/GripperFeeling)
-  (:action connect-reasoner-gripper_feeling-gripper_sensor-nco2
+  ;; base_joint meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner gripper_feeling))
-      (uses gripper_sensor nco2)
-    )
-    :effect (and
-      (met reasoner gripper_feeling)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC1 (base_joint) meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint-ndc1
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner base__dc_servo_command-or-base__digital_servo_command))
-      (uses base_joint ndc1)
+      (serves base_joint reasoner base__dc_servo_command-or-base__digital_servo_command)
     )
     :effect (and
       (met reasoner base__dc_servo_command-or-base__digital_servo_command)
@@ -1529,29 +1288,13 @@
     )
   )
 
-  ;; NSM1 (base_joint) meets reasoner's need for any one of service 'base/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'base/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-base__dc_servo_command-or-base__digital_servo_command-base_joint-nsm1
+  ;; shoulder_joint meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner base__dc_servo_command-or-base__digital_servo_command))
-      (uses base_joint nsm1)
-    )
-    :effect (and
-      (met reasoner base__dc_servo_command-or-base__digital_servo_command)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC2 (shoulder_joint) meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint-ndc2
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command))
-      (uses shoulder_joint ndc2)
+      (serves shoulder_joint reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
     )
     :effect (and
       (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
@@ -1559,29 +1302,13 @@
     )
   )
 
-  ;; NSM2 (shoulder_joint) meets reasoner's need for any one of service 'shoulder/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'shoulder/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-shoulder__dc_servo_command-or-shoulder__digital_servo_command-shoulder_joint-nsm2
+  ;; elbow_joint meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command))
-      (uses shoulder_joint nsm2)
-    )
-    :effect (and
-      (met reasoner shoulder__dc_servo_command-or-shoulder__digital_servo_command)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC3 (elbow_joint) meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint-ndc3
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command))
-      (uses elbow_joint ndc3)
+      (serves elbow_joint reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
     )
     :effect (and
       (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
@@ -1589,29 +1316,13 @@
     )
   )
 
-  ;; NSM3 (elbow_joint) meets reasoner's need for any one of service 'elbow/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'elbow/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-elbow__dc_servo_command-or-elbow__digital_servo_command-elbow_joint-nsm3
+  ;; wrist_joint meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command))
-      (uses elbow_joint nsm3)
-    )
-    :effect (and
-      (met reasoner elbow__dc_servo_command-or-elbow__digital_servo_command)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC4 (wrist_joint) meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint-ndc4
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command))
-      (uses wrist_joint ndc4)
+      (serves wrist_joint reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
     )
     :effect (and
       (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
@@ -1619,44 +1330,13 @@
     )
   )
 
-  ;; NSM4 (wrist_joint) meets reasoner's need for any one of service 'wrist/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'wrist/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-wrist__dc_servo_command-or-wrist__digital_servo_command-wrist_joint-nsm4
+  ;; gripper_joint meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
+  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint
     :parameters ()
     :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command))
-      (uses wrist_joint nsm4)
-    )
-    :effect (and
-      (met reasoner wrist__dc_servo_command-or-wrist__digital_servo_command)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NDC5 (gripper_joint) meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint-ndc5
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
+      (checking reasoner)
       (not (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command))
-      (uses gripper_joint ndc5)
-    )
-    :effect (and
-      (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
-      (increase (total-cost) 0)
-    )
-  )
-
-  ;; NSM5 (gripper_joint) meets reasoner's need for any one of service 'gripper/dc_servo_command' (robot_arm_msgs/DcServoCommand), service 'gripper/digital_servo_command' (robot_arm_msgs/DigitalServoCommand)
-  (:action connect-reasoner-gripper__dc_servo_command-or-gripper__digital_servo_command-gripper_joint-nsm5
-    :parameters ()
-    :precondition (and
-      (filled reasoner)
-      (done placing)
-      (not (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command))
-      (uses gripper_joint nsm5)
+      (serves gripper_joint reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
     )
     :effect (and
       (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
@@ -1668,11 +1348,12 @@
   (:action finish-base_joint-ndc1
     :parameters ()
     :precondition (and
+      (checking base_joint)
       (uses base_joint ndc1)
-      (filled reasoner)
     )
     :effect (and
-      (done base_joint)
+      (not (checking base_joint))
+      (checking shoulder_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1681,11 +1362,12 @@
   (:action finish-base_joint-nsm1
     :parameters ()
     :precondition (and
+      (checking base_joint)
       (uses base_joint nsm1)
-      (filled reasoner)
     )
     :effect (and
-      (done base_joint)
+      (not (checking base_joint))
+      (checking shoulder_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1694,12 +1376,12 @@
   (:action finish-shoulder_joint-ndc2
     :parameters ()
     :precondition (and
+      (checking shoulder_joint)
       (uses shoulder_joint ndc2)
-      (filled reasoner)
-      (done base_joint)
     )
     :effect (and
-      (done shoulder_joint)
+      (not (checking shoulder_joint))
+      (checking elbow_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1708,12 +1390,12 @@
   (:action finish-shoulder_joint-nsm2
     :parameters ()
     :precondition (and
+      (checking shoulder_joint)
       (uses shoulder_joint nsm2)
-      (filled reasoner)
-      (done base_joint)
     )
     :effect (and
-      (done shoulder_joint)
+      (not (checking shoulder_joint))
+      (checking elbow_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1722,12 +1404,12 @@
   (:action finish-elbow_joint-ndc3
     :parameters ()
     :precondition (and
+      (checking elbow_joint)
       (uses elbow_joint ndc3)
-      (filled reasoner)
-      (done shoulder_joint)
     )
     :effect (and
-      (done elbow_joint)
+      (not (checking elbow_joint))
+      (checking wrist_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1736,12 +1418,12 @@
   (:action finish-elbow_joint-nsm3
     :parameters ()
     :precondition (and
+      (checking elbow_joint)
       (uses elbow_joint nsm3)
-      (filled reasoner)
-      (done shoulder_joint)
     )
     :effect (and
-      (done elbow_joint)
+      (not (checking elbow_joint))
+      (checking wrist_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1750,12 +1432,12 @@
   (:action finish-wrist_joint-ndc4
     :parameters ()
     :precondition (and
+      (checking wrist_joint)
       (uses wrist_joint ndc4)
-      (filled reasoner)
-      (done elbow_joint)
     )
     :effect (and
-      (done wrist_joint)
+      (not (checking wrist_joint))
+      (checking gripper_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1764,12 +1446,12 @@
   (:action finish-wrist_joint-nsm4
     :parameters ()
     :precondition (and
+      (checking wrist_joint)
       (uses wrist_joint nsm4)
-      (filled reasoner)
-      (done elbow_joint)
     )
     :effect (and
-      (done wrist_joint)
+      (not (checking wrist_joint))
+      (checking gripper_joint)
       (increase (total-cost) 0)
     )
   )
@@ -1778,12 +1460,12 @@
   (:action finish-gripper_joint-ndc5
     :parameters ()
     :precondition (and
+      (checking gripper_joint)
       (uses gripper_joint ndc5)
-      (filled reasoner)
-      (done wrist_joint)
     )
     :effect (and
-      (done gripper_joint)
+      (not (checking gripper_joint))
+      (checking camera)
       (increase (total-cost) 0)
     )
   )
@@ -1792,12 +1474,12 @@
   (:action finish-gripper_joint-nsm5
     :parameters ()
     :precondition (and
+      (checking gripper_joint)
       (uses gripper_joint nsm5)
-      (filled reasoner)
-      (done wrist_joint)
     )
     :effect (and
-      (done gripper_joint)
+      (not (checking gripper_joint))
+      (checking camera)
       (increase (total-cost) 0)
     )
   )
@@ -1806,12 +1488,12 @@
   (:action finish-camera-nca1
     :parameters ()
     :precondition (and
+      (checking camera)
       (uses camera nca1)
-      (filled reasoner)
-      (done gripper_joint)
     )
     :effect (and
-      (done camera)
+      (not (checking camera))
+      (checking gripper_sensor)
       (increase (total-cost) 0)
     )
   )
@@ -1820,12 +1502,12 @@
   (:action finish-camera-nca2
     :parameters ()
     :precondition (and
+      (checking camera)
       (uses camera nca2)
-      (filled reasoner)
-      (done gripper_joint)
     )
     :effect (and
-      (done camera)
+      (not (checking camera))
+      (checking gripper_sensor)
       (increase (total-cost) 0)
     )
   )
@@ -1834,12 +1516,12 @@
   (:action finish-gripper_sensor-nco1
     :parameters ()
     :precondition (and
+      (checking gripper_sensor)
       (uses gripper_sensor nco1)
-      (filled reasoner)
-      (done camera)
     )
     :effect (and
-      (done gripper_sensor)
+      (not (checking gripper_sensor))
+      (checking perception)
       (increase (total-cost) 0)
     )
   )
@@ -1848,12 +1530,12 @@
   (:action finish-gripper_sensor-nco2
     :parameters ()
     :precondition (and
+      (checking gripper_sensor)
       (uses gripper_sensor nco2)
-      (filled reasoner)
-      (done camera)
     )
     :effect (and
-      (done gripper_sensor)
+      (not (checking gripper_sensor))
+      (checking perception)
       (increase (total-cost) 0)
     )
   )
@@ -1862,16 +1544,16 @@
   (:action finish-perception-nvp1
     :parameters ()
     :precondition (and
+      (checking perception)
       (uses perception nvp1)
-      (filled reasoner)
-      (done gripper_sensor)
       (met perception camera_image)
       (met perception gripper_feeling)
       (chosen nca1)
       (chosen nco1)
     )
     :effect (and
-      (done perception)
+      (not (checking perception))
+      (checking positioning)
       (increase (total-cost) 0)
     )
   )
@@ -1880,16 +1562,16 @@
   (:action finish-perception-nvp2
     :parameters ()
     :precondition (and
+      (checking perception)
       (uses perception nvp2)
-      (filled reasoner)
-      (done gripper_sensor)
       (met perception camera_image)
       (met perception gripper_feeling)
       (chosen nca2)
       (chosen nco2)
     )
     :effect (and
-      (done perception)
+      (not (checking perception))
+      (checking positioning)
       (increase (total-cost) 0)
     )
   )
@@ -1898,9 +1580,8 @@
   (:action finish-positioning-nfb11
     :parameters ()
     :precondition (and
+      (checking positioning)
       (uses positioning nfb11)
-      (filled reasoner)
-      (done perception)
       (met positioning gripper_feeling)
       (met positioning visual_perception)
       (met positioning base__dc_servo_command)
@@ -1910,7 +1591,8 @@
       (met positioning gripper__dc_servo_command)
     )
     :effect (and
-      (done positioning)
+      (not (checking positioning))
+      (checking grasping)
       (increase (total-cost) 0)
     )
   )
@@ -1919,9 +1601,8 @@
   (:action finish-positioning-nfb21
     :parameters ()
     :precondition (and
+      (checking positioning)
       (uses positioning nfb21)
-      (filled reasoner)
-      (done perception)
       (met positioning gripper_feeling)
       (met positioning visual_perception)
       (met positioning base__digital_servo_command)
@@ -1931,7 +1612,8 @@
       (met positioning gripper__digital_servo_command)
     )
     :effect (and
-      (done positioning)
+      (not (checking positioning))
+      (checking grasping)
       (increase (total-cost) 0)
     )
   )
@@ -1940,9 +1622,8 @@
   (:action finish-grasping-nfb12
     :parameters ()
     :precondition (and
+      (checking grasping)
       (uses grasping nfb12)
-      (filled reasoner)
-      (done positioning)
       (met grasping gripper_feeling)
       (met grasping visual_perception)
       (met grasping base__dc_servo_command)
@@ -1952,7 +1633,8 @@
       (met grasping gripper__dc_servo_command)
     )
     :effect (and
-      (done grasping)
+      (not (checking grasping))
+      (checking carrying)
       (increase (total-cost) 0)
     )
   )
@@ -1961,9 +1643,8 @@
   (:action finish-grasping-nfb22
     :parameters ()
     :precondition (and
+      (checking grasping)
       (uses grasping nfb22)
-      (filled reasoner)
-      (done positioning)
       (met grasping gripper_feeling)
       (met grasping visual_perception)
       (met grasping base__digital_servo_command)
@@ -1973,7 +1654,8 @@
       (met grasping gripper__digital_servo_command)
     )
     :effect (and
-      (done grasping)
+      (not (checking grasping))
+      (checking carrying)
       (increase (total-cost) 0)
     )
   )
@@ -1982,9 +1664,8 @@
   (:action finish-carrying-nfb13
     :parameters ()
     :precondition (and
+      (checking carrying)
       (uses carrying nfb13)
-      (filled reasoner)
-      (done grasping)
       (met carrying gripper_feeling)
       (met carrying visual_perception)
       (met carrying base__dc_servo_command)
@@ -1994,7 +1675,8 @@
       (met carrying gripper__dc_servo_command)
     )
     :effect (and
-      (done carrying)
+      (not (checking carrying))
+      (checking placing)
       (increase (total-cost) 0)
     )
   )
@@ -2003,9 +1685,8 @@
   (:action finish-carrying-nfb23
     :parameters ()
     :precondition (and
+      (checking carrying)
       (uses carrying nfb23)
-      (filled reasoner)
-      (done grasping)
       (met carrying gripper_feeling)
       (met carrying visual_perception)
       (met carrying base__digital_servo_command)
@@ -2015,7 +1696,8 @@
       (met carrying gripper__digital_servo_command)
     )
     :effect (and
-      (done carrying)
+      (not (checking carrying))
+      (checking placing)
       (increase (total-cost) 0)
     )
   )
@@ -2024,9 +1706,8 @@
   (:action finish-placing-nfb14
     :parameters ()
     :precondition (and
+      (checking placing)
       (uses placing nfb14)
-      (filled reasoner)
-      (done carrying)
       (met placing gripper_feeling)
       (met placing visual_perception)
       (met placing base__dc_servo_command)
@@ -2036,7 +1717,8 @@
       (met placing gripper__dc_servo_command)
     )
     :effect (and
-      (done placing)
+      (not (checking placing))
+      (checking reasoner)
       (increase (total-cost) 0)
     )
   )
@@ -2045,9 +1727,8 @@
   (:action finish-placing-nfb24
     :parameters ()
     :precondition (and
+      (checking placing)
       (uses placing nfb24)
-      (filled reasoner)
-      (done carrying)
       (met placing gripper_feeling)
       (met placing visual_perception)
       (met placing base__digital_servo_command)
@@ -2057,7 +1738,8 @@
       (met placing gripper__digital_servo_command)
     )
     :effect (and
-      (done placing)
+      (not (checking placing))
+      (checking reasoner)
       (increase (total-cost) 0)
     )
   )
@@ -2066,9 +1748,8 @@
   (:action finish-reasoner-nrea
     :parameters ()
     :precondition (and
+      (checking reasoner)
       (uses reasoner nrea)
-      (filled reasoner)
-      (done placing)
       (met reasoner visual_perception)
       (met reasoner gripper_feeling)
       (met reasoner base__dc_servo_command-or-base__digital_servo_command)
@@ -2078,7 +1759,8 @@
       (met reasoner gripper__dc_servo_command-or-gripper__digital_servo_command)
     )
     :effect (and
-      (done reasoner)
+      (not (checking reasoner))
+      (finished)
       (increase (total-cost) 0)
     )
   )

@@ -1,0 +1,116 @@
+"""Cross-check the PDDL encoding against clingo on generated libraries (rosreconf.generate).
+
+Two checks: enumerating by planning (forbid each configuration found) yields exactly
+clingo's set; and every Fast Downward plan on a random small instance, with random failures,
+maps back to a configuration that ``validity.is_valid`` accepts (or FD proves what clingo
+proves: no configuration).
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from rosreconf.generate import generate, write
+from rosreconf.instance import compile_instance
+from rosreconf.loader import load_paths
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.pddl import PddlTask, render
+from rosreconf.planners import FastDownward, PlanResult, PlanStatus, solve
+from rosreconf.solver import Objective, configurations
+from rosreconf.validity import is_valid
+
+pytestmark = pytest.mark.planner
+
+
+@cache
+def generated(
+    roles: int, candidates: int, coupling: float, seed: int
+) -> tuple[ComponentLibrary, InteroperabilitySchema]:
+    """Write one generated instance to a temp dir and load it back (cached per arguments)."""
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp(prefix="rosreconf-gen-"))
+    write(generate(roles, candidates, coupling, seed), folder)
+    loaded = load_paths([folder / "libraries", folder / "schemas"])
+    return loaded.library, loaded.schemas[0]
+
+
+def run(task: PddlTask) -> PlanResult:
+    return solve(
+        FastDownward("lama-first"), task.domain, task.problem, timeout=30, memory_limit_mb=1024
+    )
+
+
+def chosen(task: PddlTask, result: PlanResult, s: InteroperabilitySchema) -> Configuration:
+    picks = {}
+    for name, args in result.actions:
+        step = task.names.step(name)
+        assert step is not None and not args, name
+        if step.kind == "choose":
+            picks[step.role] = step.component
+    return Configuration.of(s.name, picks, s.graph.roles)
+
+
+def plan_all(
+    library: ComponentLibrary, s: InteroperabilitySchema, failed: tuple[str, ...]
+) -> set[Configuration]:
+    """Enumerate by planning: forbid each configuration found until the task is unsolvable."""
+    inst = compile_instance(library, s, failed)
+    found: list[Configuration] = []
+    while True:
+        task = render(inst, forbid=found)
+        result = run(task)
+        if not result.solved:
+            assert result.status is PlanStatus.UNSOLVABLE_PROVEN, result.message
+            return set(found)
+        config = chosen(task, result, s)
+        assert config not in found
+        found.append(config)
+        assert len(found) <= 30
+
+
+CASES = [  # (roles, candidates, coupling, seed, failed): at most ~15 configurations each
+    (4, 2, 1.0, 1, ()),
+    (5, 2, 1.0, 2, ()),
+    (6, 2, 1.0, 1, ()),
+    (8, 2, 1.0, 1, ()),
+    (4, 3, 1.0, 2, ("SEN0_C1", "PER0_C2")),
+    (5, 3, 0.5, 0, ("SEN0_C0", "CTL0_C1", "PER0_C1", "SEN1_C2")),
+]
+
+
+@pytest.mark.parametrize(("r", "k", "coupling", "seed", "failed"), CASES)
+def test_planning_enumerates_exactly_clingos_configurations(
+    r: int, k: int, coupling: float, seed: int, failed: tuple[str, ...]
+) -> None:
+    library, s = generated(r, k, coupling, seed)
+    expected = set(configurations(library, s, failed))
+    assert 0 < len(expected) <= 30
+    assert plan_all(library, s, failed) == expected
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    r=st.integers(4, 8),
+    k=st.integers(2, 3),
+    seed=st.integers(0, 5),
+    data=st.data(),
+)
+def test_every_plan_maps_back_to_a_valid_configuration(
+    r: int, k: int, seed: int, data: st.DataObject
+) -> None:
+    library, s = generated(r, k, 0.5, seed)
+    names = sorted(c.name for c in library.components)
+    failed = tuple(data.draw(st.lists(st.sampled_from(names), max_size=3, unique=True)))
+    task = render(compile_instance(library, s, failed), Objective(dict(s.nominal)))
+    result = run(task)
+    if result.solved:
+        assert is_valid(chosen(task, result, s), library, s, failed)
+    else:
+        assert result.status is PlanStatus.UNSOLVABLE_PROVEN, result.message
+        assert next(configurations(library, s, failed), None) is None
