@@ -23,6 +23,7 @@ from rosreconf.factors import (
     eliminate,
     elimination_order,
     key_of,
+    paused_gc,
 )
 from rosreconf.instance import Instance, prune
 
@@ -38,12 +39,13 @@ def count(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> int:
     Raises:
         CountTooHard: an intermediate table would exceed ``max_rows`` rows.
     """
-    alive, _, _ = prune(inst)
-    if any(not a for a in alive):
-        return 0
-    factors = constraint_factors(inst, alive, 1, max_rows)
-    order = elimination_order([f.scope for f in factors], len(inst.roles))
-    done = eliminate(factors, order, operator.mul, _sum_out, max_rows)
+    with paused_gc():
+        alive, _, _ = prune(inst)
+        if any(not a for a in alive):
+            return 0
+        factors = constraint_factors(inst, alive, 1, max_rows)
+        order = elimination_order([f.scope for f in factors], len(inst.roles))
+        done = eliminate(factors, order, operator.mul, _sum_out, max_rows)
     if done is None:
         return 0
     scalars, free = done

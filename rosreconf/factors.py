@@ -19,11 +19,13 @@ neighbours first keeps every intermediate table to a few candidates^3 rows.
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import gc
 import itertools
 import operator
 from collections import defaultdict
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 from rosreconf.errors import RosreconfError
@@ -44,10 +46,13 @@ class Factor:
     Attributes:
         scope: the role indices the table ranges over, in column order.
         rows: candidate names (one per scope role) -> value (a count, or an encoded cost).
+        unit: every value is the neutral one (1 to count, 0 for costs), so joining with this
+            table only filters rows and never needs to combine values.
     """
 
     scope: tuple[int, ...]
     rows: dict[tuple[str, ...], int]
+    unit: bool = False
 
 
 Times = Callable[[int, int], int]
@@ -108,7 +113,7 @@ def _table(
             "the system graph is too densely connected"
         )
     rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
-    return Factor(scope, rows)
+    return Factor(scope, rows, unit=True)
 
 
 def _distinct(s: tuple[str, ...]) -> bool:
@@ -146,7 +151,7 @@ def _requirement_factors(
                 for cv in alive[v]:
                     if not reqs or all((v, cv) in r for r in reqs):
                         rows[(cu, cv)] = one
-            out.append(Factor(scope, rows))
+            out.append(Factor(scope, rows, unit=True))
             continue
 
         def met(
@@ -262,7 +267,26 @@ def key_of(positions: list[int]) -> Callable[[tuple[str, ...]], tuple[str, ...]]
     return operator.itemgetter(*positions)
 
 
+@contextlib.contextmanager
+def paused_gc() -> Iterator[None]:
+    """Pause the cyclic garbage collector while millions of acyclic rows are built.
+
+    Tables hold only tuples of strings and integers, which reference counting frees; but
+    every collection would still walk the whole loaded library, and at 1000 roles those
+    walks cost more than the elimination itself.
+    """
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.enable()
+
+
 def _join(a: Factor, b: Factor, times: Times, max_rows: int) -> Factor:
+    if a.unit and not b.unit:  # keep the valued table on the left: only b may be a filter
+        a, b = b, a
     shared = [v for v in a.scope if v in b.scope]
     extra = [v for v in b.scope if v not in a.scope]
     key_a = key_of([a.scope.index(v) for v in shared])
@@ -273,18 +297,22 @@ def _join(a: Factor, b: Factor, times: Times, max_rows: int) -> Factor:
         for row, w in a.rows.items():
             w2 = index.get(key_a(row))
             if w2 is not None:
-                rows[row] = times(w, w2)
-        return Factor(a.scope, rows)
+                rows[row] = w if b.unit else times(w, w2)
+        return Factor(a.scope, rows, a.unit and b.unit)
     tail_b = key_of([b.scope.index(v) for v in extra])
     grouped: dict[tuple[str, ...], list[tuple[tuple[str, ...], int]]] = defaultdict(list)
     for row, w in b.rows.items():
         grouped[key_b(row)].append((tail_b(row), w))
     for row, w in a.rows.items():
-        for tail, w2 in grouped.get(key_a(row), ()):
-            rows[row + tail] = times(w, w2)
+        if b.unit:
+            for tail, _ in grouped.get(key_a(row), ()):
+                rows[row + tail] = w
+        else:
+            for tail, w2 in grouped.get(key_a(row), ()):
+                rows[row + tail] = times(w, w2)
         if len(rows) > max_rows:
             raise TooHard(
                 f"exact elimination needs over {max_rows} rows; the system graph is too "
                 "densely connected"
             )
-    return Factor((*a.scope, *extra), rows)
+    return Factor((*a.scope, *extra), rows, a.unit and b.unit)

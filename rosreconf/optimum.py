@@ -27,6 +27,7 @@ from rosreconf.factors import (
     eliminate,
     elimination_order,
     key_of,
+    paused_gc,
 )
 from rosreconf.instance import Instance, prune
 from rosreconf.model import Configuration
@@ -52,6 +53,13 @@ def minimise(
     Raises:
         TooHard: an intermediate table would exceed ``max_rows`` rows.
     """
+    with paused_gc():
+        return _minimise(inst, costs, max_rows)
+
+
+def _minimise(
+    inst: Instance, costs: Sequence[Mapping[str, tuple[int, ...]]], max_rows: int
+) -> tuple[Configuration, tuple[int, ...]] | None:
     alive, _, _ = prune(inst)
     if any(not a for a in alive):
         return None

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import clingo
 
-from rosreconf.factors import MAX_FACTOR_ROWS, TooHard
+from rosreconf.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
 from rosreconf.instance import Instance, compile_instance, explain
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.optimum import minimise
@@ -248,7 +248,9 @@ def best_configuration(
     failed: Collection[str] = (),
 ) -> Configuration | None:
     """Return a configuration optimal for ``objective``, or None when there is none."""
-    return optimise(compile_instance(library, schema, failed), objective).configuration
+    with paused_gc():  # compiling allocates many small tuples too
+        inst = compile_instance(library, schema, failed)
+    return optimise(inst, objective).configuration
 
 
 def why_not(
