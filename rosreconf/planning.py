@@ -21,7 +21,7 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.pddl import PddlTask, render
 from rosreconf.pddl_names import Step
 from rosreconf.planners import Planner, PlanResult, PlanStatus, solve
-from rosreconf.solver import ClingoEngine, Objective, best_configuration
+from rosreconf.solver import ClingoEngine, Objective, best_configuration, optimise
 from rosreconf.validity import violations
 
 
@@ -86,8 +86,7 @@ def plan(
     """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``."""
     inst = compile_instance(library, schema, failed)
     objective = Objective(dict(current), dict(weights or {}))
-    engine = ClingoEngine()
-    best = engine.best(inst, objective) if current else engine.first(inst)
+    best = optimise(inst, objective).configuration if current else ClingoEngine().first(inst)
     if best is None:
         why = explain(inst)
         lines = explain_impossible(schema, inst.failed, current, why)

@@ -1,9 +1,12 @@
 """Find configurations: enumerate, first, best, behind one small interface.
 
-The engine is clingo (Potassco's ASP solver, PyPI ``clingo``): configuration is a
-finite-domain problem and clingo is a kept, well-made solver for exactly that. The program
-below is fixed; everything specific to a library and schema arrives as ground facts from
-``rosreconf.instance``, so grounding stays linear in the size of the compatibility tables.
+The optimum comes from min-plus variable elimination (``rosreconf.optimum``) when the system
+graph is sparse enough to eliminate exactly, else from clingo; both minimise the very same
+integers (``unary_costs``). Everything else is clingo (Potassco's ASP solver, PyPI
+``clingo``): configuration is a finite-domain problem and clingo is a kept, well-made solver
+for exactly that. The program below is fixed; everything specific to a library and schema
+arrives as ground facts from ``rosreconf.instance``, so grounding stays linear in the size
+of the compatibility tables.
 
 Enumeration order is deterministic and reads like the paper's lists: a domain heuristic makes
 clingo decide roles in schema order and candidates in library order, and backtracking
@@ -13,13 +16,18 @@ memory, ``limit`` stops early).
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Collection, Iterator, Mapping
 from dataclasses import dataclass, field
 
 import clingo
 
+from rosreconf.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
 from rosreconf.instance import Instance, compile_instance, explain
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.optimum import minimise
+
+LOG = logging.getLogger(__name__)
 
 PROGRAM = """
 1 { x(R,C) : cand(R,C) } 1 :- role(R).
@@ -66,6 +74,39 @@ class Objective:
         )
         return changes, metric
 
+    def cost(self, inst: Instance, config: Configuration) -> tuple[int, int]:
+        """Return the exact (changes, scaled metric sum) that every engine minimises."""
+        costs = unary_costs(inst, self)
+        index = inst.role_index
+        changes = metric = 0
+        for role, comp in config.assignment:
+            c, m = costs[index[role]][comp]
+            changes, metric = changes + c, metric + m
+        return changes, metric
+
+
+def scaled_metric(objective: Objective, component: Component) -> int:
+    """Return the component's weighted metric sum as the integer clingo optimises."""
+    w = sum(wt * component.metrics.get(m, 0.0) for m, wt in objective.weights.items())
+    return round(w * METRIC_SCALE)
+
+
+def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[int, int]]]:
+    """Return per role, candidate -> (change against current, scaled metric): the objective.
+
+    A change counts when ``current`` names, for that role, another component of the
+    library; exactly the ``current``/``weight`` facts clingo receives.
+    """
+    known = {c.name for c in inst.library.components}
+    out = []
+    for role, dom in zip(inst.roles, inst.domains, strict=True):
+        now = objective.current.get(role.name)
+        watch = now is not None and now in known
+        out.append(
+            {c.name: (int(watch and c.name != now), scaled_metric(objective, c)) for c in dom}
+        )
+    return out
+
 
 def _facts(inst: Instance, objective: Objective | None = None) -> str:
     """Render the instance as ASP facts (integers for roles and components: fast to ground)."""
@@ -94,8 +135,7 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
             if role in index and comp in ids:
                 out.append(f"current({index[role]},{ids[comp]}).")
         for c in inst.library.components:
-            w = sum(wt * c.metrics.get(m, 0.0) for m, wt in objective.weights.items())
-            out.append(f"weight({ids[c.name]},{round(w * METRIC_SCALE)}).")
+            out.append(f"weight({ids[c.name]},{scaled_metric(objective, c)}).")
     return "\n".join(out)
 
 
@@ -147,8 +187,48 @@ class ClingoEngine:
         return best
 
 
+class EliminationEngine:
+    """Optimise configurations exactly by min-plus variable elimination (no enumeration)."""
+
+    name = "elimination"
+
+    def __init__(self, max_rows: int = MAX_FACTOR_ROWS) -> None:
+        self.max_rows = max_rows
+
+    def best(self, inst: Instance, objective: Objective) -> Configuration | None:
+        """Return a configuration optimal for ``objective`` (proven), or None.
+
+        Raises:
+            TooHard: the system graph is too dense for tables of ``max_rows`` rows.
+        """
+        found = minimise(inst, unary_costs(inst, objective), self.max_rows)
+        return found[0] if found else None
+
+
 ENGINES = {"clingo": ClingoEngine}
-"""The available engines (one today); the CLI does not care which one answers."""
+"""The engines that enumerate (one today); the CLI does not care which one answers."""
+
+
+@dataclass(frozen=True)
+class Best:
+    """An optimum and who proved it.
+
+    Attributes:
+        configuration: an optimal configuration, or None when there is none.
+        engine: the name of the engine that answered ("elimination" or "clingo").
+    """
+
+    configuration: Configuration | None
+    engine: str
+
+
+def optimise(inst: Instance, objective: Objective, max_rows: int = MAX_FACTOR_ROWS) -> Best:
+    """Return an optimum for ``objective``: by elimination, by clingo when that is too hard."""
+    try:
+        return Best(EliminationEngine(max_rows).best(inst, objective), EliminationEngine.name)
+    except TooHard as exc:
+        LOG.info("optimum by clingo: %s", exc)
+        return Best(ClingoEngine().best(inst, objective), ClingoEngine.name)
 
 
 def configurations(
@@ -168,7 +248,9 @@ def best_configuration(
     failed: Collection[str] = (),
 ) -> Configuration | None:
     """Return a configuration optimal for ``objective``, or None when there is none."""
-    return ClingoEngine().best(compile_instance(library, schema, failed), objective)
+    with paused_gc():  # compiling allocates many small tuples too
+        inst = compile_instance(library, schema, failed)
+    return optimise(inst, objective).configuration
 
 
 def why_not(
