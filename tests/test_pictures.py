@@ -188,3 +188,18 @@ def test_enumerate_draws_the_first_configuration_of_each_schema(
     assert result.exit_code == 0, result.output
     assert out.read_bytes().startswith(b"\x89PNG")
     assert not [p for p in os.listdir(tmp_path) if p.endswith(".tmp")]
+
+
+@pytest.mark.planner
+def test_plan_draws_the_reconfiguration(runner: CliRunner, tmp_path: Path) -> None:
+    out = tmp_path / "replan.dot"
+    result = runner.invoke(app, ["plan", "--fail", "NSM3", "--only", SCHEMA, "--graph", str(out)])
+    assert result.exit_code == 0, result.stderr
+    nodes = _nodes(_parse(out.read_text(encoding="utf-8")))
+    fill = {name: attrs.get("fillcolor") for name, attrs in nodes.items()}
+    started = {n for n, c in fill.items() if c == STYLES[Status.STARTED]["fillcolor"]}
+    stopped = {n for n, c in fill.items() if c == STYLES[Status.STOPPED]["fillcolor"]}
+    failed = {n for n, c in fill.items() if c == STYLES[Status.FAILED]["fillcolor"]}
+    assert {f"{SCHEMA}:node:NDC{i}" for i in range(1, 6)} <= started
+    assert {f"{SCHEMA}:node:NSM1", f"{SCHEMA}:node:NFB21"} <= stopped
+    assert f"{SCHEMA}:node:NSM3" in failed

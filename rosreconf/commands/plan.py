@@ -20,6 +20,8 @@ from rosreconf.commands.common import (
 )
 from rosreconf.configfile import read_configurations
 from rosreconf.errors import ExitCode, UsageError
+from rosreconf.model import Configuration
+from rosreconf.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.planners import PLANNERS, FastDownward, Planner, PlanStatus
 from rosreconf.planning import ReplanResult, current_configuration, plan
 
@@ -101,6 +103,16 @@ def plan_command(
     ] = None,
     objective: ObjectiveOption = None,
     as_json: JsonOption = False,
+    graph: Annotated[
+        Path | None,
+        typer.Option(
+            "--graph",
+            metavar="FILE",
+            help="Also draw each new configuration's ROS-graph, with the failed, stopped and "
+            "started parts marked, into this file (.dot, .svg or .png).",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
     """Re-plan each schema after --fail with a PDDL planner: steps, new configuration, why.
 
@@ -129,6 +141,8 @@ def plan_command(
         )
         for s in sel.schemas
     ]
+    if graph is not None:
+        _draw(graph, sel, results)
     if as_json:
         write_stdout(json.dumps(_document(sel, chosen, results), indent=2) + "\n")
     else:
@@ -197,3 +211,25 @@ def _schema_doc(r: ReplanResult) -> dict[str, Any]:
         "cost": run.cost if run else None,
         "elapsed": round(run.elapsed, 3) if run else None,
     }
+
+
+def _draw(path: Path, sel: Selection, results: list[ReplanResult]) -> None:
+    """Draw the new ROS-graphs against the running ones (schemas without one are left out)."""
+    from rosreconf.cli import stderr
+
+    pictures = [
+        RosPicture(
+            r.schema,
+            r.configuration,
+            before=Configuration.of(r.schema.name, dict(r.current), r.schema.graph.roles)
+            if set(r.current) == {role.name for role in r.schema.graph.roles}
+            else None,
+        )
+        for r in results
+        if r.configuration is not None
+    ]
+    if not pictures:
+        stderr.print("rosreconf: no new configuration to draw", markup=False)
+        return
+    fmt = write_picture(path, ros_dot(sel.library, pictures, sel.failed))
+    stderr.print(f"rosreconf: wrote {path} ({fmt})", markup=False)
