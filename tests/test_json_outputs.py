@@ -33,6 +33,7 @@ RUNS = [
     ("enumerate", ["enumerate", "--json", "--count"], None),
     ("analyse", ["analyse", "--json"], None),
     ("redundancy", ["redundancy", "--p", "0.1", "--n", "20", "--q", "0.99", "--json"], None),
+    ("whatif", ["whatif", "--only", "object_repositioning", "--workers", "1", "--json"], None),
     (
         "inspect",
         [
