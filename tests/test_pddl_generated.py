@@ -114,3 +114,44 @@ def test_every_plan_maps_back_to_a_valid_configuration(
     else:
         assert result.status is PlanStatus.UNSOLVABLE_PROVEN, result.message
         assert next(configurations(library, s, failed), None) is None
+
+
+@pytest.mark.parametrize(
+    ("roles", "candidates", "seed", "failures"),
+    [(5, 2, 1, 1), (6, 3, 2, 1), (8, 2, 3, 2), (6, 3, 4, 0)],
+)
+def test_optimal_planner_and_solver_agree_on_the_objective(
+    roles: int, candidates: int, seed: int, failures: int
+) -> None:
+    """Issue 7: with an optimal search, Fast Downward's objective equals the solver's optimum.
+
+    The running configuration is the nominal one; a few of its components fail, and both the
+    planner (astar with lmcut: optimal for action costs) and the elimination optimum must
+    reach the same (changes, metric) value, each with a valid configuration.
+    """
+    from rosreconf.planning import plan
+    from rosreconf.solver import optimise
+
+    library, schema = generated(roles, candidates, 0.2, seed)
+    current = dict(schema.nominal)
+    failed = sorted(current.values())[:failures]
+    weights = {"cost": 1.0}
+    result = plan(
+        library,
+        schema,
+        failed,
+        current,
+        FastDownward("astar(lmcut())"),
+        weights=weights,
+        timeout=60,
+    )
+    inst = compile_instance(library, schema, failed)
+    objective = Objective(current, weights)
+    best = optimise(inst, objective).configuration
+    if best is None:
+        assert result.status is PlanStatus.UNSOLVABLE_PROVEN
+        return
+    assert result.status is PlanStatus.SOLVED, result.message
+    assert result.configuration is not None
+    assert is_valid(result.configuration, library, schema, failed)
+    assert objective.cost(inst, result.configuration) == objective.cost(inst, best)
