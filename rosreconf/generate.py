@@ -23,11 +23,11 @@ How names change across layers::
 from __future__ import annotations
 
 import itertools
-import os
 import random
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from rosreconf.outfiles import write_atomic
 
 LAYERS = ("sen", "per", "ctl", "act")
 """Layer prefixes in the order information flows (Fig. 2)."""
@@ -220,13 +220,5 @@ def write(generated: Generated, directory: Path) -> tuple[Path, Path]:
     )
     for path, text in zip(paths, (generated.library, generated.schema), strict=True):
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".generated-", suffix=".tmp", dir=path.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as f:
-                f.write(text)
-            os.chmod(tmp, 0o644)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        write_atomic(path, text)
     return paths

@@ -19,7 +19,7 @@ from rosreconf.commands.common import (
     SchemaOption,
 )
 from rosreconf.commands.live import OnlySchemaOption, target
-from rosreconf.errors import ExitCode, UsageError
+from rosreconf.errors import ExitCode, ExternalToolError, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.watcher import Event, Watcher
 
@@ -101,8 +101,25 @@ def watch_command(
                 {"configuration": config.mapping},
             )
         )
+        started = False
+        lost_at: float | None = None
         while True:
-            check = watcher.step()
+            try:
+                check = watcher.step()
+            except ExternalToolError as exc:
+                # At start a wrong URI should fail fast; later, a restarting master is waited for.
+                if not started or once:
+                    raise
+                if lost_at is None:
+                    lost_at = time.monotonic()
+                    log(Event("master-lost", f"{exc}; retrying every {interval:g} s", {}))
+                time.sleep(interval)
+                continue
+            started = True
+            if lost_at is not None:
+                gone = time.monotonic() - lost_at
+                log(Event("master-back", f"the master answers again after {gone:.1f} s", {}))
+                lost_at = None
             if once:
                 raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
             time.sleep(interval)
