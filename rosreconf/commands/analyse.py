@@ -31,8 +31,11 @@ def analyse_command(
     seed: Annotated[int, typer.Option(help="Monte Carlo seed.")] = 0,
     as_json: JsonOption = False,
 ) -> None:
-    """Analyse each schema: orthogonality (Def. 8), redundancy, single points of failure,
-    critical failure pairs and the probability of staying reconfigurable.
+    """Analyse orthogonality, redundancy, failure points and reliability of each schema.
+
+    Orthogonality is Def. 8; redundancy per role is the paper's r; single points of failure and
+    critical pairs are failures that leave no configuration; the reconfigurability probability
+    is exact when the configurations can be listed, else Monte Carlo with its interval.
 
     Exit 0 when every schema has a configuration, 1 otherwise.
     """

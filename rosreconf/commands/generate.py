@@ -25,7 +25,12 @@ def generate_command(
     ] = 0.2,
     seed: Annotated[int, typer.Option(help="Random seed; the same seed gives the same files.")] = 0,
 ) -> None:
-    """Generate a layered library and schema (Fig. 2 shaped) that validate and are solvable."""
+    """Generate a layered library and schema shaped like the paper's Figure 2.
+
+    Sensors, perception, control and actuators; interface families so that not every pair
+    fits; couplings at density D. The files validate and have a configuration; the same seed
+    gives the same bytes.
+    """
     from rosreconf.cli import write_stdout
 
     try:
