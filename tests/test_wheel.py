@@ -38,6 +38,8 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
         "rosreconf/schemas/object_repositioning.yaml",
         "rosreconf/data/component-library.schema.json",
         "rosreconf/data/output-enumerate.schema.json",
+        "rosreconf/templates/domain.pddl.j2",
+        "rosreconf/templates/problem.pddl.j2",
     ):
         assert expected in names
     return target
@@ -66,3 +68,28 @@ def test_installed_wheel_runs_on_bundled_example(installed: Path, tmp_path: Path
         check=True,
     )
     assert probe.stdout.startswith(str(installed))  # the wheel's copy, not the checkout's
+
+
+def test_installed_wheel_renders_pddl_from_its_templates(installed: Path, tmp_path: Path) -> None:
+    env = {**os.environ, "PYTHONPATH": str(installed)}
+    out = tmp_path / "pddl"
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "rosreconf",
+            "render-pddl",
+            "--only",
+            "disc_loading",
+            "-o",
+            str(out),
+        ],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    domain = (out / "disc_loading" / "domain.pddl").read_text(encoding="utf-8")
+    assert "(define (domain" in domain and "choose-elbow_joint-nsm3" in domain
