@@ -11,7 +11,7 @@ pair of functions maps model names to live names, and everything here goes throu
     interface label X of component C        ros.remappings[X] if given, else X;  interface_live_name
                                             a relative name is resolved in C's namespace
 
-So NSM3 is ``/NSM3`` and its ``digital_servo_command`` is ``/arm_servo/elbow/servo_command``
+So NSM3 is ``/NSM3`` and its ``elbow/digital_servo_command`` is ``/arm_servo/elbow/servo_command``
 (its remapping); a component with ``namespace: /arm`` and no remapping for ``joint_states``
 publishes ``/arm/joint_states``.
 
