@@ -93,7 +93,8 @@ def fast_downward(search: str, lib: Any, schema: Any) -> dict[str, Any]:
     from rosreconf.solver import Objective
     from rosreconf.validity import is_valid
 
-    objective = None if search == "lama-first" else Objective(dict(schema.nominal), {"cost": 1})
+    first = search in ("ff-first", "lama-first")  # first-plan searches ignore costs
+    objective = None if first else Objective(dict(schema.nominal), {"cost": 1})
     task = render(compile_instance(lib, schema), objective)
     run = solve(
         FastDownward(search), task.domain, task.problem, timeout=FD_TIMEOUT, memory_limit_mb=2048
@@ -174,7 +175,7 @@ def main() -> None:
                     continue
                 limit = args.clingo_timeout if kind == "clingo_optimal" else args.timeout
                 row[kind] = measure(kind, folder, runs, limit)
-            fd_runs = {"first": "fd-lama-first", "anytime": "fd-seq-sat-lama-2011"}
+            fd_runs = {"first": "fd-ff-first", "anytime": "fd-seq-sat-lama-2011"}
             row["fast_downward"] = {
                 key: measure(kind, folder, 1, FD_TIMEOUT + 30)
                 if key == "first" or r <= 50

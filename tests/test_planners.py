@@ -84,6 +84,25 @@ def test_lama_first_finds_a_plan_that_fills_every_role(parent: Path) -> None:
 
 
 @pytest.mark.planner
+def test_ff_first_is_the_default_and_runs_its_named_search_string(parent: Path) -> None:
+    result = run(FastDownward(), parent)
+    assert result.status is PlanStatus.SOLVED and result.returncode == 0
+    assert sorted(args[0] for _, args in result.actions) == ["driver", "planner", "sensor"]
+    assert result.planner == "fd (ff-first)"
+    search = result.command[result.command.index("--search") + 1]
+    assert search == fd_module.FF_FIRST and "landmark" not in search
+    assert "--skip-variable-reordering" in result.command
+    assert "--alias" not in result.command
+
+
+@pytest.mark.planner
+@pytest.mark.parametrize("task", ["pick-dead-end", "pick-no-provider"])
+def test_ff_first_proves_unsolvability_like_lama_first(parent: Path, task: str) -> None:
+    result = run(FastDownward("ff-first"), parent, task=task)
+    assert (result.status, result.returncode) == (PlanStatus.UNSOLVABLE_PROVEN, 11)
+
+
+@pytest.mark.planner
 @pytest.mark.parametrize("search", ["astar(lmcut())", "seq-sat-lama-2011"])
 def test_cost_aware_searches_find_the_optimum(parent: Path, search: str) -> None:
     result = run(FastDownward(search), parent)

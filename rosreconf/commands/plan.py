@@ -95,7 +95,10 @@ def plan_command(
     planner: Annotated[str, typer.Option(help="Planner: fd (Fast Downward) or ff.")] = "fd",
     search: Annotated[
         str | None,
-        typer.Option(help=f"Fast Downward alias or search string. Default: {DEFAULT_SEARCH}."),
+        typer.Option(
+            help="Fast Downward alias (ff-first: a first plan fast, costs ignored) or search "
+            f"string. Default: {DEFAULT_SEARCH}."
+        ),
     ] = None,
     timeout: Annotated[float, typer.Option(min=1, help="Seconds per schema.")] = 60.0,
     keep_pddl: Annotated[
