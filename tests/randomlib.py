@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+from dataclasses import replace
 
 from hypothesis import strategies as st
 
@@ -60,17 +61,7 @@ def problems(draw: st.DrawFn) -> tuple[ComponentLibrary, InteroperabilitySchema]
         others = [n for n in names if n != c.name]
         needs = frozenset(draw(st.sets(st.sampled_from(others), max_size=1)))
         excludes = frozenset(draw(st.sets(st.sampled_from(others), max_size=1))) - needs
-        final.append(
-            Component(
-                c.name,
-                c.abstraction,
-                c.provides,
-                c.requires,
-                c.failure_probability,
-                needs,
-                excludes,
-            )
-        )
+        final.append(replace(c, needs=needs, excludes=excludes))
     library = ComponentLibrary("random", tuple(final))
     schema = InteroperabilitySchema("s", SystemGraph(roles, tuple(edges)), "skill", "env")
     return library, schema

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -13,7 +14,7 @@ from rosreconf.factors import TooHard
 from rosreconf.generate import generate, write
 from rosreconf.instance import compile_instance
 from rosreconf.loader import load_paths
-from rosreconf.model import Component, ComponentLibrary, InteroperabilitySchema
+from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.optimum import minimise
 from rosreconf.solver import ClingoEngine, EliminationEngine, Objective, optimise, unary_costs
 from rosreconf.validity import is_valid
@@ -27,18 +28,7 @@ def _with_metrics(library: ComponentLibrary, data: st.DataObject) -> ComponentLi
     for c in library:
         cost = data.draw(st.sampled_from([0.0, 0.5, 1.0, 2.25]))
         latency = data.draw(st.sampled_from([0.0, 0.001, 3.0]))
-        comps.append(
-            Component(
-                c.name,
-                c.abstraction,
-                c.provides,
-                c.requires,
-                c.failure_probability,
-                c.needs,
-                c.excludes,
-                metrics={"cost": cost, "latency": latency},
-            )
-        )
+        comps.append(replace(c, metrics={"cost": cost, "latency": latency}))
     return ComponentLibrary(library.name, tuple(comps))
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pddl
 import pytest
+from pddlcheck import plan_all
 
 from rosreconf.instance import compile_instance
 from rosreconf.loader import load_checked
@@ -106,30 +107,6 @@ def test_fast_downward_plans_map_back_and_val_accepts_them(
     assert "Plan valid" in val.stdout
 
 
-def plan_all(library: ComponentLibrary, s: InteroperabilitySchema) -> set[Configuration]:
-    """Enumerate by planning: forbid each configuration found until none is left."""
-    inst = compile_instance(library, s)
-    found: list[Configuration] = []
-    while True:
-        task = render(inst, forbid=found)
-        result = solve(
-            FastDownward("lama-first"), task.domain, task.problem, timeout=30, memory_limit_mb=1024
-        )
-        if not result.solved:
-            assert result.status == "unsolvable-proven", result.message
-            return set(found)
-        chosen = {}
-        for name, _ in result.actions:
-            step = task.names.step(name)
-            assert step is not None
-            if step.kind == "choose":
-                chosen[step.role] = step.component
-        config = Configuration.of(s.name, chosen, s.graph.roles)
-        assert config not in found
-        found.append(config)
-        assert len(found) < 40
-
-
 def random_library(seed: int) -> tuple[ComponentLibrary, InteroperabilitySchema]:
     """Build a small random library and schema with disjunctions, couplings and exclusions."""
     rng = random.Random(seed)
@@ -168,7 +145,7 @@ def test_planning_finds_exactly_the_configurations_clingo_finds() -> None:
     cases += some + none
     for library, s in cases:
         expected = set(configurations(library, s))
-        assert plan_all(library, s) == expected, s.name
+        assert plan_all(library, s, planner=FastDownward("lama-first")) == expected, s.name
 
 
 def test_a_component_failing_removes_its_actions() -> None:

@@ -14,11 +14,12 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from pddlcheck import chosen, plan_all
 
 from rosreconf.generate import generate, write
 from rosreconf.instance import compile_instance
 from rosreconf.loader import load_paths
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.pddl import PddlTask, render
 from rosreconf.planners import FastDownward, PlanResult, PlanStatus, solve
 from rosreconf.solver import Objective, configurations
@@ -45,34 +46,6 @@ def run(task: PddlTask) -> PlanResult:
     return solve(FastDownward(), task.domain, task.problem, timeout=30, memory_limit_mb=1024)
 
 
-def chosen(task: PddlTask, result: PlanResult, s: InteroperabilitySchema) -> Configuration:
-    picks = {}
-    for name, args in result.actions:
-        step = task.names.step(name)
-        assert step is not None and not args, name
-        if step.kind == "choose":
-            picks[step.role] = step.component
-    return Configuration.of(s.name, picks, s.graph.roles)
-
-
-def plan_all(
-    library: ComponentLibrary, s: InteroperabilitySchema, failed: tuple[str, ...]
-) -> set[Configuration]:
-    """Enumerate by planning: forbid each configuration found until the task is unsolvable."""
-    inst = compile_instance(library, s, failed)
-    found: list[Configuration] = []
-    while True:
-        task = render(inst, forbid=found)
-        result = run(task)
-        if not result.solved:
-            assert result.status is PlanStatus.UNSOLVABLE_PROVEN, result.message
-            return set(found)
-        config = chosen(task, result, s)
-        assert config not in found
-        found.append(config)
-        assert len(found) <= 30
-
-
 CASES = [  # (roles, candidates, coupling, seed, failed): at most ~15 configurations each
     (4, 2, 1.0, 1, ()),
     (5, 2, 1.0, 2, ()),
@@ -90,7 +63,7 @@ def test_planning_enumerates_exactly_clingos_configurations(
     library, s = generated(r, k, coupling, seed)
     expected = set(configurations(library, s, failed))
     assert 0 < len(expected) <= 30
-    assert plan_all(library, s, failed) == expected
+    assert plan_all(library, s, failed, most=30) == expected
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])

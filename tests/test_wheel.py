@@ -45,50 +45,38 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return target
 
 
-def test_installed_wheel_runs_on_bundled_example(installed: Path, tmp_path: Path) -> None:
+def _run(installed: Path, where: Path, *argv: str) -> subprocess.CompletedProcess[str]:
+    """Run Python with only the installed wheel's rosreconf importable from ``where``."""
     env = {**os.environ, "PYTHONPATH": str(installed)}
-    result = subprocess.run(
-        [sys.executable, "-m", "rosreconf", "enumerate", "--json", "--only", "disc_loading"],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=False,
+    return subprocess.run(
+        [sys.executable, *argv], cwd=where, env=env, capture_output=True, text=True, check=False
+    )
+
+
+def test_installed_wheel_runs_on_bundled_example(installed: Path, tmp_path: Path) -> None:
+    result = _run(
+        installed, tmp_path, "-m", "rosreconf", "enumerate", "--json", "--only", "disc_loading"
     )
     assert result.returncode == 0, result.stderr
     doc = json.loads(result.stdout)
     assert doc["files"][0].startswith("<bundled>/")
     assert doc["schemas"][0]["count"] == 2
-    probe = subprocess.run(
-        [sys.executable, "-c", "import rosreconf.resources as r; print(r.__file__)"],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=True,
-    )
+    probe = _run(installed, tmp_path, "-c", "import rosreconf.resources as r; print(r.__file__)")
     assert probe.stdout.startswith(str(installed))  # the wheel's copy, not the checkout's
 
 
 def test_installed_wheel_renders_pddl_from_its_templates(installed: Path, tmp_path: Path) -> None:
-    env = {**os.environ, "PYTHONPATH": str(installed)}
     out = tmp_path / "pddl"
-    result = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "rosreconf",
-            "render-pddl",
-            "--only",
-            "disc_loading",
-            "-o",
-            str(out),
-        ],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=False,
+    result = _run(
+        installed,
+        tmp_path,
+        "-m",
+        "rosreconf",
+        "render-pddl",
+        "--only",
+        "disc_loading",
+        "-o",
+        str(out),
     )
     assert result.returncode == 0, result.stderr
     domain = (out / "disc_loading" / "domain.pddl").read_text(encoding="utf-8")
