@@ -16,6 +16,7 @@ from rosreconf.commands.common import (
     SchemaOption,
     select,
 )
+from rosreconf.commands.target import checked
 from rosreconf.configfile import read_configurations
 from rosreconf.conformance import compare
 from rosreconf.errors import ExitCode, UsageError
@@ -24,7 +25,6 @@ from rosreconf.livegraph import LiveGraph, from_json, to_json, without_plumbing
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.outfiles import write_atomic
 from rosreconf.rosmaster import read_live_graph
-from rosreconf.validity import violations
 
 OnlySchemaOption = Annotated[
     str | None,
@@ -42,6 +42,7 @@ def target(
 
     Raises:
         UsageError: no single schema is named, or it has no configuration to use.
+        RosreconfError: the configuration leaves a role empty or is not valid (exit 1).
         InvalidInputError: the files are invalid.
     """
     sel = select(libraries, schemas, None, [only] if only else None)
@@ -54,13 +55,8 @@ def target(
     mapping = configs.get(schema.name) or dict(schema.nominal)
     if not mapping:
         raise UsageError(f"{schema.name} has no nominal configuration: give --configuration")
-    for role in schema.graph.roles:
-        if role.name not in mapping:
-            raise UsageError(f"the configuration leaves role {role.name} of {schema.name} empty")
-    config = Configuration.of(schema.name, mapping, schema.graph.roles)
-    wrong = violations(config, sel.library, schema)
-    if wrong:
-        raise UsageError(f"the configuration of {schema.name} is not valid: {wrong[0]}")
+    source = configuration if schema.name in configs else Path(f"nominal of {schema.source}")
+    config = checked(sel, schema, mapping, source)
     return sel.library, schema, config
 
 

@@ -55,7 +55,7 @@ def targets(sel: Selection, configuration_file: Path | None) -> list[Target]:
             continue
         nominal = _nominal(s)
         if given is not None:
-            config = _checked(sel, s, given[s.name], configuration_file)
+            config = checked(sel, s, given[s.name], configuration_file)
         else:
             config = _chosen(sel, s, nominal)
         before = nominal if nominal is not None and nominal != config else None
@@ -75,9 +75,16 @@ def _nominal(s: InteroperabilitySchema) -> Configuration | None:
     return Configuration.of(s.name, s.nominal, s.graph.roles)
 
 
-def _checked(
+def checked(
     sel: Selection, s: InteroperabilitySchema, mapping: Mapping[str, str], source: Path | None
 ) -> Configuration:
+    """Return ``mapping`` as a configuration of ``s`` if it fills every role and is valid.
+
+    A failed component does not count against it (pictures draw it red; watch replaces it).
+
+    Raises:
+        RosreconfError: a role is empty or a rule of validity is broken (exit 1).
+    """
     roles = {r.name for r in s.graph.roles}
     missing = sorted(roles - set(mapping))
     if missing:
