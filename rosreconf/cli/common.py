@@ -71,7 +71,15 @@ ConfigurationOption = Annotated[
     ),
 ]
 OutputOption = Annotated[
-    Path, typer.Option("--output", "-o", metavar="FILE", help="File to write.", show_default=False)
+    str,
+    typer.Option(
+        "--output",
+        "-o",
+        metavar="FILE",
+        help="File to write, or - for stdout. A symlink is written through; devices, FIFOs "
+        "and folders are refused.",
+        show_default=False,
+    ),
 ]
 MasterOption = Annotated[
     str,

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -10,6 +9,7 @@ import typer
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.formats.generate import generate, write
+from rosreconf.outfiles import output_folder
 
 
 def generate_command(
@@ -18,7 +18,7 @@ def generate_command(
         int, typer.Option("--candidates", "-k", min=1, help="Candidates per role K.")
     ],
     output: Annotated[
-        Path, typer.Option("--output", "-o", help="Folder to write libraries/ and schemas/ into.")
+        str, typer.Option("--output", "-o", help="Folder to write libraries/ and schemas/ into.")
     ],
     coupling: Annotated[
         float,
@@ -33,10 +33,11 @@ def generate_command(
     gives the same bytes.
     """
 
+    folder = output_folder(output)
     try:
         generated = generate(roles, candidates, coupling, seed)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    lib, schema = write(generated, output)
+    lib, schema = write(generated, folder)
     write_stdout(f"wrote {lib} and {schema}\n")
     raise typer.Exit(ExitCode.OK)

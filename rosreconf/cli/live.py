@@ -16,12 +16,12 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr, write_stdout
+from rosreconf.cli.console import stderr, write_output, write_stdout
 from rosreconf.cli.target import checked
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.formats.configfile import read_configurations
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_target
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import draft_library
 from rosreconf.ros.livegraph import LiveGraph, from_json, to_json, without_plumbing
@@ -64,20 +64,19 @@ def target(
 def snapshot_command(
     master: MasterOption,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
-    ] = None,
+        str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
+    ] = "-",
 ) -> None:
     """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
 
-    text = to_json(read_live_graph(master))
-    if output is None:
-        write_stdout(text)
-    else:
-        write_atomic(output, text)
+    target = output_target(output)
+    write_output(target, to_json(read_live_graph(master)))
 
 
 def import_command(
-    output: Annotated[Path, typer.Option("--output", "-o", help="The library file to write.")],
+    output: Annotated[
+        str, typer.Option("--output", "-o", help="The library file to write (- for stdout).")
+    ],
     master: Annotated[
         str | None, typer.Option("--master", help="Read this ROS master's URI.")
     ] = None,
@@ -88,12 +87,13 @@ def import_command(
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
+    target = output_target(output)
     graph = _live(master, snapshot)
     text = draft_library(graph, name)
-    write_atomic(output, text)
+    where = write_output(target, text)
     todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
     stderr.print(
-        f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
+        f"rosreconf: wrote {where}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -17,6 +16,7 @@ from rosreconf.cli.common import (
 from rosreconf.cli.console import write_stdout
 from rosreconf.cli.plan import CurrentOption, ObjectiveOption, currents, weights_of
 from rosreconf.errors import ExitCode
+from rosreconf.outfiles import output_folder
 from rosreconf.planning.pddl import render
 from rosreconf.planning.replan import write_task
 from rosreconf.solve.instance import compile_instance
@@ -25,7 +25,7 @@ from rosreconf.solve.solver import Objective
 
 def render_pddl(
     output: Annotated[
-        Path,
+        str,
         typer.Option(
             "--output", "-o", help="Folder to write <schema>/domain.pddl and problem.pddl into."
         ),
@@ -39,15 +39,18 @@ def render_pddl(
 ) -> None:
     """Write the PDDL task of each schema (pre-grounded STRIPS with action costs; docs/pddl.md).
 
-    Each file is written whole or not at all. Exit 0 on success.
+    The pair is written into a temp folder and moved into place as one, so concurrent runs
+    never leave a domain and a problem from different runs. Exit 0 on success, 2 when the
+    output is not a folder.
     """
 
+    folder = output_folder(output)
     sel = select(library, schema, fail, only)
     weights = weights_of(objective)
     running = currents(sel, current, weights)
     for s in sel.schemas:
         inst = compile_instance(sel.library, s, sel.failed)
         task = render(inst, Objective(running[s.name], weights))
-        folder = write_task(task, output)
-        write_stdout(f"{folder / 'domain.pddl'}\n{folder / 'problem.pddl'}\n")
+        written = write_task(task, folder)
+        write_stdout(f"{written / 'domain.pddl'}\n{written / 'problem.pddl'}\n")
     raise typer.Exit(ExitCode.OK)
