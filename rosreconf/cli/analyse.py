@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 from typing import Annotated
 
 import typer
 
+from rosreconf import jsonout
 from rosreconf.analysis.library import SchemaAnalysis, analyse
 from rosreconf.cli.common import (
     FailOption,
@@ -49,7 +49,7 @@ def analyse_command(
             "files": sel.loaded.files,
             "schemas": [asdict(r) for r in results],
         }
-        write_stdout(json.dumps(doc, indent=2) + "\n")
+        write_stdout(jsonout.dumps(doc, indent=2) + "\n")
     else:
         write_stdout("".join(_text(r) for r in results))
     raise typer.Exit(ExitCode.FAILED if any(r.valid == 0 for r in results) else ExitCode.OK)

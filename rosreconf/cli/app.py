@@ -14,7 +14,7 @@ from typing import ParamSpec, TypeVar
 
 import typer
 
-from rosreconf import __version__
+from rosreconf import __version__, jsonout
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, InvalidInputError, RosreconfError
 
@@ -66,6 +66,7 @@ def _root(
     ),
 ) -> None:
     """Configure and reconfigure ROS systems from a component library."""
+    jsonout.allow_big_ints()  # counts of any size print in full, in text and JSON
 
 
 def _register() -> None:

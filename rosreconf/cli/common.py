@@ -7,6 +7,7 @@ names the same way, so their answers are always about the same library and schem
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -139,3 +140,10 @@ def select(
 def _did_you_mean(name: str, choices: Sequence[str]) -> str:
     close = difflib.get_close_matches(name, choices, n=1)
     return f" (did you mean {close[0]}?)" if close else ""
+
+
+def finite(value: float | None) -> float | None:
+    """Refuse NaN and infinity for a float option (typer's ``min``/``max`` let NaN through)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"{value} is not a finite number")
+    return value

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -12,6 +11,7 @@ import typer
 from rich.console import Console
 from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
+from rosreconf import jsonout
 from rosreconf.cli.common import (
     FailOption,
     JsonOption,
@@ -132,7 +132,7 @@ class _JsonStream:
             "note": sel.loaded.note,
             "failed": list(sel.failed),
         }
-        self._w(json.dumps(head)[:-1] + ', "schemas": [')
+        self._w(jsonout.dumps(head)[:-1] + ', "schemas": [')
 
     def _w(self, text: str) -> None:
         self.write(text)
@@ -142,7 +142,7 @@ class _JsonStream:
         self.first_schema = False
         self.first_config = True
         head = {"name": s.name, "title": s.display_name, "roles": [r.name for r in s.graph.roles]}
-        self._w(sep + json.dumps(head)[:-1] + ', "configurations": [')
+        self._w(sep + jsonout.dumps(head)[:-1] + ', "configurations": [')
 
     def configuration(
         self, sel: Selection, s: InteroperabilitySchema, config: Configuration, n: int
@@ -155,7 +155,7 @@ class _JsonStream:
             "components": list(config.components),
             "ros_graph": graph_dict(ros_graph(config, sel.library, s)),
         }
-        self._w(sep + json.dumps(doc))
+        self._w(sep + jsonout.dumps(doc))
 
     def end_schema(self, total: int | None, *, limit_reached: bool, why: str | None) -> None:
         tail = {
@@ -164,7 +164,7 @@ class _JsonStream:
             "limit_reached": limit_reached,
             "why_not": why,
         }
-        self._w("], " + json.dumps(tail)[1:])
+        self._w("], " + jsonout.dumps(tail)[1:])
 
     def close(self) -> None:
         self._w("]}\n")

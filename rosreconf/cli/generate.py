@@ -6,6 +6,7 @@ from typing import Annotated
 
 import typer
 
+from rosreconf.cli.common import finite
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.formats.generate import generate, write
@@ -22,7 +23,12 @@ def generate_command(
     ],
     coupling: Annotated[
         float,
-        typer.Option(min=0.0, max=1.0, help="Share of edges carrying a needs/excludes coupling."),
+        typer.Option(
+            min=0.0,
+            max=1.0,
+            callback=finite,
+            help="Share of edges carrying a needs/excludes coupling.",
+        ),
     ] = 0.2,
     seed: Annotated[int, typer.Option(help="Random seed; the same seed gives the same files.")] = 0,
 ) -> None:

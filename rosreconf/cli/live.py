@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from rosreconf import jsonout
 from rosreconf.cli.common import (
     ConfigurationOption,
     JsonOption,
@@ -132,7 +132,7 @@ def inspect_command(
     graph = _live(master, snapshot)
     result = compare(config, lib, sch, graph)
     if as_json:
-        write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")
+        write_stdout(jsonout.dumps(result.to_dict(), indent=2) + "\n")
     else:
         head = "conforms to" if result.ok else "does NOT conform to"
         where = graph.master_uri

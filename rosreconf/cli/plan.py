@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
+from rosreconf import jsonout
 from rosreconf.cli.common import (
     FailOption,
     JsonOption,
@@ -16,6 +16,7 @@ from rosreconf.cli.common import (
     OnlyOption,
     SchemaOption,
     Selection,
+    finite,
     select,
 )
 from rosreconf.cli.console import stderr, write_stdout
@@ -87,6 +88,10 @@ def make_planner(name: str, search: str | None) -> Planner:
     return PLANNERS[name]()
 
 
+MAX_TIMEOUT = 7 * 24 * 3600.0
+"""Longest --timeout: a week; beyond it a number is a typo, and ``inf`` crashed the timer."""
+
+
 def plan_command(
     fail: FailOption = None,
     library: LibraryOption = None,
@@ -101,7 +106,10 @@ def plan_command(
             f"string. Default: {DEFAULT_SEARCH}."
         ),
     ] = None,
-    timeout: Annotated[float, typer.Option(min=1, help="Seconds per schema.")] = 60.0,
+    timeout: Annotated[
+        float,
+        typer.Option(min=1, max=MAX_TIMEOUT, callback=finite, help="Seconds per schema."),
+    ] = 60.0,
     keep_pddl: Annotated[
         Path | None, typer.Option("--keep-pddl", help="Also write the PDDL into this folder.")
     ] = None,
@@ -147,7 +155,7 @@ def plan_command(
     if graph is not None:
         _draw(graph, sel, results)
     if as_json:
-        write_stdout(json.dumps(_document(sel, chosen, results), indent=2) + "\n")
+        write_stdout(jsonout.dumps(_document(sel, chosen, results), indent=2) + "\n")
     else:
         for r in results:
             write_stdout(_text(r))

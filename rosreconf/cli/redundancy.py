@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 from typing import Annotated
 
 import typer
 
+from rosreconf import jsonout
 from rosreconf.analysis.redundancy import redundancy
 from rosreconf.cli.common import JsonOption
 from rosreconf.cli.console import write_stdout
@@ -28,7 +28,7 @@ def redundancy_command(
 
     a = redundancy(p, n, q)
     if as_json:
-        write_stdout(json.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n")
+        write_stdout(jsonout.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n")
         return
     write_stdout(
         f"Theorem 10 with p = {p:g} (failure), N = {n}, q = {q:g}\n"

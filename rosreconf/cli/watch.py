@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import time
 from contextlib import ExitStack
@@ -11,12 +10,14 @@ from typing import IO, Annotated
 
 import typer
 
+from rosreconf import jsonout
 from rosreconf.cli.common import (
     ConfigurationOption,
     FailOption,
     LibraryOption,
     MasterOption,
     SchemaOption,
+    finite,
 )
 from rosreconf.cli.console import stderr
 from rosreconf.cli.live import OnlySchemaOption, target
@@ -39,9 +40,17 @@ def watch_command(
         bool,
         typer.Option("--stand-ins", help="Launch stand-in nodes instead of the real executables."),
     ] = False,
-    interval: Annotated[float, typer.Option(min=0.05, help="Seconds between polls.")] = 1.0,
+    interval: Annotated[
+        float, typer.Option(min=0.05, max=3600, callback=finite, help="Seconds between polls.")
+    ] = 1.0,
     settle: Annotated[
-        float, typer.Option(min=1.0, help="Seconds a change may take to show on the master.")
+        float,
+        typer.Option(
+            min=1.0,
+            max=3600,
+            callback=finite,
+            help="Seconds a change may take to show on the master.",
+        ),
     ] = 30.0,
     json_log: Annotated[
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
@@ -75,7 +84,7 @@ def watch_command(
                     "message": event.message,
                     **event.data,
                 }
-                log_file.write(json.dumps(doc) + "\n")
+                log_file.write(jsonout.dumps(doc) + "\n")
                 log_file.flush()
 
         work = stack.enter_context(private_workdir())

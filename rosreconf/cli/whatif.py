@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import functools
-import json
 import os
 from concurrent.futures import ProcessPoolExecutor
 from typing import Annotated, Any
@@ -12,6 +11,7 @@ import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rosreconf import jsonout
 from rosreconf.analysis.whatif import SchemaReport, analyse
 from rosreconf.cli.common import JsonOption, LibraryOption, OnlyOption, SchemaOption, select
 from rosreconf.cli.console import stderr, stdout, write_stdout
@@ -60,7 +60,7 @@ def whatif_command(
             progress.update(bar, visible=False)
             reports.append(report)
     if as_json:
-        write_stdout(json.dumps(_document(reports, max_failures)) + "\n")
+        write_stdout(jsonout.dumps(_document(reports, max_failures)) + "\n")
     else:
         for s, report in zip(sel.schemas, reports, strict=True):
             stdout.print(_table(report, s.display_name, max_failures))

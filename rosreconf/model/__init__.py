@@ -32,6 +32,7 @@ from rosreconf.model.library import (
     Requirement,
     RosLaunch,
     Span,
+    Substitution,
 )
 from rosreconf.model.schema import (
     Configuration,
@@ -61,6 +62,7 @@ __all__ = [
     "RosGraph",
     "RosLaunch",
     "Span",
+    "Substitution",
     "SystemGraph",
     "VertexKind",
     "interface_vertex",

@@ -16,7 +16,6 @@ from types import MappingProxyType
 from typing import NamedTuple
 
 
-
 class Span(NamedTuple):
     """Where a value was written: file, 1-based line and column.
 
@@ -94,6 +93,16 @@ class Requirement:
         """Return the options of this requirement found in ``provided`` (in option order)."""
         have = frozenset(provided)
         return tuple(o for o in self.options if o in have)
+
+
+class Substitution(str):
+    """A launch parameter value the user marked as a roslaunch substitution (``$(find ...)``).
+
+    Launch files evaluate ``$(...)`` in every value; only values of this type may carry one,
+    so that a library cannot run code on the robot by accident (``rosreconf.formats.values``).
+    """
+
+    __slots__ = ()
 
 
 @dataclass(frozen=True)
