@@ -74,11 +74,14 @@ def _text(a: SchemaAnalysis) -> str:
         lines.append(
             f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {', '.join(r.candidates)}"
         )
-    spof = ", ".join(a.single_points_of_failure) or "none"
-    lines.append(f"  single points of failure: {spof}")
-    if a.critical_pairs is None:
+    if a.valid == 0:
+        lines.append("  single points of failure: not applicable (no configuration to lose)")
+        lines.append("  critical pairs: not applicable (no configuration to lose)")
+    elif a.critical_pairs is None:
+        lines.append(f"  single points of failure: {_spof(a)}")
         lines.append("  critical pairs: too many components to check here (use rosreconf whatif)")
     else:
+        lines.append(f"  single points of failure: {_spof(a)}")
         pairs = ", ".join(f"{{{x}, {y}}}" for x, y in a.critical_pairs[:15])
         more = f" ... ({len(a.critical_pairs)} in all)" if len(a.critical_pairs) > 15 else ""
         lines.append(
@@ -97,3 +100,8 @@ def _text(a: SchemaAnalysis) -> str:
     else:
         lines.append("  reconfigurability probability: 0 (no configuration)")
     return "\n".join(lines) + "\n\n"
+
+
+def _spof(a: SchemaAnalysis) -> str:
+    """List the single points of failure of a schema that has a configuration."""
+    return ", ".join(a.single_points_of_failure) or "none"

@@ -71,6 +71,11 @@ def enumerate_command(
             try:
                 total = count(inst)
             except CountTooHard:
+                stderr.print(
+                    f"rosreconf: note: {s.name}: exact counting would need too large a table "
+                    "here; counting by listing every configuration instead (this can be slow)",
+                    markup=False,
+                )
                 total = sum(1 for _ in ClingoEngine().configurations(inst))
         n = 0
         if out:

@@ -10,7 +10,7 @@ import typer
 from rosreconf import jsonout
 from rosreconf.analysis.redundancy import redundancy
 from rosreconf.cli.common import JsonOption
-from rosreconf.cli.console import write_stdout
+from rosreconf.cli.console import stderr, write_stdout
 
 NOTE = (
     "p is read as a component's probability of FAILURE: Theorem 10's formula only makes "
@@ -27,6 +27,14 @@ def redundancy_command(
     """Compute the redundancy r with (1 - p^r)^N >= q (Theorem 10), beside the approximation."""
 
     a = redundancy(p, n, q)
+    if p > 0.5:  # almost surely an availability: say so, and answer both readings
+        other = redundancy(1 - p, n, q)
+        stderr.print(
+            f"rosreconf: warning: p = {p:g} is read as a FAILURE probability (r = {a.r_needed}); "
+            f"a value above 0.5 is almost surely an availability: if so, the failure "
+            f"probability is {1 - p:g} and r = {other.r_needed} (give --p {1 - p:g})",
+            markup=False,
+        )
     if as_json:
         write_stdout(jsonout.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n")
         return

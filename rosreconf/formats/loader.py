@@ -21,7 +21,7 @@ from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.checks import check
 from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
-from rosreconf.formats.values import value_problems
+from rosreconf.formats.values import duplicate_edges, value_problems
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -184,6 +184,7 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
         if kind is DocumentKind.LIBRARY:
             loaded.libraries.append(_build_library(tree, src.name))
         else:
+            loaded.problems.extend(duplicate_edges(tree))
             loaded.schemas.append(_build_schema(tree, src.name))
     return loaded
 
@@ -234,6 +235,8 @@ def load_split(
     """
     if not library_paths and not schema_paths:
         return load_selection([], base=base)
+    if library_paths and schema_paths:  # both given: the defaults are not read at all
+        return load_paths([*library_paths, *schema_paths])
     default = load_selection([], base=base)
     given = load_paths([*library_paths, *schema_paths])
     if not library_paths:

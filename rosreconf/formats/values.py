@@ -21,8 +21,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from rosreconf.errors import Problem
+from rosreconf.errors import Problem, Severity
 from rosreconf.formats import yamlsource as ys
+from rosreconf.model import Span
 
 MAX_METRIC = 1e12
 """Largest metric value: sums over 10,000 components stay exact in a float, and costs in PDDL."""
@@ -122,3 +123,37 @@ def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
 def _shown(raw: str) -> str:
     """Quote a number as written, shortened when it is very long (a 401-digit integer)."""
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
+
+
+def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
+    """Warn about a consumer-provider pair listed twice in a schema's edges.
+
+    The loader merges them (the entry without an ``interfaces`` restriction wins), which may
+    not be what the author meant: one of the two entries is ignored, silently until now.
+    """
+    seen: dict[tuple[str, str], Span] = {}
+    problems: list[Problem] = []
+    for entry in _items(tree.items.get("edges")):
+        fields = entry.items if isinstance(entry, ys.YMapping) else {}
+        consumer = fields.get("consumer")
+        if not isinstance(consumer, ys.YScalar):
+            continue
+        for provider in _items(fields.get("providers")):
+            if not isinstance(provider, ys.YScalar):
+                continue
+            key = (consumer.raw, provider.raw)
+            if key in seen:
+                problems.append(
+                    Problem(
+                        provider.span,
+                        f"edge {provider.raw} -> {consumer.raw} is listed again (first at "
+                        f"{seen[key]}); the two entries are merged and the one without "
+                        "'interfaces' wins",
+                        "list each consumer-provider pair once",
+                        code="duplicate-edge",
+                        severity=Severity.WARNING,
+                    )
+                )
+            else:
+                seen[key] = provider.span
+    return problems
