@@ -70,3 +70,26 @@ def test_probability_equals_brute_force_over_failure_states(
     if configs:
         assert result.reliability is not None
         assert math.isclose(result.reliability.probability, total, abs_tol=1e-12)
+
+
+@PROPS
+@given(problem=problems())
+def test_orthogonality_counterexamples_are_sound_and_complete_when_they_say_so(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema],
+) -> None:
+    """Every listed counterexample is one; when called complete, they explain every failure."""
+    library, schema = problem
+    result = analyse(library, schema)
+    pairs = {frozenset((p.first, p.second)) for p in result.incompatible}
+    alone = {u.component for u in result.unusable}
+    valid = {frozenset(c.components) for c in brute_force(library, schema)}
+    for config in valid:
+        assert not alone & config
+        assert not any(pair <= config for pair in pairs)
+    roles = schema.graph.roles
+    doms = [[c.name for c in library.candidates(r.abstraction)] for r in roles]
+    for combo in itertools.product(*doms):
+        chosen = frozenset(combo)
+        explained = bool(alone & chosen) or any(pair <= chosen for pair in pairs)
+        if result.counterexamples_complete:
+            assert explained == (chosen not in valid), combo

@@ -64,10 +64,17 @@ def _text(a: SchemaAnalysis) -> str:
             f"  orthogonal: no ({a.valid} of {a.substitutions} label-respecting substitutions "
             "are valid)"
         )
+        for un in a.unusable[:12]:
+            lines.append(f"    {un.component} (in no configuration): {un.reason}")
         for ip in a.incompatible[:12]:
             lines.append(f"    {ip.first} x {ip.second}: {ip.reason}")
         if len(a.incompatible) > 12:
             lines.append(f"    ... and {len(a.incompatible) - 12} more incompatible pairs (--json)")
+        if not a.counterexamples_complete:
+            lines.append(
+                "    (a sample: some substitutions fail only through three or more components "
+                "together, when a requirement can be met from several roles)"
+            )
     lines.append("  redundancy per role (r = candidates; usable = in some valid configuration):")
     for r in a.redundancy:
         usable = "?" if r.usable is None else str(len(r.usable))
