@@ -156,7 +156,10 @@ def analyse(
         return count(compile_instance(library, schema, dead | failures)) == 0
 
     relevant = sorted(set().union(*configs)) if configs else _relevant(inst)
-    result.single_points_of_failure = [c for c in relevant if kills(frozenset({c}))]
+    # A single point of failure is in every configuration, so in any one of them: only the
+    # components of one witness need the check (R counts, not one per candidate).
+    first = configs[0] if configs else _first(inst)
+    result.single_points_of_failure = [c for c in relevant if c in first and kills(frozenset({c}))]
     survivors = [c for c in relevant if c not in result.single_points_of_failure]
     if len(survivors) <= PAIR_LIMIT:
         result.critical_pairs = [
@@ -184,6 +187,12 @@ def _substitutions(inst: Instance) -> int:
         return math.prod(len(d) for d in inst.domains)
     names = [[c.name for c in d] for d in inst.domains]
     return sum(1 for combo in itertools.product(*names) if len(set(combo)) == len(combo))
+
+
+def _first(inst: Instance) -> frozenset[str]:
+    """Return the components of one valid configuration (the instance has one)."""
+    found = ClingoEngine().first(inst)
+    return frozenset(found.components) if found is not None else frozenset()
 
 
 def _relevant(inst: Instance) -> list[str]:
@@ -338,10 +347,19 @@ def monte_carlo(
     engine = ClingoEngine()
     hits = 0
     seen: dict[frozenset[str], bool] = {}
+    witnesses: list[frozenset[str]] = []  # configurations found so far
     for _ in range(samples):
         failed = frozenset(n for n in names if rng.random() < p[n]) | dead
         if failed not in seen:
-            seen[failed] = engine.first(compile_instance(library, schema, failed)) is not None
+            # A state that misses every component of a known configuration survives with it:
+            # no compile, no solver call (most samples of a large library are such states).
+            if any(not (w & failed) for w in witnesses):
+                seen[failed] = True
+            else:
+                found = engine.first(compile_instance(library, schema, failed))
+                if found is not None:
+                    witnesses.append(frozenset(found.components))
+                seen[failed] = found is not None
         hits += seen[failed]
     est = hits / samples
     low, high = wilson(hits, samples)
