@@ -117,6 +117,7 @@ def _summary(total: int | None, listed: int, why: str | None) -> str:
         return f"  {listed} configuration(s) listed; stopped at --limit\n\n"
     if why:
         return f"  no configuration: {why}\n\n"
+    jsonout.allow_big_ints()  # counts of 10,000-role libraries have thousands of digits
     digits = str(total)
     # Counts can have a thousand digits, far beyond a float: write the estimate from the digits.
     size = f" (about {digits[0]}.{digits[1:4]}e{len(digits) - 1}, {len(digits)} digits)"
