@@ -38,7 +38,7 @@ from rosreconf.model import Configuration, Requirement
 from rosreconf.planning.pddl_names import PddlNameError, PddlNames, Step, label
 from rosreconf.resources import Bundle, bundled
 from rosreconf.solve.instance import Instance
-from rosreconf.solve.solver import Objective
+from rosreconf.solve.objective import Objective
 
 METRIC_SCALE = 100
 """Metric weights are real numbers; PDDL costs are integers: weights count in hundredths."""
