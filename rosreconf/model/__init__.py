@@ -17,7 +17,7 @@ How the paper's names map onto this module::
     component library L                    ComponentLibrary
     system graph (Def. 5 (2))              SystemGraph (roles labelled from Lambda)
     interoperability schema [G, x, e]      InteroperabilitySchema (graph, skill, environment)
-    configuration library C (Def. 8)       ConfigurationLibrary
+    configuration library C (Def. 8)       ConfigurationLibrary (orthogonality: analysis)
     ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
     configuration                          Configuration (role -> component)
 """

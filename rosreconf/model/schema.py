@@ -135,7 +135,11 @@ class InteroperabilitySchema:
 
 @dataclass(frozen=True)
 class ConfigurationLibrary:
-    """The configuration library C (Def. 8): the list of interoperability schemas."""
+    """The configuration library C: the list of interoperability schemas Def. 8 names.
+
+    Only the list: what Def. 8 defines about it, orthogonality of C to L, is decided per schema
+    by ``rosreconf.analysis.library.analyse`` (docs/architecture.md).
+    """
 
     schemas: tuple[InteroperabilitySchema, ...]
 
