@@ -32,8 +32,8 @@ test: $(STAMP) system-deps lint typecheck pytest
 
 lint: $(STAMP)
 	$(BIN)/lint-imports
-	$(BIN)/ruff check rosreconf tests benchmarks
-	$(BIN)/ruff format --check rosreconf tests benchmarks
+	$(BIN)/ruff check rosreconf tests benchmarks scripts
+	$(BIN)/ruff format --check rosreconf tests benchmarks scripts
 
 typecheck: $(STAMP)
 	$(BIN)/mypy
