@@ -16,11 +16,11 @@ import pytest
 from typer.testing import CliRunner
 
 from rosreconf import jsonout
-from rosreconf.cli import enumerate as enumerate_cli
 from rosreconf.cli.app import app
 from rosreconf.formats import yamlsource
 from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
+from rosreconf.render.reports import enumerate as enumerate_report
 
 CASES = Path(__file__).parent / "cases"
 REPO = Path(__file__).resolve().parent.parent
@@ -83,7 +83,7 @@ def test_counts_of_any_size_print_in_text_and_json() -> None:
     limit = sys.get_int_max_str_digits()
     try:
         sys.set_int_max_str_digits(4300)  # Python's default, as in a fresh process
-        text = enumerate_cli._summary(count, 0, None)
+        text = enumerate_report._summary(count, 0, None)
         sys.set_int_max_str_digits(4300)
         doc = jsonout.dumps({"count": count})
     finally:

@@ -16,7 +16,6 @@ from rosreconf.cli.common import (
     select,
 )
 from rosreconf.cli.console import stderr, write_output
-from rosreconf.cli.target import targets
 from rosreconf.errors import ExitCode
 from rosreconf.outfiles import output_target
 from rosreconf.render.pictures import (
@@ -27,6 +26,7 @@ from rosreconf.render.pictures import (
     ros_dot,
     system_dot,
 )
+from rosreconf.solve.running import targets
 
 
 def graph_command(

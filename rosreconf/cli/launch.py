@@ -16,10 +16,10 @@ from rosreconf.cli.common import (
     select,
 )
 from rosreconf.cli.console import stderr, write_output
-from rosreconf.cli.target import targets
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.outfiles import output_target
 from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.solve.running import targets
 
 
 def launch_command(

@@ -2,20 +2,15 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict
 from typing import Annotated
 
 import typer
 
-from rosreconf import jsonout
 from rosreconf.analysis.redundancy import redundancy
 from rosreconf.cli.common import JsonOption
 from rosreconf.cli.console import stderr, write_stdout
-
-NOTE = (
-    "p is read as a component's probability of FAILURE: Theorem 10's formula only makes "
-    "sense that way (the paper's text calls it availability)."
-)
+from rosreconf.render.reports import Output
+from rosreconf.render.reports.redundancy import REPORTERS
 
 
 def redundancy_command(
@@ -35,15 +30,4 @@ def redundancy_command(
             f"probability is {1 - p:g} and r = {other.r_needed} (give --p {1 - p:g})",
             markup=False,
         )
-    if as_json:
-        write_stdout(jsonout.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n")
-        return
-    write_stdout(
-        f"Theorem 10 with p = {p:g} (failure), N = {n}, q = {q:g}\n"
-        f"  redundancy needed r        {a.r_needed}   ((1 - p^r)^N = {a.achieved:.6f} >= q)\n"
-        f"  exact real root            {a.r_exact:.6f}   (of (1 - p^r)^N = q)\n"
-        f"  paper's approximation      {a.r_approx:.6f}   "
-        f"(log(-log q)/log p - log N/log p)\n"
-        f"  approximation error        {a.error:+.6f}   ({a.relative_error:+.3%})\n"
-        f"note: {NOTE}\n"
-    )
+    write_stdout(REPORTERS[Output.of(as_json)].render(a))

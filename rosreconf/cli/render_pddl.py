@@ -7,20 +7,20 @@ from typing import Annotated
 import typer
 
 from rosreconf.cli.common import (
+    CurrentOption,
     FailOption,
     LibraryOption,
+    ObjectiveOption,
     OnlyOption,
     SchemaOption,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import write_stdout
-from rosreconf.cli.plan import CurrentOption, ObjectiveOption, currents, weights_of
 from rosreconf.errors import ExitCode
 from rosreconf.outfiles import output_folder
-from rosreconf.planning.pddl import render
-from rosreconf.planning.replan import write_task
-from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import Objective
+from rosreconf.planning.replan import write_tasks
+from rosreconf.solve.running import running_mappings
 
 
 def render_pddl(
@@ -47,10 +47,7 @@ def render_pddl(
     folder = output_folder(output)
     sel = select(library, schema, fail, only)
     weights = weights_of(objective)
-    running = currents(sel, current, weights)
-    for s in sel.schemas:
-        inst = compile_instance(sel.library, s, sel.failed)
-        task = render(inst, Objective(running[s.name], weights))
-        written = write_task(task, folder)
-        write_stdout(f"{written / 'domain.pddl'}\n{written / 'problem.pddl'}\n")
+    running = running_mappings(sel, current, weights)
+    written = write_tasks(sel.library, sel.schemas, sel.failed, running, weights, folder)
+    write_stdout("".join(f"{path}\n" for path in written))
     raise typer.Exit(ExitCode.OK)
