@@ -52,7 +52,7 @@ def test_count_says_when_it_falls_back_to_listing(
     monkeypatch.setattr(counting.count, "__defaults__", (1,))
     result = runner.invoke(app, ["enumerate", "--count", "--only", "object_repositioning"])
     assert result.exit_code == 0, result.output
-    assert "counting by listing every configuration" in result.stderr
+    assert "counted by listing every configuration" in result.stderr
 
 
 def test_duplicate_edges_are_a_warning_in_validate(
