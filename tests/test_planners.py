@@ -257,7 +257,8 @@ def test_a_hanging_planner_times_out_and_its_group_is_gone(parent: Path, report:
 
 
 def test_a_child_ignoring_sigterm_does_not_survive_the_timeout(parent: Path, report: Path) -> None:
-    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=0.5)
+    # 3 s: the fake must start and fork before the timeout, even on a loaded machine.
+    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=3.0)
     assert result.status is PlanStatus.TIMEOUT
     facts = read_report(report)
     assert len(facts["pids"]) == 2 and wait_until_gone(facts["pgid"]) == []
