@@ -257,12 +257,15 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
         params[key] = value.value
     remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
     ns = items.get("namespace")
+    node_name = items.get("node")
     return RosLaunch(
         package=_text(items["package"]),
         executable=_text(items["executable"]),
         parameters=MappingProxyType(params),
         remappings=MappingProxyType(remaps),
         namespace=_text(ns) if ns is not None else None,
+        node=_text(node_name) if node_name is not None else None,
+        args=tuple(_text(a) for a in _seq(items.get("args"))),
     )
 
 
@@ -324,8 +327,10 @@ def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
     for n in _seq(items.get("edges")):
         e = _map(n)
         interfaces = frozenset(_text(i) for i in _seq(e.get("interfaces")))
+        opt = e.get("optional")
+        optional = isinstance(opt, ys.YScalar) and opt.value is True
         for p in _seq(e["providers"]):
-            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, p.span))
+            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, p.span, optional))
     nominal = {k: _text(v) for k, v in _map(items.get("nominal")).items()}
     where = {"name": items["name"].span}
     where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
