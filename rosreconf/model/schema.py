@@ -95,7 +95,7 @@ class SystemGraph:
         for r in self.roles:
             g.add_node(r.name, abstraction=r.abstraction)
         for e in self.edges:
-            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces))
+            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces), optional=e.optional)
         return g
 
 

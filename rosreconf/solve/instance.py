@@ -36,9 +36,14 @@ class Instance:
         domains: per role, the candidate components (available, label and schema match),
             in library order.
         excluded: per role, candidate name -> why it was ruled out before solving.
-        edge_ok: per edge index, the allowed (consumer candidate, provider candidate) pairs.
+        edges: the (consumer, provider) role indices of the schema's *required* edges, the
+            ones every configuration must realise; optional edges are left out (rule
+            ``optional-edge`` of ``rosreconf.model.validity.RULES``) and only feed ``meets``.
+        edge_ok: per required edge index, the allowed (consumer candidate, provider
+            candidate) pairs.
         meets: per (role index, candidate, requirement index), the (provider role index,
-            provider candidate) pairs meeting that requirement along the role's edges.
+            provider candidate) pairs meeting that requirement along the role's edges
+            (required and optional).
     """
 
     schema: InteroperabilitySchema
@@ -102,6 +107,8 @@ def compile_instance(
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
         out_edges.setdefault(u, []).append((e, v))
+        if e.optional:
+            continue  # requirements may be met across it (meets, below); it need not be realised
         inst.edges.append((u, v))
         ok: set[tuple[str, str]] = set()
         for cu in domains[u]:

@@ -30,16 +30,17 @@ from rosreconf.solve.optimum import minimise
 LOG = logging.getLogger(__name__)
 
 PROGRAM = """
-1 { x(R,C) : cand(R,C) } 1 :- role(R).
-:- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).
-sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).
-:- x(U,CU), req(U,CU,I), not sat(U,I).
-chosen(C) :- x(_,C).
-:- x(_,C), needs(C,D), not chosen(D).
-:- x(_,C), excludes(C,D), chosen(D).
-:- x(R1,C), x(R2,C), R1 < R2.
+1 { x(R,C) : cand(R,C) } 1 :- role(R).                      % rule: complete
+:- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).          % rule: edge-realised
+sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).           % rule: requirement-met any-of
+:- x(U,CU), req(U,CU,I), not sat(U,I).                      % rule: requirement-met
+chosen(C) :- x(_,C).                                        % rule: needs excludes
+:- x(_,C), needs(C,D), not chosen(D).                       % rule: needs
+:- x(_,C), excludes(C,D), chosen(D).                        % rule: excludes
+:- x(R1,C), x(R2,C), R1 < R2.                               % rule: one-role-each
 #show x/2.
 """
+"""The fixed ASP program; each line names the rules of ``validity.RULES`` it encodes."""
 
 OPTIMISE = """
 #minimize { 1@2,R : x(R,C), current(R,D), C != D }.
