@@ -25,8 +25,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import pytest
-from pddlcheck import plan_all
+from pddlcheck import chosen, plan_all
 
+from rosreconf.formats.loader import load_bundled
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -41,6 +42,8 @@ from rosreconf.model import (
     validity,
 )
 from rosreconf.model.validity import RULES, Encoding, Rule, is_valid, violations
+from rosreconf.planning.pddl import render
+from rosreconf.planning.planners import FastDownward, solve
 from rosreconf.solve.counting import count
 from rosreconf.solve.factors import constraint_factors
 from rosreconf.solve.instance import compile_instance, prune
@@ -576,3 +579,42 @@ def test_relaxed_edges_matter(rule: Rule, case: Case) -> None:
     assert {c.assignment for c in strict} <= {c.assignment for c in loose}
     if rule.name == "optional-edge":
         assert len(strict) < len(loose)
+
+
+# --- the bundled example that needs optional edges -------------------------------------------
+
+
+def test_map_navigation_needs_its_optional_edges() -> None:
+    """libraries/nav_robot.yaml has 24 configurations; with plain edges it has none."""
+    loaded = load_bundled()
+    library = loaded.library
+    schema = next(s for s in loaded.schemas if s.name == "map_navigation")
+    assert any(e.optional for e in schema.graph.edges)
+    inst = compile_instance(library, schema)
+    listed = list(ClingoEngine().configurations(inst))
+    assert len(listed) == count(inst) == 24
+    assert all(is_valid(c, library, schema) for c in listed)
+    teb = [c for c in listed if c.mapping["controller"] == "TEB_CONTROLLER"]
+    assert len(teb) == 12  # TEB does not read the lidar, and is still chosen
+    plain = replace(
+        schema,
+        graph=SystemGraph(
+            schema.graph.roles, tuple(replace(e, optional=False) for e in schema.graph.edges)
+        ),
+    )
+    strict = compile_instance(library, plain)
+    assert count(strict) == 0
+    assert not any(is_valid(c, library, plain) for c in listed)
+    best = EliminationEngine().best(inst, Objective(weights={"cost": 1.0}))
+    assert best is not None and is_valid(best, library, schema)
+
+
+@pytest.mark.planner
+def test_map_navigation_plans_with_fast_downward() -> None:
+    """Role ``map`` and topic ``map`` share a name; PDDL still gets distinct objects."""
+    loaded = load_bundled()
+    schema = next(s for s in loaded.schemas if s.name == "map_navigation")
+    task = render(compile_instance(loaded.library, schema), Objective(weights={"cost": 1.0}))
+    result = solve(FastDownward(), task.domain, task.problem, timeout=60, memory_limit_mb=1024)
+    assert result.solved, result.message
+    assert is_valid(chosen(task, result, schema), loaded.library, schema)
