@@ -23,7 +23,7 @@ from rosreconf.formats.configfile import read_configurations
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.outfiles import write_atomic
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.importer import draft_library
+from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import LiveGraph, from_json, to_json, without_plumbing
 from rosreconf.ros.rosmaster import read_live_graph
 
@@ -91,11 +91,21 @@ def import_command(
     graph = _live(master, snapshot)
     text = draft_library(graph, name)
     write_atomic(output, text)
-    todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
+    live = without_plumbing(graph).nodes
+    todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
+    anonymous = [n.name for n in live if is_anonymous(n.name)]
+    if anonymous:
+        stderr.print(
+            f"rosreconf: warning: {', '.join(anonymous)} "
+            f"{'has an anonymous name' if len(anonymous) == 1 else 'have anonymous names'}"
+            " that change on every restart; inspect and watch will not find them again"
+            " (start them under fixed names and set ros.node)",
+            markup=False,
+        )
 
 
 def _live(master: str | None, snapshot: Path | None) -> LiveGraph:

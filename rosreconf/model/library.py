@@ -143,7 +143,7 @@ class Component:
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``.
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``.
     """
 
     name: str
