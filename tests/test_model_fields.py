@@ -208,3 +208,29 @@ def test_roslaunch_reads_node_name_and_args(tmp_path: Path) -> None:
     read = json.loads(result.stdout)
     assert read["sick_tim781"] == "scanner_type:=sick_tim_7xx"
     assert read["NAV_MAP_SERVER"] == "office.yaml"
+
+
+# --- one label, two types ---------------------------------------------------------------------
+
+CAMERAS = """\
+format: rosreconf/component-library
+version: 1
+name: cameras
+components:
+  - name: RAW_CAMERA
+    abstraction: camera
+    provides: [{topic: image, type: sensor_msgs/Image}]
+  - name: COMPRESSED_CAMERA
+    abstraction: camera
+    provides: [{topic: image, type: sensor_msgs/CompressedImage}]
+"""
+
+
+def test_alternatives_may_share_a_label_with_two_types(tmp_path: Path, runner: CliRunner) -> None:
+    """Was refused outright; now a warning, and no configuration chooses both."""
+    path = tmp_path / "cameras.yaml"
+    path.write_text(CAMERAS, encoding="utf-8")
+    loose = runner.invoke(app, ["validate", str(path)])
+    assert loose.exit_code == 0, loose.stdout
+    assert "warning: topic 'image' has type sensor_msgs/CompressedImage" in loose.stdout
+    assert runner.invoke(app, ["validate", "--strict", str(path)]).exit_code == 1

@@ -125,12 +125,17 @@ def _interfaces(components: Sequence[Component]) -> Iterator[Problem]:
             if first is None:
                 types[key] = (iface.type, c.name, span)
             elif first[0] != iface.type:
+                same = first[1] == c.name
                 yield Problem(
                     span,
                     f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
                     f"{first[0]} in {first[1]} ({first[2]})",
-                    "one label must carry one message class; rename one of them",
+                    "one component cannot use one label with two message classes; rename one"
+                    if same
+                    else "allowed for alternatives (raw and compressed images): no "
+                    "configuration chooses providers of both; rename one if they are one thing",
                     code="type-conflict",
+                    severity=Severity.ERROR if same else Severity.WARNING,
                 )
             other = kinds.get(iface.label)
             if other is None:

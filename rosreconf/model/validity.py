@@ -39,7 +39,7 @@ class Violation:
     Attributes:
         code: stable identifier (``failed``, ``wrong-abstraction``, ``not-in-schema``,
             ``reused``, ``edge-unrealised``, ``requirement-unmet``, ``needs``, ``excludes``,
-            ``unknown-component``, ``missing-role``).
+            ``unknown-component``, ``missing-role``, ``type-clash``).
         message: the reason in plain words.
         components: the components involved (for reports and pictures).
     """
@@ -228,6 +228,20 @@ RULES: tuple[Rule, ...] = (
         },
     ),
     Rule(
+        "one-type-per-label",
+        "Def. 1 (a topic or service vertex carries one message class, Gamma)",
+        "no two chosen components provide one topic or service label with different types "
+        "(raw and compressed images under one name are alternatives, never chosen together)",
+        ("type-clash",),
+        {
+            Encoding.DEFINITION: (_V + "_violations", _V + "type_clash"),
+            Encoding.CLINGO: (_I + "compile_instance", _S + "PROGRAM", _S + "_facts"),
+            Encoding.COUNTING: (_I + "compile_instance", _F + "constraint_factors"),
+            Encoding.ELIMINATION: (_I + "compile_instance", _F + "constraint_factors"),
+            Encoding.PDDL: (_I + "compile_instance", _P + "_Tables", _P + "_choose_actions"),
+        },
+    ),
+    Rule(
         "optional-edge",
         "extension (edges only some candidates use; issue 10)",
         "an optional edge need not be realised, but requirements may still be met across it",
@@ -242,6 +256,20 @@ RULES: tuple[Rule, ...] = (
     ),
 )
 """Every rule of validity, once. Adding a rule: see docs/formats.md, "Adding a rule"."""
+
+
+def type_clash(a: Component, b: Component) -> tuple[Interface, Interface] | None:
+    """Return a provision of ``a`` and one of ``b`` with one label but two types, if any.
+
+    A ROS name carries one message type, so two such components cannot run together even
+    when the library allows both (rule ``one-type-per-label``).
+    """
+    theirs = {(i.kind, i.label): i for i in b.provides}
+    for mine in sorted(a.provides):
+        other = theirs.get((mine.kind, mine.label))
+        if other is not None and other.type != mine.type:
+            return mine, other
+    return None
 
 
 def edge_interfaces(consumer: Component, provider: Component, edge: Edge) -> tuple[Interface, ...]:
@@ -359,6 +387,17 @@ def _violations(
                     f"{comp.name} ({role_name}) requires {req}, which no provider along its "
                     "edges offers",
                     (comp.name,),
+                )
+    distinct = sorted({c.name: c for c in chosen.values()}.values(), key=lambda c: c.name)
+    for i, a in enumerate(distinct):
+        for b in distinct[i + 1 :]:
+            clash = type_clash(a, b)
+            if clash is not None:
+                yield Violation(
+                    "type-clash",
+                    f"{a.name} provides {clash[0]} and {b.name} provides {clash[1]}: one ROS "
+                    "name cannot carry two types",
+                    (a.name, b.name),
                 )
     names = {c.name for c in chosen.values()}
     for comp in chosen.values():

@@ -11,7 +11,7 @@ rows (candidate combinations) it allows:
 * edge u -> v realised:                 scope {u, v}
 * requirements of u's component met:    scope {u} + the providers that can meet them
 * "C needs D":                          scope {u} + the roles D can fill
-* "C excludes D", one component per role (injectivity): scope {u, w}
+* "C excludes D", one type per label, one component per role (injectivity): scope {u, w}
 
 Generated system graphs have small treewidth, so eliminating the role with the fewest
 neighbours first keeps every intermediate table to a few candidates^3 rows.
@@ -95,6 +95,11 @@ def constraint_factors(
                 for w in holders.get(ex, []):
                     if w != u:
                         out.append(table((u, w), keep=(cu, ex).__ne__, rule="excludes"))
+            for other in sorted(inst.clashes.get(cu, ())):
+                for w in holders.get(other, []):
+                    if w > u:  # clashes are symmetric: one table per pair of roles
+                        pair = (cu, other).__ne__
+                        out.append(table((u, w), keep=pair, rule="one-type-per-label"))
     for shared in holders.values():
         for u, w in itertools.combinations(shared, 2):
             out.append(table((u, w), keep=_distinct, rule="one-role-each"))

@@ -34,9 +34,10 @@ PROGRAM = """
 :- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).          % rule: edge-realised
 sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).           % rule: requirement-met any-of
 :- x(U,CU), req(U,CU,I), not sat(U,I).                      % rule: requirement-met
-chosen(C) :- x(_,C).                                        % rule: needs excludes
+chosen(C) :- x(_,C).                           % rule: needs excludes one-type-per-label
 :- x(_,C), needs(C,D), not chosen(D).                       % rule: needs
 :- x(_,C), excludes(C,D), chosen(D).                        % rule: excludes
+:- x(_,C), clash(C,D), chosen(D).                           % rule: one-type-per-label
 :- x(R1,C), x(R2,C), R1 < R2.                               % rule: one-role-each
 #show x/2.
 """
@@ -130,6 +131,8 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
     for c in inst.library.components:
         out.extend(f"needs({ids[c.name]},{ids[d]})." for d in c.needs if d in ids)
         out.extend(f"excludes({ids[c.name]},{ids[d]})." for d in c.excludes if d in ids)
+    for name, others in sorted(inst.clashes.items()):
+        out.extend(f"clash({ids[name]},{ids[d]})." for d in sorted(others))
     if objective is not None:
         index = inst.role_index
         for role, comp in objective.current.items():
