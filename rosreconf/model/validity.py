@@ -15,6 +15,7 @@ from __future__ import annotations
 import enum
 from collections.abc import Collection, Iterator, Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from rosreconf.model import (
     Component,
@@ -25,11 +26,13 @@ from rosreconf.model import (
     InterfaceKind,
     InteroperabilitySchema,
     Requirement,
-    RosGraph,
     VertexKind,
     interface_vertex,
     node_vertex,
 )
+
+if TYPE_CHECKING:
+    from rosreconf.model import RosGraph
 
 
 @dataclass(frozen=True)
@@ -433,7 +436,9 @@ def ros_graph(
     vertex with edges provider -> vertex -> consumer.
     Provisions nobody uses stay dormant (Section 3) and are not drawn.
     """
-    g = RosGraph()
+    import networkx as nx  # here, not at the top: validating files never builds a ROS-graph
+
+    g: RosGraph = nx.DiGraph()
     mapping = configuration.mapping
     for role in schema.graph.roles:
         comp = library[mapping[role.name]]
