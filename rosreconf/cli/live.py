@@ -22,7 +22,7 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.importer import draft_library
+from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import to_json, without_plumbing
 from rosreconf.ros.rosmaster import read_live, read_live_graph
 from rosreconf.solve.running import one_target
@@ -58,11 +58,21 @@ def import_command(
     graph = read_live(master, snapshot)
     text = draft_library(graph, name)
     write_atomic(output, text)
-    todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
+    live = without_plumbing(graph).nodes
+    todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
+    anonymous = [n.name for n in live if is_anonymous(n.name)]
+    if anonymous:
+        stderr.print(
+            f"rosreconf: warning: {', '.join(anonymous)} "
+            f"{'has an anonymous name' if len(anonymous) == 1 else 'have anonymous names'}"
+            " that change on every restart; inspect and watch will not find them again"
+            " (start them under fixed names and set ros.node)",
+            markup=False,
+        )
 
 
 def inspect_command(
