@@ -18,7 +18,9 @@ import pytest
 import ros_harness
 from conftest import StartStandIn
 from misbehaving_masters import DripMaster, EndlessMaster
+from typer.testing import CliRunner
 
+from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveNode, from_json, to_json, without_plumbing
 from rosreconf.ros.rosmaster import alive, purge_dead, read_live_graph
@@ -282,3 +284,19 @@ def test_no_raw_bytes_from_the_wire_reach_the_message(head: bytes, body: bytes) 
         text = str(err.value)
         assert uri in text
         assert text.isprintable(), repr(text)
+
+
+def test_inspect_gives_up_on_a_dripping_master_with_exit_3(runner: CliRunner) -> None:
+    with DripMaster(interval=0.05, lifetime=20.0) as fake:
+        args = ["inspect", "--master", fake.uri, "--only", "object_repositioning"]
+        result = runner.invoke(app, [*args, "--master-timeout", "0.5"])
+    assert result.exit_code == 3, result.output
+    assert f"{fake.uri} did not answer getSystemState within 0.5 s" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_snapshot_cuts_an_endless_answer_at_the_given_cap(runner: CliRunner) -> None:
+    with EndlessMaster(lifetime=20.0) as fake:
+        result = runner.invoke(app, ["snapshot", "--master", fake.uri, "--max-answer-mb", "1"])
+    assert result.exit_code == 3, result.output
+    assert "with more than 1 MiB" in result.stderr and result.stdout == ""

@@ -13,6 +13,8 @@ from rosreconf.cli.common import (
     JsonOption,
     LibraryOption,
     MasterOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
     SchemaOption,
     select,
 )
@@ -25,7 +27,7 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import draft_library
 from rosreconf.ros.livegraph import LiveGraph, from_json, to_json, without_plumbing
-from rosreconf.ros.rosmaster import read_live_graph
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_live_graph
 
 OnlySchemaOption = Annotated[
     str | None,
@@ -66,10 +68,12 @@ def snapshot_command(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
     ] = None,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
 
-    text = to_json(read_live_graph(master))
+    text = to_json(read_live_graph(master, timeout=master_timeout, max_bytes=max_answer_mb << 20))
     if output is None:
         write_stdout(text)
     else:
@@ -85,10 +89,12 @@ def import_command(
         Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
     ] = None,
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
-    graph = _live(master, snapshot)
+    graph = _live(master, snapshot, master_timeout, max_answer_mb)
     text = draft_library(graph, name)
     write_atomic(output, text)
     todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
@@ -98,7 +104,9 @@ def import_command(
     )
 
 
-def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
+def _live(
+    master: str | None, snapshot: Path | None, timeout: float, max_answer_mb: int
+) -> LiveGraph:
     """Read the live graph from exactly one of a master and a snapshot file."""
     if (master is None) == (snapshot is None):
         raise UsageError("give exactly one of --master URI and --snapshot FILE")
@@ -108,7 +116,7 @@ def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
         except OSError as exc:
             raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
     assert master is not None
-    return read_live_graph(master)
+    return read_live_graph(master, timeout=timeout, max_bytes=max_answer_mb << 20)
 
 
 def inspect_command(
@@ -125,11 +133,13 @@ def inspect_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     as_json: JsonOption = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
 
     lib, sch, config = target(library, schema, configuration, only)
-    graph = _live(master, snapshot)
+    graph = _live(master, snapshot, master_timeout, max_answer_mb)
     result = compare(config, lib, sch, graph)
     if as_json:
         write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")
