@@ -16,13 +16,16 @@ from rosreconf.cli.common import (
     FailOption,
     LibraryOption,
     MasterOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
     SchemaOption,
 )
 from rosreconf.cli.console import stderr
 from rosreconf.cli.live import OnlySchemaOption, target
 from rosreconf.errors import ExitCode, ExternalToolError, UsageError
 from rosreconf.procs import private_workdir
-from rosreconf.ros.watcher import Event, Watcher
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.watcher import Event, Watcher, launch_log_dir
 
 
 def watch_command(
@@ -47,11 +50,15 @@ def watch_command(
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
     ] = None,
     once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
-    started. With --once: exit 0 if the system conforms at the end, else 1.
+    started. With --apply, launch files and roslaunch's output are kept in a new directory
+    rosreconf-watch-* under ROS's log directory (said at the start). With --once: exit 0 if
+    the system conforms at the end, else 1.
     """
 
     lib, sch, config = target(library, schema, configuration, only)
@@ -60,6 +67,14 @@ def watch_command(
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env["ROS_MASTER_URI"] = master
+    keep: Path | None = None
+    if apply:
+        try:
+            keep = launch_log_dir(env)
+        except OSError as exc:
+            where = exc.filename or "ROS's log directory"
+            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
+            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
         log_file: IO[str] | None = None
         if json_log is not None:
@@ -90,10 +105,17 @@ def watch_command(
             apply=apply,
             stand_ins=stand_ins,
             settle=settle,
+            timeout=master_timeout,
+            max_bytes=max_answer_mb << 20,
+            launch_dir=keep,
             failed=set(fail or []),
         )
         stack.callback(watcher.close)
-        what = "and repairing" if apply else "(not repairing: no --apply)"
+        what = (
+            f"and repairing (launch files kept in {keep})"
+            if apply
+            else "(not repairing: no --apply)"
+        )
         log(
             Event(
                 "started",
