@@ -14,12 +14,14 @@ from pathlib import Path
 
 import pytest
 import ros_harness
+from conftest import StartStandIn
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration
+from rosreconf.ros.standins import standin_spec
 from rosreconf.ros.watcher import Event, Watcher
 
 pytestmark = pytest.mark.ros
@@ -103,3 +105,20 @@ def test_watch_apply_says_roslaunchs_error_and_where_its_files_are(
     kept = sorted((ros_master.home / "log").glob("rosreconf-watch-*"))
     assert len(kept) == 1 and str(kept[0]) in result.stderr
     assert sorted(p.name for p in kept[0].iterdir()) == ["step1.launch", "step1.log"]
+
+
+def test_without_apply_a_restart_leaves_components_missing_not_failed(
+    ros_master: ros_harness.Master, standin: StartStandIn, tmp_path: Path
+) -> None:
+    events: list[Event] = []
+    watcher = _watcher(ros_master, tmp_path, events)
+    watcher.apply = False
+    for comp in watcher.current.components:
+        standin(standin_spec(watcher.library[comp]))
+    assert watcher.step().ok
+    ros_harness.restart_master(ros_master)
+    check = watcher.step()
+    kinds = [e.kind for e in events]
+    assert kinds == ["master-restarted", "missing"], kinds
+    assert not check.ok and "failed" not in kinds
+    assert events[1].data["components"] == list(watcher.current.components)
