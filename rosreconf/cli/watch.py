@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import time
@@ -76,6 +77,8 @@ def watch_command(
             msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
             raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
+        if keep is not None:
+            stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
         if json_log is not None:
             log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
@@ -145,3 +148,9 @@ def watch_command(
             if once:
                 raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
             time.sleep(interval)
+
+
+def _remove_if_empty(path: Path) -> None:
+    """Remove the launch directory watch made if nothing was launched (rmdir refuses else)."""
+    with contextlib.suppress(OSError):
+        path.rmdir()

@@ -349,7 +349,6 @@ class Watcher:
         """Stop every roslaunch this watcher started, and the nodes they run."""
         if self.launches:
             stop_all(self.launches)
-            self._check_launches()
             self._say("stopped", f"stopped the {len(self.launches)} roslaunch process(es) started")
         self.launches.clear()
         if self._steps and self.launch_dir is not None:
