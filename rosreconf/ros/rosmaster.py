@@ -23,12 +23,13 @@ import xmlrpc.client
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 from xml.parsers.expat import ExpatError
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.ros.livegraph import LiveGraph, LiveNode
+from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
 
 __all__ = [
     "DEFAULT_MAX_BYTES",
@@ -453,3 +454,29 @@ def master_identity(
     run_id = answer[2] if found else None  # -1: no such parameter (a bare rosmaster)
     pid_ok = isinstance(pid, int) and not isinstance(pid, bool)
     return (pid if pid_ok else None), (printable(run_id, 80) if isinstance(run_id, str) else None)
+
+
+def read_live(
+    master: str | None,
+    snapshot: Path | None,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
+) -> LiveGraph:
+    """Read the live graph from exactly one of a master's URI and a saved snapshot file.
+
+    ``timeout`` and ``max_bytes`` bound each call to the master (see ``read_live_graph``).
+
+    Raises:
+        UsageError: both or neither are given, or the snapshot cannot be read.
+        ExternalToolError: the master does not answer.
+    """
+    if (master is None) == (snapshot is None):
+        raise UsageError("give exactly one of --master URI and --snapshot FILE")
+    if snapshot is not None:
+        try:
+            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
+        except OSError as exc:
+            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
+    assert master is not None
+    return read_live_graph(master, timeout=timeout, max_bytes=max_bytes)
