@@ -33,7 +33,9 @@ def _lib_with(tmp_path: Path, old: str, new: str) -> Path:
     assert old in text
     (tmp_path / "libraries" / "mobile_robot.yaml").write_text(text.replace(old, new, 1))
     shutil.copytree(REPO / "schemas", tmp_path / "schemas")
-    shutil.copy(REPO / "libraries" / "robot_arms.yaml", tmp_path / "libraries")
+    for other in (REPO / "libraries").glob("*.yaml"):
+        if other.name != "mobile_robot.yaml":
+            shutil.copy(other, tmp_path / "libraries")
     return tmp_path
 
 
