@@ -1,0 +1,336 @@
+"""Simulate a configuration's control loops and judge them: the paper's M-solution (Section 4).
+
+The S-solution decides whether components *connect*; this module decides whether the
+connected loop *performs*. Each loop of a schema's ``simulation`` block is a classic unity
+reference, negative-feedback loop (the paper's Fig. 2)::
+
+    reference --(+)--> forward[0] --> ... --> forward[-1] --> plant --+--> y
+                (-)                                                    |
+                 +---- feedback[-1] <-- ... <-- feedback[0] <----------+
+
+so the closed loop from the reference to the plant output ``y`` is
+``F P / (1 + F P H)`` with ``F`` the product of the forward blocks and ``H`` the product of
+the feedback blocks. python-control builds it (``control.feedback``), finds its poles,
+simulates its step response and reads the step figures (``control.step_info``, 2 % band).
+
+Dead time is replaced by a Pade approximant of order ``PADE_ORDER`` (``control.pade``): a
+rational transfer function keeps the loop finite-dimensional, so stability is read from
+closed-loop poles and python-control can simulate it. The price is a small error near the
+delay itself (docs/simulation.md gives the measured figures; tests/test_performance.py checks
+them against an exact simulation of a delayed loop).
+
+Everything a worker needs is plain, hashable, picklable data (``LoopSpec``), so that equal
+loops are simulated once (``simulate_all`` keys its cache on the spec's content) and the same
+units of work run in a local process pool or on a Dask cluster unchanged.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from concurrent.futures import Executor, as_completed
+from dataclasses import dataclass
+from typing import Any
+
+import control
+import numpy as np
+
+SETTLING_BAND = 0.02
+"""The settling band, relative to the final value (python-control's default, 2 %)."""
+
+PADE_ORDER = 5
+"""Order of the Pade approximant that stands in for dead time (numerator and denominator)."""
+
+SAMPLES = 1001
+"""Points of the simulated step response, evenly spaced over the schema's ``duration``."""
+
+METRICS = ("settling_time", "steady_state_error", "overshoot")
+"""The simulated figures, each a maximum in a schema's requirements, lower is better."""
+
+
+@dataclass(frozen=True)
+class TransferFunction:
+    """A linear model in the Laplace domain, with optional dead time: ``e^(-delay s) num/den``.
+
+    Attributes:
+        num: numerator coefficients, highest power of s first (as python-control and MATLAB).
+        den: denominator coefficients, highest power first; not all zero, and at least as
+            long as the numerator once leading zeros are dropped (a proper model).
+        delay: dead time in seconds (>= 0).
+    """
+
+    num: tuple[float, ...]
+    den: tuple[float, ...]
+    delay: float = 0.0
+
+    def __str__(self) -> str:
+        text = f"({_poly(self.num)}) / ({_poly(self.den)})"
+        return f"{text} e^(-{self.delay:g} s)" if self.delay else text
+
+
+UNITY = TransferFunction((1.0,), (1.0,))
+"""The block of a role whose component has no dynamics: it passes its input through."""
+
+
+def _poly(coefficients: Sequence[float]) -> str:
+    order = len(coefficients) - 1
+    terms = []
+    for i, c in enumerate(coefficients):
+        power = order - i
+        if c == 0 and len(coefficients) > 1:
+            continue
+        s = "" if power == 0 else ("s" if power == 1 else f"s^{power}")
+        terms.append(f"{c:g}" + (f" {s}" if s else ""))
+    return " + ".join(terms) if terms else "0"
+
+
+@dataclass(frozen=True)
+class LoopSpec:
+    """One loop to simulate: its blocks in order, the plant, the reference step and horizon.
+
+    Two specs with equal content are the same simulation, which is what the cache relies on.
+
+    Attributes:
+        forward: the blocks from the error signal to the plant input, in order.
+        plant: the environment model.
+        feedback: the blocks from the plant output back to the comparison, in order.
+        reference: the size of the reference step.
+        duration: how long to simulate, seconds.
+    """
+
+    forward: tuple[TransferFunction, ...]
+    plant: TransferFunction
+    feedback: tuple[TransferFunction, ...]
+    reference: float = 1.0
+    duration: float = 10.0
+
+
+@dataclass(frozen=True)
+class LoopResult:
+    """How one loop performs: the figures of its step response.
+
+    Attributes:
+        stable: every closed-loop pole has a negative real part.
+        settling_time: seconds until the output stays within the 2 % band around its final
+            value; None when unstable, when it has not settled within the duration, or when
+            the final value is 0 (no relative band exists).
+        steady_state_error: ``|1 - y_final / reference|``, ``y_final`` from the DC gain; None
+            when unstable.
+        overshoot: percent above the final value (python-control's ``step_info``); None when
+            unstable or when the final value is 0.
+        final_value: the output's final value (reference times the DC gain); None when
+            unstable.
+    """
+
+    stable: bool
+    settling_time: float | None
+    steady_state_error: float | None
+    overshoot: float | None
+    final_value: float | None
+
+    def figure(self, metric: str) -> float:
+        """Return ``metric`` for comparisons: +inf when undefined (unstable, not settled)."""
+        value: float | None = getattr(self, metric)
+        return math.inf if value is None else value
+
+
+def to_control(tf: TransferFunction) -> control.TransferFunction:
+    """Return ``tf`` as python-control's transfer function, dead time by Pade approximant."""
+    sys = control.tf(list(tf.num), list(tf.den))
+    if tf.delay > 0:
+        num, den = control.pade(tf.delay, PADE_ORDER)
+        sys = sys * control.tf(num, den)
+    return sys
+
+
+def _product(blocks: Iterable[TransferFunction]) -> control.TransferFunction:
+    out = control.tf([1.0], [1.0])
+    for block in blocks:
+        out = out * to_control(block)
+    return out
+
+
+def closed_loop(spec: LoopSpec) -> control.TransferFunction | None:
+    """Return the closed loop from the reference to the plant output (negative feedback).
+
+    Returns None when the loop is ill-posed: proper blocks with direct feed-through can make
+    ``1 + F P H`` vanish at infinite frequency (an algebraic loop), leaving no proper closed
+    loop to simulate. Such a loop is reported unstable.
+    """
+    forward = _product(spec.forward) * to_control(spec.plant)
+    try:
+        sys = control.feedback(forward, _product(spec.feedback), sign=-1)
+    except ValueError:  # python-control: "zero denominator"
+        return None
+    num = np.trim_zeros(np.atleast_1d(sys.num[0][0]), "f")
+    den = np.trim_zeros(np.atleast_1d(sys.den[0][0]), "f")
+    return sys if len(den) > 0 and len(num) <= len(den) else None
+
+
+def is_stable(poles: Sequence[complex] | np.ndarray[Any, Any]) -> bool:
+    """Tell whether every pole lies strictly in the left half-plane (a stable loop)."""
+    return bool(np.all(np.real(poles) < 0))
+
+
+def time_points(spec: LoopSpec) -> np.ndarray[Any, Any]:
+    """Return the evenly spaced instants at which the step response is simulated."""
+    return np.linspace(0.0, spec.duration, SAMPLES)
+
+
+def step_curve(spec: LoopSpec) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
+    """Return (time, output) of the loop's response to its reference step (for plots).
+
+    An ill-posed loop has no response; its output is NaN throughout (plots leave it out).
+    """
+    t = time_points(spec)
+    sys = closed_loop(spec)
+    if sys is None:
+        return t, np.full_like(t, np.nan)
+    response = control.step_response(sys, t)
+    return t, spec.reference * np.asarray(response.outputs, dtype=float)
+
+
+def simulate_loop(spec: LoopSpec) -> LoopResult:
+    """Simulate one loop's step response and read its figures.
+
+    Stability comes from the closed-loop poles; the final value from the DC gain (exact for
+    a stable loop, whatever the duration); settling time and overshoot from python-control's
+    ``step_info`` over the simulated horizon, relative to that final value.
+    """
+    sys = closed_loop(spec)
+    if sys is None or not is_stable(sys.poles()):
+        return LoopResult(False, None, None, None, None)
+    gain = float(np.real(sys.dcgain()))
+    final = spec.reference * gain
+    error = abs(1.0 - gain)
+    if not math.isfinite(final) or abs(gain) < 1e-12:
+        return LoopResult(True, None, error if math.isfinite(error) else None, None, final)
+    t = time_points(spec)
+    y = spec.reference * np.asarray(control.step_response(sys, t).outputs, dtype=float)
+    settling, overshoot = step_figures(t, y, final)
+    return LoopResult(True, settling, error, overshoot, final)
+
+
+def step_figures(
+    t: np.ndarray[Any, Any], y: np.ndarray[Any, Any], final: float
+) -> tuple[float | None, float | None]:
+    """Return (settling time, overshoot %) of a step response by python-control's step_info.
+
+    ``step_info`` fails when the output never reaches 90 % of its final value (it looks for
+    a rise time); such a response has not settled within the horizon and has not overshot.
+    """
+    if not np.any(np.sign(final) * (y - 0.9 * final) >= 0):
+        return None, 0.0
+    info = control.step_info(y, t, yfinal=final, SettlingTimeThreshold=SETTLING_BAND)
+    settling = float(info["SettlingTime"])
+    overshoot = float(info["Overshoot"])
+    return (
+        settling if math.isfinite(settling) else None,
+        overshoot if math.isfinite(overshoot) else None,
+    )
+
+
+def simulate_chunk(specs: Sequence[LoopSpec]) -> list[LoopResult]:
+    """Simulate every loop of ``specs`` (a unit of work for a process pool or a Dask worker)."""
+    return [simulate_loop(spec) for spec in specs]
+
+
+Progress = Callable[[int], None]
+"""Called with the number of loops just simulated (for a progress display)."""
+
+
+def simulate_all(
+    specs: Iterable[LoopSpec],
+    cache: dict[LoopSpec, LoopResult] | None = None,
+    executor: Executor | None = None,
+    chunk_size: int = 16,
+    progress: Progress | None = None,
+) -> dict[LoopSpec, LoopResult]:
+    """Simulate each distinct loop of ``specs`` once; return the cache, spec -> result.
+
+    Loops already in ``cache`` are not simulated again. With an ``executor`` (a process
+    pool, or a Dask client's ``get_executor()``) the distinct loops go out in chunks of
+    ``chunk_size``; the results are the same as in-process, only sooner.
+    """
+    cache = {} if cache is None else cache
+    pending = list(dict.fromkeys(s for s in specs if s not in cache))
+    chunks = [tuple(pending[i : i + chunk_size]) for i in range(0, len(pending), chunk_size)]
+    if executor is None or len(chunks) < 2:
+        for chunk in chunks:
+            cache.update(zip(chunk, simulate_chunk(chunk), strict=True))
+            if progress:
+                progress(len(chunk))
+        return cache
+    futures = {executor.submit(simulate_chunk, chunk): chunk for chunk in chunks}
+    for future in as_completed(futures):
+        chunk = futures[future]
+        cache.update(zip(chunk, future.result(), strict=True))
+        if progress:
+            progress(len(chunk))
+    return cache
+
+
+@dataclass(frozen=True)
+class PerformanceRequirements:
+    """A schema's performance requirements: maxima, each optional.
+
+    Attributes:
+        settling_time: the longest acceptable settling time, seconds.
+        steady_state_error: the largest acceptable ``|1 - y_final / reference|``.
+        overshoot: the largest acceptable overshoot, percent.
+    """
+
+    settling_time: float | None = None
+    steady_state_error: float | None = None
+    overshoot: float | None = None
+
+    def limits(self) -> dict[str, float]:
+        """Return metric -> maximum for the requirements that are set."""
+        return {m: v for m in METRICS if (v := getattr(self, m)) is not None}
+
+    def met_by(self, result: LoopResult) -> bool:
+        """Tell whether a loop meets every requirement (an unstable loop meets none)."""
+        if not result.stable:
+            return False
+        return all(result.figure(m) <= limit for m, limit in self.limits().items())
+
+
+def worst(results: Iterable[LoopResult]) -> dict[str, float]:
+    """Return metric -> the worst figure over ``results`` (+inf when any is undefined)."""
+    listed = list(results)
+    return {m: max((r.figure(m) for r in listed), default=0.0) for m in METRICS}
+
+
+def dominates(a: Sequence[float], b: Sequence[float]) -> bool:
+    """Tell whether ``a`` is at least as good as ``b`` everywhere and better somewhere."""
+    return all(x <= y for x, y in zip(a, b, strict=True)) and any(
+        x < y for x, y in zip(a, b, strict=True)
+    )
+
+
+def pareto_front(points: Sequence[Sequence[float]]) -> list[int]:
+    """Return the indices of the points no other point dominates (lower is better), in order.
+
+    Sorting by the figures first means a point can only be dominated by one before it, and
+    only points already on the front need checking: O(n f) for a front of f points.
+    """
+    order = sorted(range(len(points)), key=lambda i: (tuple(points[i]), i))
+    front: list[int] = []
+    for i in order:
+        if not any(dominates(points[j], points[i]) for j in front):
+            front.append(i)
+    return sorted(front)
+
+
+def rank_key(meets: bool, figures: Mapping[str, float]) -> tuple[bool, float, float, float]:
+    """Return the key that ranks configurations: meeting the requirements first.
+
+    Then faster settling, smaller steady-state error and smaller overshoot, in that order:
+    the paper names settling time first among the measures (Section 5).
+    """
+    return (
+        not meets,
+        figures["settling_time"],
+        figures["steady_state_error"],
+        figures["overshoot"],
+    )
