@@ -12,20 +12,20 @@ import scipy.signal
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from rosreconf.performance import (
+from rosreconf.analysis.performance import (
     SAMPLES,
     SETTLING_BAND,
     LoopResult,
     LoopSpec,
-    PerformanceRequirements,
-    TransferFunction,
     dominates,
+    meets,
     pareto_front,
     simulate_all,
     simulate_loop,
     step_curve,
     worst,
 )
+from rosreconf.model.dynamics import PerformanceRequirements, TransferFunction
 
 PROPS = settings(max_examples=50, deadline=None, derandomize=True)
 
@@ -64,7 +64,7 @@ def test_third_order_loop_with_integrator_goes_unstable_past_routh_hurwitz_gain(
         assert result.steady_state_error == pytest.approx(0.0, abs=1e-9)
     else:
         assert result == LoopResult(False, None, None, None, None)
-        assert not PerformanceRequirements().met_by(result)
+        assert not meets(PerformanceRequirements(), result)
 
 
 def routh_stable(poly: np.ndarray) -> bool:
@@ -246,10 +246,10 @@ def test_requirements_and_worst_figures() -> None:
     unsettled = LoopResult(True, None, 0.0, 40.0, 1.0)
     unstable = LoopResult(False, None, None, None, None)
     req = PerformanceRequirements(settling_time=2.0, overshoot=10.0)
-    assert req.met_by(fast)
-    assert not req.met_by(slow)
-    assert not req.met_by(unsettled)
-    assert not req.met_by(unstable)
+    assert meets(req, fast)
+    assert not meets(req, slow)
+    assert not meets(req, unsettled)
+    assert not meets(req, unstable)
     assert worst([fast, slow]) == {
         "settling_time": 3.0,
         "steady_state_error": 0.01,

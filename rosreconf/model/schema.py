@@ -13,6 +13,7 @@ from types import MappingProxyType
 
 import networkx as nx
 
+from rosreconf.model.dynamics import Simulation
 from rosreconf.model.library import NOWHERE, Interface, InterfaceKind, Span
 
 
@@ -103,6 +104,8 @@ class InteroperabilitySchema:
         skill: x, the skill the graph implements.
         environment: e, the environment the skill can operate in.
         nominal: the declared running configuration, role -> component (may be empty).
+        simulation: the control loops to simulate and the performance required of them
+            (the M-solution), if given.
         span: where the schema was written.
         source: the file it came from.
         where: positions of values for error messages: ``"name"``, ``"nominal.<role>"``,
@@ -115,6 +118,7 @@ class InteroperabilitySchema:
     environment: str
     title: str = ""
     nominal: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    simulation: Simulation | None = None
     span: Span = field(default=NOWHERE, compare=False)
     source: str = ""
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)

@@ -174,9 +174,7 @@ def _draw_loop(ax: Any, panel: LoopPanel) -> None:
 
 
 def _draw_front(ax: Any, panel: FrontPanel) -> None:
-    keep = [
-        i for i, (x, y) in enumerate(panel.points) if math.isfinite(x) and math.isfinite(y)
-    ]
+    keep = [i for i, (x, y) in enumerate(panel.points) if math.isfinite(x) and math.isfinite(y)]
     ax.scatter(
         [panel.points[i][0] for i in keep],
         [panel.points[i][1] for i in keep],
@@ -194,8 +192,13 @@ def _draw_front(ax: Any, panel: FrontPanel) -> None:
         label="Pareto front",
     )
     for i in front:
-        ax.annotate(panel.labels[i], panel.points[i], fontsize="x-small", xytext=(4, 4),
-                    textcoords="offset points")
+        ax.annotate(
+            panel.labels[i],
+            panel.points[i],
+            fontsize="x-small",
+            xytext=(4, 4),
+            textcoords="offset points",
+        )
     ax.set_xlabel(panel.metrics[0])
     ax.set_ylabel(panel.metrics[1])
     ax.set_title(panel.title)

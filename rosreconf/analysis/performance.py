@@ -35,6 +35,8 @@ from typing import Any
 import control
 import numpy as np
 
+from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
+
 SETTLING_BAND = 0.02
 """The settling band, relative to the final value (python-control's default, 2 %)."""
 
@@ -43,45 +45,6 @@ PADE_ORDER = 5
 
 SAMPLES = 1001
 """Points of the simulated step response, evenly spaced over the schema's ``duration``."""
-
-METRICS = ("settling_time", "steady_state_error", "overshoot")
-"""The simulated figures, each a maximum in a schema's requirements, lower is better."""
-
-
-@dataclass(frozen=True)
-class TransferFunction:
-    """A linear model in the Laplace domain, with optional dead time: ``e^(-delay s) num/den``.
-
-    Attributes:
-        num: numerator coefficients, highest power of s first (as python-control and MATLAB).
-        den: denominator coefficients, highest power first; not all zero, and at least as
-            long as the numerator once leading zeros are dropped (a proper model).
-        delay: dead time in seconds (>= 0).
-    """
-
-    num: tuple[float, ...]
-    den: tuple[float, ...]
-    delay: float = 0.0
-
-    def __str__(self) -> str:
-        text = f"({_poly(self.num)}) / ({_poly(self.den)})"
-        return f"{text} e^(-{self.delay:g} s)" if self.delay else text
-
-
-UNITY = TransferFunction((1.0,), (1.0,))
-"""The block of a role whose component has no dynamics: it passes its input through."""
-
-
-def _poly(coefficients: Sequence[float]) -> str:
-    order = len(coefficients) - 1
-    terms = []
-    for i, c in enumerate(coefficients):
-        power = order - i
-        if c == 0 and len(coefficients) > 1:
-            continue
-        s = "" if power == 0 else ("s" if power == 1 else f"s^{power}")
-        terms.append(f"{c:g}" + (f" {s}" if s else ""))
-    return " + ".join(terms) if terms else "0"
 
 
 @dataclass(frozen=True)
@@ -270,29 +233,11 @@ def simulate_all(
     return cache
 
 
-@dataclass(frozen=True)
-class PerformanceRequirements:
-    """A schema's performance requirements: maxima, each optional.
-
-    Attributes:
-        settling_time: the longest acceptable settling time, seconds.
-        steady_state_error: the largest acceptable ``|1 - y_final / reference|``.
-        overshoot: the largest acceptable overshoot, percent.
-    """
-
-    settling_time: float | None = None
-    steady_state_error: float | None = None
-    overshoot: float | None = None
-
-    def limits(self) -> dict[str, float]:
-        """Return metric -> maximum for the requirements that are set."""
-        return {m: v for m in METRICS if (v := getattr(self, m)) is not None}
-
-    def met_by(self, result: LoopResult) -> bool:
-        """Tell whether a loop meets every requirement (an unstable loop meets none)."""
-        if not result.stable:
-            return False
-        return all(result.figure(m) <= limit for m, limit in self.limits().items())
+def meets(requirements: PerformanceRequirements, result: LoopResult) -> bool:
+    """Tell whether a loop meets every requirement (an unstable loop meets none)."""
+    if not result.stable:
+        return False
+    return all(result.figure(m) <= limit for m, limit in requirements.limits().items())
 
 
 def worst(results: Iterable[LoopResult]) -> dict[str, float]:
