@@ -32,6 +32,7 @@ from rosreconf.analysis.performance import (
     simulate_all,
     worst,
 )
+from rosreconf.analysis.workers import executor
 from rosreconf.errors import UsageError
 from rosreconf.model import (
     ComponentLibrary,
@@ -56,11 +57,13 @@ class LoopOutcome:
         loop: the loop's name.
         result: its figures.
         unity: the loop's roles whose component has no dynamics (simulated as unity gain).
+        meets_requirements: the loop is stable and meets every requirement of the schema.
     """
 
     loop: str
     result: LoopResult
     unity: tuple[str, ...]
+    meets_requirements: bool
 
 
 @dataclass(frozen=True)
@@ -209,14 +212,81 @@ def _performance(
     loops: Sequence[tuple[LoopSpec, LoopResult, tuple[str, ...]]],
 ) -> Performance:
     outcomes = tuple(
-        LoopOutcome(loop.name, result, unity)
+        LoopOutcome(loop.name, result, unity, meets(sim.requirements, result))
         for loop, (_, result, unity) in zip(sim.loops, loops, strict=True)
     )
     figures: dict[str, float] = dict(worst(o.result for o in outcomes))
     for name in library_metrics(library) - set(METRICS):  # a simulated figure wins
         figures[name] = sum(library[c].metrics.get(name, 0.0) for c in config.components)
-    ok = all(meets(sim.requirements, o.result) for o in outcomes)
+    ok = all(o.meets_requirements for o in outcomes)
     return Performance(config, outcomes, figures, ok)
+
+
+@dataclass
+class Sweep:
+    """What ``rosreconf simulate`` found over several schemas.
+
+    Attributes:
+        reports: one per schema with a simulation block, in the order given.
+        skipped: (schema, reason) for the schemas that were not simulated.
+        failed: the failed components the configurations avoid.
+    """
+
+    reports: list[SchemaSimulation] = field(default_factory=list)
+    skipped: list[tuple[str, str]] = field(default_factory=list)
+    failed: tuple[str, ...] = ()
+
+    @property
+    def notes(self) -> list[str]:
+        """Return one sentence per skipped schema, for the user."""
+        return [f"schema '{name}' not simulated: {why}" for name, why in self.skipped]
+
+
+def sweep(
+    library: ComponentLibrary,
+    schemas: Sequence[InteroperabilitySchema],
+    failed: Collection[str] = (),
+    limit: int | None = None,
+    pareto: Sequence[str] = (),
+    workers: int | None = None,
+    cluster: str | None = None,
+    *,
+    explicit: bool = False,
+) -> Sweep:
+    """Simulate each schema that has a simulation block, sharing one cache of loops.
+
+    With ``explicit`` (the user named the schemas) a schema without a simulation block is an
+    error; otherwise it is skipped and said so.
+
+    Raises:
+        UsageError: no schema can be simulated, a named one has no block, or a bad metric.
+        ExternalToolError: the Dask cluster cannot be used.
+    """
+    out = Sweep(failed=tuple(failed))
+    cache: Cache = {}
+    with executor(workers, cluster) as pool:
+        for schema in schemas:
+            if schema.simulation is None:
+                if explicit:
+                    simulation_of(schema)  # raises, saying what to add
+                out.skipped.append((schema.name, "it has no simulation block"))
+                continue
+            out.reports.append(
+                simulate_schema(
+                    library,
+                    schema,
+                    failed,
+                    limit=limit,
+                    pareto=pareto,
+                    cache=cache,
+                    executor=pool,
+                )
+            )
+    if not out.reports:
+        raise UsageError(
+            "no schema has a simulation block (add 'simulation:' to a schema; docs/simulation.md)"
+        )
+    return out
 
 
 def performance_of(

@@ -78,6 +78,7 @@ def _register() -> None:
         plan,
         redundancy,
         render_pddl,
+        simulate,
         validate,
         watch,
         whatif,
@@ -99,6 +100,7 @@ def _register() -> None:
         "plan": plan.plan_command,
         "generate": generate.generate_command,
         "whatif": whatif.whatif_command,
+        "simulate": simulate.simulate_command,
     }
     for name, function in commands.items():
         app.command(name)(guard(function))

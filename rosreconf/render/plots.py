@@ -19,7 +19,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from rosreconf.analysis.performance import step_curve
+from rosreconf.analysis.simulate import Sweep, loop_spec
 from rosreconf.errors import ExternalToolError, UsageError
+from rosreconf.model import ComponentLibrary
 from rosreconf.outfiles import write_atomic
 
 FORMATS = {".svg": "svg", ".png": "png"}
@@ -204,3 +207,55 @@ def _draw_front(ax: Any, panel: FrontPanel) -> None:
     ax.set_title(panel.title)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
+
+
+def draw_sweep(path: Path, library: ComponentLibrary, result: Sweep) -> None:
+    """Draw every simulated schema's loops (best-ranked curves) and Pareto fronts to ``path``.
+
+    Raises:
+        UsageError: unknown suffix, or the file cannot be written.
+        ExternalToolError: matplotlib is not installed.
+    """
+    format_of(path)  # refuse a bad name before simulating curves
+    loops: list[LoopPanel] = []
+    fronts: list[FrontPanel] = []
+    for report in result.reports:
+        sim = report.schema.simulation
+        assert sim is not None
+        chosen = report.pareto if report.pareto_metrics else range(len(report.ranked))
+        ranked = [report.ranked[i] for i in chosen][:MAX_CURVES]
+        for loop in sim.loops:
+            curves = []
+            for p in ranked:
+                spec, _ = loop_spec(library, sim, loop, p.configuration.mapping)
+                t, y = step_curve(spec)
+                outcome = next(o for o in p.loops if o.loop == loop.name)
+                label = (
+                    "#"
+                    + str(report.ranked.index(p) + 1)
+                    + " "
+                    + ", ".join(p.configuration.mapping[r] for r in loop.roles)
+                )
+                curves.append(Curve(label, list(t), list(y), outcome.result.stable))
+            loops.append(
+                LoopPanel(
+                    f"{report.schema.display_name}: loop {loop.name}",
+                    sim.reference,
+                    sim.requirements.limits(),
+                    curves,
+                    len(chosen),
+                )
+            )
+        if len(report.pareto_metrics) >= 2:
+            mx, my = report.pareto_metrics[:2]
+            fronts.append(
+                FrontPanel(
+                    f"{report.schema.display_name}: Pareto front over "
+                    + ", ".join(report.pareto_metrics),
+                    (mx, my),
+                    [(p.figures.get(mx, 0.0), p.figures.get(my, 0.0)) for p in report.ranked],
+                    report.pareto,
+                    [f"#{i + 1}" for i in range(len(report.ranked))],
+                )
+            )
+    draw(path, loops, fronts)
