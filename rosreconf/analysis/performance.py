@@ -206,7 +206,7 @@ def simulate_all(
     specs: Iterable[LoopSpec],
     cache: dict[LoopSpec, LoopResult] | None = None,
     executor: Executor | None = None,
-    chunk_size: int = 16,
+    chunk_size: int = 4,
     progress: Progress | None = None,
 ) -> dict[LoopSpec, LoopResult]:
     """Simulate each distinct loop of ``specs`` once; return the cache, spec -> result.

@@ -145,7 +145,9 @@ def _document(result: Sweep) -> dict[str, Any]:
         assert sim is not None
         front = set(report.pareto)
         configs = []
-        for i, p in enumerate(report.ranked):
+        shown = report.pareto if report.pareto_metrics else range(len(report.ranked))
+        for i in shown:
+            p = report.ranked[i]
             configs.append(
                 {
                     "rank": i + 1,

@@ -34,10 +34,10 @@ MAX_CURVES = 12
 
 @dataclass(frozen=True)
 class Curve:
-    """One configuration's step response in one loop.
+    """The step response of one assignment of a loop's roles (shared by configurations).
 
     Attributes:
-        label: the configuration, as the legend shows it.
+        label: the configurations (by rank) and the loop's components, as the legend shows.
         time: the instants, seconds.
         output: the plant output at those instants (NaN for an ill-posed loop).
         stable: whether the loop is stable (unstable curves are drawn dashed).
@@ -57,8 +57,9 @@ class LoopPanel:
         title: the panel's title (schema and loop).
         reference: the reference step size.
         limits: metric -> maximum (the schema's requirements that are set).
-        curves: the curves, best-ranked first.
-        total: how many configurations there were (the legend says when not all are drawn).
+        curves: one per distinct assignment of the loop's roles, best-ranked first.
+        total: how many distinct assignments there were (the title says when not all are
+            drawn).
     """
 
     title: str
@@ -173,7 +174,7 @@ def _draw_loop(ax: Any, panel: LoopPanel) -> None:
     ax.set_xlabel("time (s)")
     ax.set_ylabel("plant output")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small", loc="lower right")
+    ax.legend(fontsize="small", loc="best")
 
 
 def _draw_front(ax: Any, panel: FrontPanel) -> None:
@@ -223,27 +224,27 @@ def draw_sweep(path: Path, library: ComponentLibrary, result: Sweep) -> None:
         sim = report.schema.simulation
         assert sim is not None
         chosen = report.pareto if report.pareto_metrics else range(len(report.ranked))
-        ranked = [report.ranked[i] for i in chosen][:MAX_CURVES]
         for loop in sim.loops:
+            # Configurations that agree on the loop's roles share one curve.
+            groups: dict[tuple[str, ...], list[int]] = {}
+            for i in chosen:
+                mapping = report.ranked[i].configuration.mapping
+                groups.setdefault(tuple(mapping[r] for r in loop.roles), []).append(i)
             curves = []
-            for p in ranked:
+            for components, ranks in list(groups.items())[:MAX_CURVES]:
+                p = report.ranked[ranks[0]]
                 spec, _ = loop_spec(library, sim, loop, p.configuration.mapping)
                 t, y = step_curve(spec)
                 outcome = next(o for o in p.loops if o.loop == loop.name)
-                label = (
-                    "#"
-                    + str(report.ranked.index(p) + 1)
-                    + " "
-                    + ", ".join(p.configuration.mapping[r] for r in loop.roles)
-                )
+                label = f"{_ranks(ranks)}: {', '.join(components)}"
                 curves.append(Curve(label, list(t), list(y), outcome.result.stable))
             loops.append(
                 LoopPanel(
-                    f"{report.schema.display_name}: loop {loop.name}",
+                    f"{report.schema.display_name}: loop {loop.name} ({', '.join(loop.roles)})",
                     sim.reference,
                     sim.requirements.limits(),
                     curves,
-                    len(chosen),
+                    len(groups),
                 )
             )
         if len(report.pareto_metrics) >= 2:
@@ -259,3 +260,11 @@ def draw_sweep(path: Path, library: ComponentLibrary, result: Sweep) -> None:
                 )
             )
     draw(path, loops, fronts)
+
+
+def _ranks(ranks: list[int]) -> str:
+    """Say which configurations (by rank) a curve stands for: "#1", "#1, #3", "#1 and 5 more"."""
+    shown = [f"#{i + 1}" for i in ranks]
+    if len(shown) <= 3:
+        return ", ".join(shown)
+    return f"{shown[0]} and {len(shown) - 1} more"
