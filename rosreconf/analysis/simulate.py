@@ -364,3 +364,19 @@ def choose(
         passed,
         len(report.ranked),
     )
+
+
+def shortfall(schema: InteroperabilitySchema, performance: Performance) -> str:
+    """Say which loop misses which requirement, e.g. "gripper_force: overshoot 29.9 > 25"."""
+    sim = simulation_of(schema)
+    parts = []
+    for o in performance.loops:
+        if not o.result.stable:
+            parts.append(f"{o.loop}: unstable")
+            continue
+        for metric, limit in sim.requirements.limits().items():
+            value = o.result.figure(metric)
+            if value > limit:
+                shown = "not settled" if math.isinf(value) else f"{value:.3g}"
+                parts.append(f"{o.loop}: {metric} {shown} > {limit:g}")
+    return "; ".join(parts) or "none"
