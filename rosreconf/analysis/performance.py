@@ -26,6 +26,7 @@ units of work run in a local process pool or on a Dask cluster unchanged.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import Executor, as_completed
@@ -34,6 +35,7 @@ from typing import Any
 
 import control
 import numpy as np
+import scipy.linalg
 
 from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
 
@@ -99,30 +101,47 @@ class LoopResult:
 
 def to_control(tf: TransferFunction) -> control.TransferFunction:
     """Return ``tf`` as python-control's transfer function, dead time by Pade approximant."""
-    sys = control.tf(list(tf.num), list(tf.den))
-    if tf.delay > 0:
-        num, den = control.pade(tf.delay, PADE_ORDER)
-        sys = sys * control.tf(num, den)
-    return sys
+    num, den = _polynomials((tf,))
+    return control.tf(num, den)
 
 
-def _product(blocks: Iterable[TransferFunction]) -> control.TransferFunction:
-    out = control.tf([1.0], [1.0])
+@functools.lru_cache(maxsize=256)
+def _pade(delay: float) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
+    num, den = control.pade(delay, PADE_ORDER)
+    return np.asarray(num, dtype=float), np.asarray(den, dtype=float)
+
+
+def _polynomials(
+    blocks: Iterable[TransferFunction],
+) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
+    """Return the numerator and denominator of the blocks in series (dead time by Pade).
+
+    Plain polynomial products (numpy) rather than python-control's transfer-function
+    products: the same arithmetic, without building an object per factor, which made
+    assembling a loop cost more than simulating it.
+    """
+    num, den = np.array([1.0]), np.array([1.0])
     for block in blocks:
-        out = out * to_control(block)
-    return out
+        num, den = np.polymul(num, block.num), np.polymul(den, block.den)
+        if block.delay > 0:
+            pade_num, pade_den = _pade(block.delay)
+            num, den = np.polymul(num, pade_num), np.polymul(den, pade_den)
+    return num, den
 
 
 def closed_loop(spec: LoopSpec) -> control.TransferFunction | None:
     """Return the closed loop from the reference to the plant output (negative feedback).
 
-    Returns None when the loop is ill-posed: proper blocks with direct feed-through can make
-    ``1 + F P H`` vanish at infinite frequency (an algebraic loop), leaving no proper closed
-    loop to simulate. Such a loop is reported unstable.
+    The forward path (forward blocks, then the plant) and the feedback path are each one
+    transfer function; ``control.feedback`` closes the loop. Returns None when the loop is
+    ill-posed: proper blocks with direct feed-through can make ``1 + F P H`` vanish at
+    infinite frequency (an algebraic loop), leaving no proper closed loop to simulate. Such a
+    loop is reported unstable.
     """
-    forward = _product(spec.forward) * to_control(spec.plant)
+    forward = control.tf(*_polynomials((*spec.forward, spec.plant)))
+    feedback = control.tf(*_polynomials(spec.feedback))
     try:
-        sys = control.feedback(forward, _product(spec.feedback), sign=-1)
+        sys = control.feedback(forward, feedback, sign=-1)
     except ValueError:  # python-control: "zero denominator"
         return None
     num = np.trim_zeros(np.atleast_1d(sys.num[0][0]), "f")
@@ -149,8 +168,54 @@ def step_curve(spec: LoopSpec) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, An
     sys = closed_loop(spec)
     if sys is None:
         return t, np.full_like(t, np.nan)
-    response = control.step_response(sys, t)
-    return t, spec.reference * np.asarray(response.outputs, dtype=float)
+    return t, spec.reference * step_response(sys, t)
+
+
+BLOCK = 32
+"""Samples computed per step of the blocked recursion in ``step_response``."""
+
+
+def step_response(sys: control.TransferFunction, t: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
+    """Return the unit-step response of ``sys`` at the evenly spaced instants ``t``.
+
+    python-control gives the state-space form; a zero-order hold discretises it (as
+    ``control.c2d`` does), which is exact for a step input at the sample instants. The
+    recursion ``x[k+1] = Ad x[k] + Bd`` is then run ``BLOCK`` samples at a time:
+    ``x[s+j] = Ad^j x[s] + (Ad^(j-1) + ... + I) Bd``, with the powers computed once, so
+    that a thousand samples take a few dozen array operations instead of a thousand Python
+    steps (``control.step_response`` runs one Python step per sample, which took most of a
+    loop's time). tests/test_performance.py holds the curves to scipy's and
+    python-control's.
+    """
+    ss = control.ss(sys)
+    n = ss.nstates
+    # Zero-order hold: expm([[A, B], [0, 0]] dt) = [[Ad, Bd], [0, 1]] (what control.c2d
+    # computes, without building a system object, which cost ten times the exponential).
+    augmented = np.zeros((n + 1, n + 1))
+    augmented[:n, :n] = np.asarray(ss.A, dtype=float)
+    augmented[:n, n] = np.asarray(ss.B, dtype=float)[:, 0]
+    held = scipy.linalg.expm(augmented * float(t[1] - t[0]))
+    a, b = held[:n, :n], held[:n, n]
+    c = np.asarray(ss.C, dtype=float)[0]
+    feedthrough = float(np.asarray(ss.D, dtype=float)[0, 0])
+    y = np.empty(len(t))
+    with np.errstate(over="ignore", invalid="ignore"):  # unstable curves (plots) may blow up
+        powers = np.empty((BLOCK, n, n))
+        sums = np.empty((BLOCK, n))
+        powers[0], sums[0] = np.eye(n), 0.0
+        for j in range(1, BLOCK):
+            powers[j] = a @ powers[j - 1]
+            sums[j] = a @ sums[j - 1] + b
+        step_a = a @ powers[-1]
+        step_b = a @ sums[-1] + b
+        c_powers = np.einsum("i,jik->jk", c, powers)  # row j: c Ad^j
+        c_sums = sums @ c + feedthrough
+        x = np.zeros(n)
+        for start in range(0, len(t), BLOCK):
+            block = c_powers @ x + c_sums
+            y[start : start + BLOCK] = block[: len(t) - start]
+            x = step_a @ x + step_b
+    return y
 
 
 def simulate_loop(spec: LoopSpec) -> LoopResult:
@@ -169,7 +234,7 @@ def simulate_loop(spec: LoopSpec) -> LoopResult:
     if not math.isfinite(final) or abs(gain) < 1e-12:
         return LoopResult(True, None, error if math.isfinite(error) else None, None, final)
     t = time_points(spec)
-    y = spec.reference * np.asarray(control.step_response(sys, t).outputs, dtype=float)
+    y = spec.reference * step_response(sys, t)
     settling, overshoot = step_figures(t, y, final)
     return LoopResult(True, settling, error, overshoot, final)
 
@@ -193,8 +258,24 @@ def step_figures(
     )
 
 
+@functools.cache
+def single_threaded_blas() -> None:
+    """Make this process's BLAS use one thread (once per process; threadpoolctl).
+
+    A loop's matrices are 5 to 30 states wide. For such sizes a multithreaded BLAS only
+    adds synchronisation: on a busy two-core machine a 9x9 matrix exponential took 32 ms
+    with OpenBLAS's threads and 0.2 ms with one. Parallelism comes from the worker
+    processes instead (``--workers``, ``--cluster``), and every process computes the same
+    way (Dask workers run single-threaded BLAS by default too).
+    """
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1, user_api="blas")
+
+
 def simulate_chunk(specs: Sequence[LoopSpec]) -> list[LoopResult]:
     """Simulate every loop of ``specs`` (a unit of work for a process pool or a Dask worker)."""
+    single_threaded_blas()
     return [simulate_loop(spec) for spec in specs]
 
 

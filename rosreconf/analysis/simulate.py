@@ -183,17 +183,46 @@ def simulate_schema(
     metrics = check_metrics(library, pareto)
     cache = {} if cache is None else cache
     configs = list(configurations(library, schema, failed, limit))
-    specs = [[loop_spec(library, sim, loop, c.mapping) for loop in sim.loops] for c in configs]
-    distinct = {spec for per in specs for spec, _ in per}
+    # Configurations that agree on a loop's roles share its spec: key by component names
+    # (cheap to hash) and build each spec once.
+    index = {r.name: i for i, r in enumerate(schema.graph.roles)}
+    positions = [tuple(index[r] for r in loop.roles) for loop in sim.loops]
+    specs: dict[tuple[int, tuple[str, ...]], tuple[LoopSpec, tuple[str, ...]]] = {}
+    keys: list[tuple[tuple[int, tuple[str, ...]], ...]] = []
+    for config in configs:
+        names = config.components
+        row: list[tuple[int, tuple[str, ...]]] = []
+        for i, (loop, pos) in enumerate(zip(sim.loops, positions, strict=True)):
+            key = (i, tuple(names[p] for p in pos))
+            if key not in specs:
+                specs[key] = loop_spec(library, sim, loop, config.mapping)
+            row.append(key)
+        keys.append(tuple(row))
+    distinct = {spec for spec, _ in specs.values()}
     before = len(cache)
     simulate_all(distinct, cache, executor, progress=progress)
     report = SchemaSimulation(
         schema, loops_simulated=len(cache) - before, distinct_loops=len(distinct)
     )
-    done = [
-        _performance(library, sim, config, [(spec, cache[spec], unity) for spec, unity in per])
-        for config, per in zip(configs, specs, strict=True)
-    ]
+    judged: dict[tuple[tuple[int, tuple[str, ...]], ...], Performance] = {}
+    done = []
+    for config, loop_keys in zip(configs, keys, strict=True):
+        if loop_keys not in judged:
+            judged[loop_keys] = _performance(
+                library,
+                sim,
+                config,
+                [(specs[k][0], cache[specs[k][0]], specs[k][1]) for k in loop_keys],
+            )
+        same = judged[loop_keys]
+        done.append(
+            Performance(
+                config,
+                same.loops,
+                {**_library_figures(library, config), **worst(o.result for o in same.loops)},
+                same.meets_requirements,
+            )
+        )
     order = sorted(
         range(len(done)), key=lambda i: (*rank_key(done[i].meets_requirements, done[i].figures), i)
     )
@@ -215,9 +244,10 @@ def _performance(
         LoopOutcome(loop.name, result, unity, meets(sim.requirements, result))
         for loop, (_, result, unity) in zip(sim.loops, loops, strict=True)
     )
-    figures: dict[str, float] = dict(worst(o.result for o in outcomes))
-    for name in library_metrics(library) - set(METRICS):  # a simulated figure wins
-        figures[name] = sum(library[c].metrics.get(name, 0.0) for c in config.components)
+    figures: dict[str, float] = {
+        **_library_figures(library, config),
+        **worst(o.result for o in outcomes),  # a simulated figure wins over a library metric
+    }
     ok = all(o.meets_requirements for o in outcomes)
     return Performance(config, outcomes, figures, ok)
 
@@ -286,6 +316,16 @@ def sweep(
         raise UsageError(
             "no schema has a simulation block (add 'simulation:' to a schema; docs/simulation.md)"
         )
+    return out
+
+
+def _library_figures(library: ComponentLibrary, config: Configuration) -> dict[str, float]:
+    """Return the library's metrics (not simulated ones) summed over ``config``'s components."""
+    out: dict[str, float] = {}
+    for name in config.components:
+        for metric, value in library[name].metrics.items():
+            if metric not in METRICS:
+                out[metric] = out.get(metric, 0.0) + value
     return out
 
 
