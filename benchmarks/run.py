@@ -152,9 +152,17 @@ def main() -> None:
         "--clingo-timeout", type=float, default=60.0, help="per-cell limit of clingo_optimal"
     )
     ap.add_argument("--json", type=Path, default=HERE / "results.json")
+    ap.add_argument(
+        "--simulate-only",
+        action="store_true",
+        help="measure only the simulate sweep and update its entry in the JSON",
+    )
     args = ap.parse_args()
     if args.child:
         print(json.dumps(child(*args.child)))
+        return
+    if args.simulate_only:
+        update_simulate(args.json, args.timeout)
         return
     from rich.console import Console
     from rich.table import Table
@@ -279,6 +287,23 @@ def simulate_sweep(folder: Path, runs: int, timeout: float) -> dict[str, Any]:
         "speedup_2_workers": one / two,
         "runs": runs,
     }
+
+
+def update_simulate(path: Path, timeout: float) -> None:
+    """Measure only the simulate sweep and replace its entry in the results at ``path``."""
+    from rosreconf.formats.generate import generate, write
+
+    r, k = SIMULATE_SIZE
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / f"sim{r}x{k}"
+        write(generate(r, k, 0.2, seed=1, dynamics=True), folder)
+        result = simulate_sweep(folder, 3, timeout)
+    result["instance"] = f"{r}x{k}"
+    result["machine"] = machine()
+    doc = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
+    doc["simulate"] = result
+    path.write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
+    print(json.dumps(result, indent=2))
 
 
 def machine() -> dict[str, Any]:

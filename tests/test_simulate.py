@@ -257,3 +257,15 @@ def test_plan_never_chooses_a_configuration_that_fails_the_requirements() -> Non
     assert (mapping["shoulder_joint"], mapping["camera"]) == ("NSM2", "NCA2")
     assert result.explanation[0].startswith("The fewest-change configuration was passed over")
     assert performance_of(loaded.library, schema, result.configuration).meets_requirements
+
+
+def test_whatif_on_the_cluster_equals_local(
+    runner: CliRunner, tmp_path: Path, cluster: Any
+) -> None:
+    args = ["whatif", "--only", "object_repositioning", "--json"]
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(tmp_path)
+        local = runner.invoke(app, [*args, "--workers", "1"])
+        remote = runner.invoke(app, [*args, "--cluster", cluster.scheduler_address])
+    assert local.exit_code == remote.exit_code == 0, remote.stderr
+    assert json.loads(remote.stdout) == json.loads(local.stdout)
