@@ -10,8 +10,13 @@ One function owns the subprocess so that each rule below holds for all of them:
   also ends children that ignore SIGTERM; a KeyboardInterrupt or SIGTERM that reaches
   rosreconf while it waits stops the group the same way and is then re-raised;
 - after every run, whatever is left of the group (a daemon the program forked) is killed;
-- optional address-space and CPU-time limits, set with ``setrlimit`` in the child; that is the
-  only thing the ``preexec_fn`` does, and it is used only when a limit is asked for;
+- SIGINT has its default action in the program even when rosreconf runs with SIGINT ignored
+  (a background job of a script): the program is in its own session, so no terminal's Ctrl-C
+  reaches it anyway, and the only SIGINT it ever gets is rosreconf's own request to stop
+  (``Background.stop``), which an inherited "ignore" would silently defeat;
+- optional address-space and CPU-time limits, set with ``setrlimit`` in the child; those
+  limits and the SIGINT reset are the only things the ``preexec_fn`` does, and it is used only
+  when a limit is asked for or SIGINT is ignored;
 - stdout and stderr go to anonymous temporary files (no pipe can fill up and block the
   program) and only their last ``max_output_bytes`` are kept;
 - an executable that does not exist is a result (``missing``), not an exception, so that a
@@ -165,7 +170,7 @@ def run_program(
                 cwd=cwd,
                 env=None if env is None else dict(env),
                 start_new_session=True,
-                preexec_fn=_limits(memory_limit_mb, cpu_limit_s),
+                preexec_fn=_child_setup(memory_limit_mb, cpu_limit_s),
             )
         except FileNotFoundError:
             return ProgramResult(args, MISSING_RETURNCODE, "", "", 0.0, missing=True)
@@ -268,6 +273,7 @@ def start_program(
             proc = subprocess.Popen(
                 args, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=cwd,
                 env=None if env is None else dict(env), start_new_session=True,
+                preexec_fn=_child_setup(None, None),
             )  # fmt: skip
         except FileNotFoundError:
             raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None
@@ -308,8 +314,15 @@ def private_workdir(parent: Path | None = None) -> Iterator[Path]:
             shutil.rmtree(path, ignore_errors=True)
 
 
-def _limits(memory_limit_mb: int | None, cpu_limit_s: int | None) -> Callable[[], None] | None:
-    """Compute the rlimits in the parent; return a preexec_fn that only calls setrlimit."""
+def _child_setup(memory_limit_mb: int | None, cpu_limit_s: int | None) -> Callable[[], None] | None:
+    """Return the preexec_fn a program needs (rlimits, SIGINT reset), or None when it needs none.
+
+    Everything is computed in the parent; the function only calls ``setrlimit`` and
+    ``signal.signal``, because between fork and exec the child must not take locks that
+    another thread of rosreconf may have held. An ignored
+    SIGINT is the one signal disposition that exec keeps and that rosreconf relies on
+    (``Background.stop`` sends it); subprocess's ``restore_signals`` does not cover it.
+    """
     wanted: list[tuple[int, tuple[int, int]]] = []
     if memory_limit_mb is not None:
         size = memory_limit_mb << 20
@@ -318,14 +331,17 @@ def _limits(memory_limit_mb: int | None, cpu_limit_s: int | None) -> Callable[[]
         wanted.append(
             (resource.RLIMIT_CPU, _clamp(resource.RLIMIT_CPU, cpu_limit_s, cpu_limit_s + 1))
         )
-    if not wanted:
+    reset_sigint = signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+    if not wanted and not reset_sigint:
         return None
 
-    def set_limits() -> None:
+    def setup() -> None:
         for which, limits in wanted:
             resource.setrlimit(which, limits)
+        if reset_sigint:
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
 
-    return set_limits
+    return setup
 
 
 def _clamp(which: int, soft: int, hard: int) -> tuple[int, int]:
