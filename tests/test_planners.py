@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import DATA, FAKES, read_report, wait_until_gone
+from conftest import DATA, FAKE_START_SECONDS, FAKES, fake, read_report, wait_until_gone
 
 from rosreconf.planners import (
     FF,
@@ -153,9 +153,19 @@ def test_a_tiny_timeout_stops_fast_downward(parent: Path) -> None:
 def test_a_one_second_budget_is_enough_for_a_tiny_task(parent: Path) -> None:
     # The driver rounds each component's remaining CPU time down to whole seconds: given
     # --overall-time-limit 1 its translator gets 0 s and dies of SIGXCPU (exit code 232).
-    result = run(FastDownward(), parent, timeout=1.0)
+    # Those are CPU seconds: the run gets the CPU limits of a 1-second budget but more
+    # wall-clock time, which a loaded machine would otherwise turn into a timeout.
+    class OneSecondBudget(FastDownward):
+        def command(self, files: TaskFiles, *, timeout: float, memory_limit_mb: int) -> list[str]:
+            return super().command(files, timeout=1.0, memory_limit_mb=memory_limit_mb)
+
+        def limits(self, timeout: float, memory_limit_mb: int) -> tuple[int | None, int | None]:
+            return super().limits(1.0, memory_limit_mb)
+
+    result = run(OneSecondBudget(), parent, timeout=60)
     assert result.status is PlanStatus.SOLVED, result.message
     assert result.command[result.command.index("--overall-time-limit") + 1] == "2"
+    assert OneSecondBudget().limits(60, 1024) == FastDownward().limits(1.0, 1024)
 
 
 def test_missing_fast_downward_says_how_to_install_it(
@@ -175,7 +185,7 @@ class FakeFastDownward(FastDownward):
 
     def __init__(self, script: str, *args: str) -> None:
         super().__init__("fake")
-        self.argv = [str(FAKES / script), *args]
+        self.argv = fake(script, *args)
 
     def command(self, files: TaskFiles, *, timeout: float, memory_limit_mb: int) -> list[str]:
         task = [str(files.domain), str(files.problem)]
@@ -251,13 +261,13 @@ def test_a_plan_is_complete_only_if_it_ends_with_the_cost_line(text: str, expect
 
 
 def test_a_hanging_planner_times_out_and_its_group_is_gone(parent: Path, report: Path) -> None:
-    result = run(FakeFastDownward("hang.py"), parent, timeout=0.5)
-    assert result.status is PlanStatus.TIMEOUT and result.elapsed < 3
+    result = run(FakeFastDownward("hang.py"), parent, timeout=FAKE_START_SECONDS)
+    assert result.status is PlanStatus.TIMEOUT and result.elapsed < FAKE_START_SECONDS + 3
     assert wait_until_gone(read_report(report)["pgid"]) == []
 
 
 def test_a_child_ignoring_sigterm_does_not_survive_the_timeout(parent: Path, report: Path) -> None:
-    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=0.5)
+    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=FAKE_START_SECONDS)
     assert result.status is PlanStatus.TIMEOUT
     facts = read_report(report)
     assert len(facts["pids"]) == 2 and wait_until_gone(facts["pgid"]) == []
@@ -266,7 +276,7 @@ def test_a_child_ignoring_sigterm_does_not_survive_the_timeout(parent: Path, rep
 def test_an_anytime_planner_stopped_by_the_timeout_keeps_its_best_complete_plan(
     parent: Path,
 ) -> None:
-    result = run(FakeFastDownward("anytime.py"), parent, timeout=1.0)
+    result = run(FakeFastDownward("anytime.py"), parent, timeout=FAKE_START_SECONDS)
     assert (result.status, result.cost) == (PlanStatus.SOLVED, 1)
     assert result.actions == (("pick", ("sensor", "cam_b", "power", "image")),)
     assert "time limit" in result.message
