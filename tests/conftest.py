@@ -23,7 +23,7 @@ import ros_harness
 from hypothesis import HealthCheck, settings
 from typer.testing import CliRunner
 
-from rosreconf.planners.fast_downward import fast_downward_root
+from rosreconf.planning.planners.fast_downward import fast_downward_root
 
 FAKES = Path(__file__).parent / "fakes"
 DATA = Path(__file__).parent / "data"

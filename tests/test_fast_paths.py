@@ -20,9 +20,9 @@ from conftest import examples
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from rosreconf import yamlsource as ys
 from rosreconf.errors import InvalidInputError
-from rosreconf.structure import DocumentKind, fast_validator, json_schema
+from rosreconf.formats import yamlsource as ys
+from rosreconf.formats.structure import DocumentKind, fast_validator, json_schema
 
 REPO = Path(__file__).resolve().parent.parent
 YAML_FILES = sorted(
@@ -67,10 +67,10 @@ def test_parsers_agree_on_every_file(path: Path, monkeypatch: pytest.MonkeyPatch
 # --- the two YAML parsers give the same answer on every text ------------------------------
 #
 # libyaml (the fast path) and PyYAML's pure parser differ in a few places (listed in
-# rosreconf/yamlsource.py); rosreconf takes the pure path wherever they might, so these tests
-# compare rosreconf's answers with libyaml allowed and with libyaml switched off. Every
-# counterexample ever found is pinned with @example; `make explore` searches with random seeds
-# and 50 times the examples.
+# rosreconf/formats/yamlsource.py); rosreconf takes the pure path wherever they might, so
+# these tests compare rosreconf's answers with libyaml allowed and with libyaml switched off.
+# Every counterexample ever found is pinned with @example; `make explore` searches with random
+# seeds and 50 times the examples.
 
 LIBRARY = (REPO / "libraries" / "robot_arms.yaml").read_text(encoding="utf-8")
 BUNDLED = {

@@ -1,4 +1,4 @@
-"""Tests for rosreconf plan / render-pddl and rosreconf.planning on the bundled example."""
+"""Tests for rosreconf plan / render-pddl and rosreconf.planning.replan on the bundled example."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import pytest
 from conftest import fake
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.configfile import read_configurations
-from rosreconf.planners import PLANNERS, FastDownward, TaskFiles
+from rosreconf.cli.app import app
+from rosreconf.formats.configfile import read_configurations
+from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
 
 
 def by_name(doc: dict[str, object]) -> dict[str, dict[str, object]]:
