@@ -254,22 +254,26 @@ def _libyaml_events(text: str, loader: type[yaml.CSafeLoader]) -> Iterator[yaml.
     flow = 0  # depth of flow collections; nothing inside one can be a block collection
     end = len(text)
     for event in yaml.parse(text, Loader=loader):
-        if isinstance(event, yaml.ScalarEvent):
-            start = event.start_mark  # libyaml gives every event one
-            if event.tag is not None or start is None:
+        if type(event) is yaml.ScalarEvent:  # most events: the exact type is the cheaper test
+            if event.tag is not None:
                 raise _ParsersMayDiffer
-            if not event.style and flow and (not event.value or "?" in event.value):
-                raise _ParsersMayDiffer
-            if not event.style and not event.value and start.index >= end:
-                raise _ParsersMayDiffer
-            if event.style in ("|", ">") and _BLOCK_HEADER_THEN_COMMENT.match(text, start.index):
-                raise _ParsersMayDiffer
+            style = event.style
+            if not style:  # plain: "" from libyaml
+                value = event.value
+                if flow and (not value or "?" in value):
+                    raise _ParsersMayDiffer
+                if not value and (event.start_mark is None or event.start_mark.index >= end):
+                    raise _ParsersMayDiffer
+            elif style == "|" or style == ">":
+                start = event.start_mark  # libyaml gives every event one
+                if start is None or _BLOCK_HEADER_THEN_COMMENT.match(text, start.index):
+                    raise _ParsersMayDiffer
         elif isinstance(event, yaml.MappingStartEvent | yaml.SequenceStartEvent):
             if event.tag is not None:
                 raise _ParsersMayDiffer
             if flow or event.flow_style:
                 flow += 1
-        elif isinstance(event, yaml.MappingEndEvent | yaml.SequenceEndEvent) and flow:
+        elif flow and isinstance(event, yaml.MappingEndEvent | yaml.SequenceEndEvent):
             flow -= 1
         yield event
 
