@@ -8,7 +8,15 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import DATA, FAKE_START_SECONDS, FAKES, fake, read_report, wait_until_gone
+from conftest import (
+    DATA,
+    FAKE_START_SECONDS,
+    FAKES,
+    LOADED_MACHINE_SLACK,
+    fake,
+    read_report,
+    wait_until_gone,
+)
 
 from rosreconf.planning.planners import (
     FF,
@@ -146,15 +154,16 @@ def test_a_malformed_search_string_is_a_planner_error(parent: Path) -> None:
 def test_a_tiny_timeout_stops_fast_downward(parent: Path) -> None:
     result = run(FastDownward(), parent, timeout=0.05)
     assert result.status is PlanStatus.TIMEOUT and result.actions == ()
-    assert result.elapsed < 2 and "time limit" in result.message
+    assert result.elapsed < 0.05 + LOADED_MACHINE_SLACK and "time limit" in result.message
 
 
 @pytest.mark.planner
-def test_a_one_second_budget_is_enough_for_a_tiny_task(parent: Path) -> None:
+def test_a_one_second_budget_does_not_starve_the_translator(parent: Path) -> None:
     # The driver rounds each component's remaining CPU time down to whole seconds: given
     # --overall-time-limit 1 its translator gets 0 s and dies of SIGXCPU (exit code 232).
     # Those are CPU seconds: the run gets the CPU limits of a 1-second budget but more
-    # wall-clock time, which a loaded machine would otherwise turn into a timeout.
+    # wall-clock time, which a loaded machine would otherwise turn into a timeout before the
+    # translator's CPU second is used up.
     class OneSecondBudget(FastDownward):
         def command(self, files: TaskFiles, *, timeout: float, memory_limit_mb: int) -> list[str]:
             return super().command(files, timeout=1.0, memory_limit_mb=memory_limit_mb)
@@ -164,6 +173,7 @@ def test_a_one_second_budget_is_enough_for_a_tiny_task(parent: Path) -> None:
 
     result = run(OneSecondBudget(), parent, timeout=60)
     assert result.status is PlanStatus.SOLVED, result.message
+    assert result.returncode != 232, result.message
     assert result.command[result.command.index("--overall-time-limit") + 1] == "2"
     assert OneSecondBudget().limits(60, 1024) == FastDownward().limits(1.0, 1024)
 
@@ -262,7 +272,8 @@ def test_a_plan_is_complete_only_if_it_ends_with_the_cost_line(text: str, expect
 
 def test_a_hanging_planner_times_out_and_its_group_is_gone(parent: Path, report: Path) -> None:
     result = run(FakeFastDownward("hang.py"), parent, timeout=FAKE_START_SECONDS)
-    assert result.status is PlanStatus.TIMEOUT and result.elapsed < FAKE_START_SECONDS + 3
+    assert result.status is PlanStatus.TIMEOUT
+    assert result.elapsed < FAKE_START_SECONDS + LOADED_MACHINE_SLACK
     assert wait_until_gone(read_report(report)["pgid"]) == []
 
 

@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import json
+import contextlib
 import os
-import time
 from contextlib import ExitStack
 from pathlib import Path
 from typing import IO, Annotated
@@ -16,13 +15,19 @@ from rosreconf.cli.common import (
     FailOption,
     LibraryOption,
     MasterOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
+    OnlySchemaOption,
     SchemaOption,
+    select,
 )
 from rosreconf.cli.console import stderr
-from rosreconf.cli.live import OnlySchemaOption, target
-from rosreconf.errors import ExitCode, ExternalToolError, UsageError
+from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
-from rosreconf.ros.watcher import Event, Watcher
+from rosreconf.render.reports.watch import event_json, event_line
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.watcher import Event, Watcher, launch_log_dir
+from rosreconf.solve.running import one_target
 
 
 def watch_command(
@@ -47,53 +52,58 @@ def watch_command(
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
     ] = None,
     once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
-    started. With --once: exit 0 if the system conforms at the end, else 1.
+    started. With --apply, launch files and roslaunch's output are kept in a new directory
+    rosreconf-watch-* under ROS's log directory (said at the start). With --once: exit 0 if
+    the system conforms at the end, else 1.
     """
 
-    lib, sch, config = target(library, schema, configuration, only)
+    sel = select(library, schema, None, [only] if only else None)
+    target = one_target(sel, configuration)
     for name in fail or []:
-        if name not in lib:
+        if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env["ROS_MASTER_URI"] = master
+    keep: Path | None = None
+    if apply:
+        try:
+            keep = launch_log_dir(env)
+        except OSError as exc:
+            where = exc.filename or "ROS's log directory"
+            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
+            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
+        if keep is not None:
+            stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
         if json_log is not None:
             log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
 
         def log(event: Event) -> None:
-            stamp = event.time.isoformat(timespec="milliseconds")
-            stderr.print(f"{stamp} watch: {event.message}", markup=False)
+            stderr.print(event_line(event), markup=False)
             if log_file is not None:
-                doc = {
-                    "time": event.time.isoformat(),
-                    "event": event.kind,
-                    "message": event.message,
-                    **event.data,
-                }
-                log_file.write(json.dumps(doc) + "\n")
+                log_file.write(event_json(event))
                 log_file.flush()
 
         work = stack.enter_context(private_workdir())
+        sch, config = target.schema, target.configuration
         watcher = Watcher(
-            master,
-            lib,
-            sch,
-            config,
-            work,
-            env,
-            log,
-            apply=apply,
-            stand_ins=stand_ins,
-            settle=settle,
-            failed=set(fail or []),
-        )
+            master, sel.library, sch, config, work, env, log,
+            apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
+            timeout=master_timeout, max_bytes=max_answer_mb << 20, launch_dir=keep,
+        )  # fmt: skip
         stack.callback(watcher.close)
-        what = "and repairing" if apply else "(not repairing: no --apply)"
+        what = (
+            f"and repairing (launch files kept in {keep})"
+            if apply
+            else "(not repairing: no --apply)"
+        )
         log(
             Event(
                 "started",
@@ -101,25 +111,11 @@ def watch_command(
                 {"configuration": config.mapping},
             )
         )
-        started = False
-        lost_at: float | None = None
-        while True:
-            try:
-                check = watcher.step()
-            except ExternalToolError as exc:
-                # At start a wrong URI should fail fast; later, a restarting master is waited for.
-                if not started or once:
-                    raise
-                if lost_at is None:
-                    lost_at = time.monotonic()
-                    log(Event("master-lost", f"{exc}; retrying every {interval:g} s", {}))
-                time.sleep(interval)
-                continue
-            started = True
-            if lost_at is not None:
-                gone = time.monotonic() - lost_at
-                log(Event("master-back", f"the master answers again after {gone:.1f} s", {}))
-                lost_at = None
-            if once:
-                raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
-            time.sleep(interval)
+        check = watcher.run(interval, once=once)
+        raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _remove_if_empty(path: Path) -> None:
+    """Remove the launch directory watch made if nothing was launched (rmdir refuses else)."""
+    with contextlib.suppress(OSError):
+        path.rmdir()

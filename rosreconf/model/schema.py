@@ -10,10 +10,12 @@ import enum
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-
-import networkx as nx
+from typing import TYPE_CHECKING, Any
 
 from rosreconf.model.library import NOWHERE, Interface, InterfaceKind, Span
+
+if TYPE_CHECKING:  # networkx costs 0.2 s to import: only the commands that build graphs pay it
+    import networkx as nx
 
 
 @dataclass(frozen=True)
@@ -42,17 +44,24 @@ class Edge:
     configuration when some requirement option of the consumer's component is provided by the
     provider's component; ``interfaces`` optionally restricts which labels may realise it.
 
+    An edge is *required* by default (Def. 5: every edge of the system graph must be realised
+    by the chosen pair). An *optional* edge only says the consumer may use what the provider
+    provides: requirements may be met across it, but a pair that shares nothing is still
+    valid (a TEB local planner does not read the laser that a DWB planner reads).
+
     Attributes:
         consumer: the role that requires (calls a service, subscribes to a topic).
         provider: the role that provides (serves, publishes).
         interfaces: labels allowed to realise this edge; empty = any matching interface.
         span: where it was written.
+        optional: True when the chosen pair need not realise the edge.
     """
 
     consumer: str
     provider: str
     interfaces: frozenset[str] = frozenset()
     span: Span = field(default=NOWHERE, compare=False)
+    optional: bool = False
 
     def allows(self, interface: Interface) -> bool:
         """Tell whether ``interface`` may realise this edge."""
@@ -84,11 +93,13 @@ class SystemGraph:
 
     def to_networkx(self) -> nx.DiGraph:
         """Return the graph with edges drawn provider -> consumer (the information flow)."""
+        import networkx as nx
+
         g = nx.DiGraph()
         for r in self.roles:
             g.add_node(r.name, abstraction=r.abstraction)
         for e in self.edges:
-            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces))
+            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces), optional=e.optional)
         return g
 
 
@@ -131,7 +142,11 @@ class InteroperabilitySchema:
 
 @dataclass(frozen=True)
 class ConfigurationLibrary:
-    """The configuration library C (Def. 8): the list of interoperability schemas."""
+    """The configuration library C: the list of interoperability schemas Def. 8 names.
+
+    Only the list: what Def. 8 defines about it, orthogonality of C to L, is decided per schema
+    by ``rosreconf.analysis.library.analyse`` (docs/architecture.md).
+    """
 
     schemas: tuple[InteroperabilitySchema, ...]
 
@@ -187,16 +202,28 @@ class VertexKind(enum.StrEnum):
     SERVICE = "service"
 
 
-RosGraph = nx.DiGraph
-"""A ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
+# RosGraph: a ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
+#
+# Vertex ids are tuples ``(VertexKind, name)`` so that a node and a topic of the same name can
+# never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
+# (Omega) attributes. Edges run in the direction of information flow: provider node ->
+# topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
+# vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
+# topic vertex's name is its label, because topics are many-to-many.
+#
+# networkx takes about 0.2 s to import, so it is imported when ``RosGraph`` is first looked up
+# (module ``__getattr__``): ``rosreconf --help`` and ``validate`` never need it.
+if TYPE_CHECKING:
+    RosGraph = nx.DiGraph
+else:
 
-Vertex ids are tuples ``(VertexKind, name)`` so that a node and a topic of the same name can
-never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
-(Omega) attributes. Edges run in the direction of information flow: provider node ->
-topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
-vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
-topic vertex's name is its label, because topics are many-to-many.
-"""
+    def __getattr__(name: str) -> Any:
+        """Return ``RosGraph`` (networkx's DiGraph), importing networkx on first use."""
+        if name == "RosGraph":
+            import networkx as nx
+
+            return nx.DiGraph
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def node_vertex(name: str) -> tuple[VertexKind, str]:
