@@ -16,8 +16,13 @@ One function owns the subprocess so that each rule below holds for all of them:
   its translator and search as children), a watchdog forked into the group before ``exec``
   waits on a pipe whose only writer is rosreconf; when the pipe closes without a word, the
   watchdog kills the whole group;
+- SIGINT has its default action in the program even when rosreconf runs with SIGINT ignored
+  (a background job of a script): the program is in its own session, so no terminal's Ctrl-C
+  reaches it anyway, and the only SIGINT it ever gets is rosreconf's own request to stop
+  (``Background.stop``), which an inherited "ignore" would silently defeat (subprocess's
+  ``restore_signals`` does not cover SIGINT);
 - optional address-space and CPU-time limits, set with ``setrlimit`` in the child; those, the
-  parent-death signal and the watchdog are all the ``preexec_fn`` does;
+  SIGINT reset, the parent-death signal and the watchdog are all the ``preexec_fn`` does;
 - stdout and stderr go to anonymous temporary files (no pipe can fill up and block the
   program) and only their last ``max_output_bytes`` are kept;
 - an executable that does not exist is a result (``missing``), not an exception, so that a
@@ -308,12 +313,27 @@ def start_program(
             proc = subprocess.Popen(
                 args, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=cwd,
                 env=None if env is None else dict(env), start_new_session=True,
+                preexec_fn=_sigint_default() if _sigint_ignored() else None,
             )  # fmt: skip
         except FileNotFoundError:
             raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None
         except OSError as exc:
             raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
     return Background(args, proc, log)
+
+
+def _sigint_ignored() -> bool:
+    """Tell whether rosreconf runs with SIGINT ignored (a background job of a shell script)."""
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+
+
+def _sigint_default() -> Callable[[], None]:
+    """Return a preexec_fn giving SIGINT back its default action (see the module docstring)."""
+
+    def setup() -> None:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    return setup
 
 
 def descendants(root: int) -> set[int]:
@@ -427,8 +447,17 @@ def _preexec(
     function only calls ``prctl``, ``fork`` and ``setrlimit``.
     """
     set_limits = _limits(memory_limit_mb, cpu_limit_s)
+    reset_sigint = _sigint_ignored()
     if not _LINUX:
-        return set_limits
+        if not reset_sigint:
+            return set_limits
+
+        def portable_setup() -> None:
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            if set_limits is not None:
+                set_limits()
+
+        return portable_setup
     prctl = ctypes.CDLL(None, use_errno=True).prctl
     parent = os.getpid()
     max_fd = os.sysconf("SC_OPEN_MAX") if hasattr(os, "sysconf") else 1024
@@ -444,6 +473,8 @@ def _preexec(
             os._exit(0)
         os.waitpid(middle, 0)
         os.close(alive_read)
+        if reset_sigint:
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
         if set_limits is not None:
             set_limits()
 

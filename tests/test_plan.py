@@ -6,13 +6,12 @@ import json
 from pathlib import Path
 
 import pytest
+from conftest import fake
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 from rosreconf.formats.configfile import read_configurations
 from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
-
-FAKES = Path(__file__).parent / "fakes"
 
 
 def by_name(doc: dict[str, object]) -> dict[str, dict[str, object]]:
@@ -91,8 +90,8 @@ class FakeUnknown(FastDownward):
         super().__init__("fake")
 
     def command(self, files: TaskFiles, *, timeout: float, memory_limit_mb: int) -> list[str]:
-        script = str(FAKES / "unknown_actions.py")
-        return [script, "--plan-file", str(files.plan), str(files.domain), str(files.problem)]
+        plan = ["--plan-file", str(files.plan), str(files.domain), str(files.problem)]
+        return fake("unknown_actions.py", *plan)
 
 
 def test_a_plan_with_an_unknown_action_exits_3(

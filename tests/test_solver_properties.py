@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 import math
 
+from conftest import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
@@ -16,7 +17,7 @@ from rosreconf.solve.counting import count
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.solver import ClingoEngine, Objective
 
-PROPS = settings(max_examples=120, deadline=None)
+PROPS = settings(max_examples=examples(120))
 
 
 @PROPS
@@ -51,7 +52,7 @@ def test_best_is_optimal(problem: tuple[ComponentLibrary, InteroperabilitySchema
     assert objective.score(inst, best)[0] == min(objective.score(inst, c)[0] for c in configs)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60))
 @given(problem=problems())
 def test_probability_equals_brute_force_over_failure_states(
     problem: tuple[ComponentLibrary, InteroperabilitySchema],

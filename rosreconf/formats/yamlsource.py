@@ -164,14 +164,15 @@ def parse(data: bytes, file: str) -> YNode | None:
             ]
         ) from None
     if FAST_LOADER is not None and _fast_path_safe(text):
-        # libyaml parses about six times faster. On any problem the pure-Python parser reads the
-        # file again, so that messages and positions never depend on which parser is installed.
+        # libyaml parses about six times faster. On any problem, and wherever libyaml might read
+        # the text differently, the pure-Python parser reads the file again, so that trees,
+        # messages and positions never depend on which parser is installed.
         fast = _Builder(file)
         try:
-            for event in yaml.parse(text, Loader=FAST_LOADER):
+            for event in _libyaml_events(text, FAST_LOADER):
                 fast.feed(event)
             clean = not fast.problems
-        except (_StopParsing, yaml.YAMLError):
+        except (_StopParsing, _ParsersMayDiffer, yaml.YAMLError):
             clean = False
         if clean:
             return fast.root
@@ -209,17 +210,78 @@ def parse(data: bytes, file: str) -> YNode | None:
 
 
 def _fast_path_safe(text: str) -> bool:
-    """Tell whether libyaml is known to read ``text`` exactly as PyYAML's pure parser does.
+    """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would.
 
-    The two differ on tabs (libyaml accepts a tab inside a plain scalar, PyYAML's scanner
-    does not) and on characters PyYAML's reader refuses; such text takes the pure path.
-    tests/test_fast_paths.py searches for other differences.
+    libyaml 0.2.5 and PyYAML 6's pure parser differ, on text alone, where:
+
+    * a tab separates tokens or sits in a plain scalar (libyaml accepts it, PyYAML does not);
+    * a character PyYAML's reader refuses is present;
+    * a byte order mark is present: libyaml skips one at the start of every line, PyYAML only
+      at the start of the file, and PyYAML does not count it as a column.
+
+    Such text takes the pure path; ``_libyaml_events`` checks the rest while parsing.
+    tests/test_fast_paths.py searches for other differences (``make explore`` searches longer).
     """
     return (
         FAST_LOADER is not None
         and "\t" not in text
+        and "\ufeff" not in text
         and not yaml.reader.Reader.NON_PRINTABLE.search(text)
     )
+
+
+_BLOCK_HEADER_THEN_COMMENT = re.compile(r"[|>](?:[-+][1-9]?|[1-9][-+]?)?#")
+"""A block scalar header with a ``#`` right after it: libyaml reads a comment, PyYAML an error."""
+
+
+class _ParsersMayDiffer(Exception):
+    """libyaml produced an event that PyYAML's pure parser might not produce the same way."""
+
+
+def _libyaml_events(text: str, loader: type[yaml.CSafeLoader]) -> Iterator[yaml.Event]:
+    """Yield libyaml's events for ``text``; raise ``_ParsersMayDiffer`` where PyYAML may differ.
+
+    Besides what ``_fast_path_safe`` rules out, the two parsers differ on:
+
+    * ``?`` inside a plain scalar in a flow collection: libyaml keeps it in the scalar (as YAML
+      1.2 allows), PyYAML ends the scalar there and reads ``?`` as a key indicator, which is
+      then a syntax error (``{type: r?obot}``: "expected ',' or '}', but got '?'");
+    * where an empty value in a flow collection is (``{a: }``): libyaml puts it at the next
+      token, PyYAML right after the ``:``;
+    * where an empty value at the end of the text is (``? a`` with no line break after it):
+      libyaml ends the stream on a line of its own, PyYAML where the text ends;
+    * characters allowed in tags (``,``, ``[`` and ``]``), so any tag takes the pure path;
+    * a ``#`` right after a block scalar's header (``|#``), a comment to libyaml only.
+
+    Raises:
+        _ParsersMayDiffer: so that the caller reads the text again with PyYAML's pure parser.
+        yaml.YAMLError: libyaml's own syntax errors (the pure parser then gives the message).
+    """
+    flow = 0  # depth of flow collections; nothing inside one can be a block collection
+    end = len(text)
+    for event in yaml.parse(text, Loader=loader):
+        if type(event) is yaml.ScalarEvent:  # most events: the exact type is the cheaper test
+            if event.tag is not None:
+                raise _ParsersMayDiffer
+            style = event.style
+            if not style:  # plain: "" from libyaml
+                value = event.value
+                if flow and (not value or "?" in value):
+                    raise _ParsersMayDiffer
+                if not value and (event.start_mark is None or event.start_mark.index >= end):
+                    raise _ParsersMayDiffer
+            elif style == "|" or style == ">":
+                start = event.start_mark  # libyaml gives every event one
+                if start is None or _BLOCK_HEADER_THEN_COMMENT.match(text, start.index):
+                    raise _ParsersMayDiffer
+        elif isinstance(event, yaml.MappingStartEvent | yaml.SequenceStartEvent):
+            if event.tag is not None:
+                raise _ParsersMayDiffer
+            if flow or event.flow_style:
+                flow += 1
+        elif flow and isinstance(event, yaml.MappingEndEvent | yaml.SequenceEndEvent):
+            flow -= 1
+        yield event
 
 
 class _StopParsing(Exception):
