@@ -1,0 +1,1 @@
+"""Talking to running ROS systems (ROS 1 master, ROS 2 over DDS)."""
