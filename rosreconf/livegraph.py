@@ -44,8 +44,8 @@ import jsonschema
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
 from rosreconf.qos import QosProfile
-from rosreconf.ros.ros2 import names as ros2_names
 from rosreconf.resources import Bundle, bundled
+from rosreconf.ros.ros2 import names as ros2_names
 
 SNAPSHOT_FORMAT = "rosreconf-live-graph"
 """The ``format`` member every snapshot carries."""

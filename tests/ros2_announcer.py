@@ -126,7 +126,7 @@ def endpoint_qos(spec: dict[str, Any], typehash: bytes | None) -> Qos:
         policies.append(Policy.Durability.Volatile)
     if spec.get("deadline") is not None:
         policies.append(Policy.Deadline(deadline=_seconds(spec["deadline"])))
-    lease = _seconds(spec.get("lease"))
+    lease = _seconds(spec.get("lease_duration"))
     if spec.get("liveliness", "automatic") == "manual_by_topic":
         policies.append(Policy.Liveliness.ManualByTopic(lease_duration=lease))
     else:

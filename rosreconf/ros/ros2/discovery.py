@@ -190,7 +190,9 @@ def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
     keep_all = hist is not None and hist == policy.History.KeepAll
     return QosProfile(
         reliability=(
-            Reliability.BEST_EFFORT if rel == policy.Reliability.BestEffort else Reliability.RELIABLE
+            Reliability.BEST_EFFORT
+            if rel == policy.Reliability.BestEffort
+            else Reliability.RELIABLE
         ),
         durability=(
             Durability.VOLATILE
