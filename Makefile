@@ -31,6 +31,7 @@ demo: $(STAMP)
 test: $(STAMP) system-deps lint typecheck pytest
 
 lint: $(STAMP)
+	$(BIN)/lint-imports
 	$(BIN)/ruff check rosreconf tests benchmarks
 	$(BIN)/ruff format --check rosreconf tests benchmarks
 

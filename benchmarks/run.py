@@ -30,11 +30,11 @@ OBJECTIVE_WEIGHTS = {"cost": 1.0}
 
 def child(kind: str, folder: str) -> dict[str, Any]:
     """Run one measurement in this process and return seconds and peak RSS (KiB)."""
-    from rosreconf.counting import count
-    from rosreconf.factors import paused_gc
-    from rosreconf.instance import compile_instance
-    from rosreconf.loader import load_paths
-    from rosreconf.solver import ClingoEngine, Objective, _control, optimise
+    from rosreconf.formats.loader import load_paths
+    from rosreconf.solve.counting import count
+    from rosreconf.solve.factors import paused_gc
+    from rosreconf.solve.instance import compile_instance
+    from rosreconf.solve.solver import ClingoEngine, Objective, _control, optimise
 
     objective = Objective(weights=OBJECTIVE_WEIGHTS)
     d = Path(folder)
@@ -63,7 +63,7 @@ def child(kind: str, folder: str) -> dict[str, Any]:
     elif kind == "whatif":
         from concurrent.futures import ProcessPoolExecutor
 
-        from rosreconf.whatif import analyse
+        from rosreconf.analysis.whatif import analyse
 
         with ProcessPoolExecutor(2) as pool:
             report = analyse(lib, schema, 2, pool)
@@ -86,12 +86,12 @@ FD_TIMEOUT = 60.0
 
 def fast_downward(search: str, lib: Any, schema: Any) -> dict[str, Any]:
     """Render the schema, plan with ``search`` and say whether the plan's configuration is valid."""
-    from rosreconf.instance import compile_instance
     from rosreconf.model import Configuration
-    from rosreconf.pddl import render
-    from rosreconf.planners import FastDownward, solve
-    from rosreconf.solver import Objective
-    from rosreconf.validity import is_valid
+    from rosreconf.model.validity import is_valid
+    from rosreconf.planning.pddl import render
+    from rosreconf.planning.planners import FastDownward, solve
+    from rosreconf.solve.instance import compile_instance
+    from rosreconf.solve.solver import Objective
 
     first = search in ("ff-first", "lama-first")  # first-plan searches ignore costs
     objective = None if first else Objective(dict(schema.nominal), {"cost": 1})
@@ -158,7 +158,7 @@ def main() -> None:
     from rich.console import Console
     from rich.table import Table
 
-    from rosreconf.generate import generate, write
+    from rosreconf.formats.generate import generate, write
 
     grid = QUICK if args.quick else FULL
     rows = []

@@ -1,5 +1,5 @@
 """Let ``python -m rosreconf`` run the CLI."""
 
-from rosreconf.cli import main
+from rosreconf.cli.app import main
 
 main()

@@ -1,6 +1,6 @@
 """The one error family of rosreconf, and the problems it reports about user files.
 
-Library code raises these and never prints or exits; only ``rosreconf.cli`` turns them into
+Library code raises these and never prints or exits; only ``rosreconf.cli.app`` turns them into
 messages and exit codes. Problems in user files are *collected* (every file, every problem)
 and raised together, because a user fixing a library wants the whole list in one run.
 """

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from rosreconf.instance import compile_instance
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.pddl import PddlTask, render
-from rosreconf.planners import FastDownward, PlanResult, PlanStatus, solve
+from rosreconf.planning.pddl import PddlTask, render
+from rosreconf.planning.planners import FastDownward, PlanResult, PlanStatus, solve
+from rosreconf.solve.instance import compile_instance
 
 
 def chosen(task: PddlTask, result: PlanResult, s: InteroperabilitySchema) -> Configuration:

@@ -19,7 +19,7 @@ from rosreconf.model import (
     Role,
     SystemGraph,
 )
-from rosreconf.validity import is_valid
+from rosreconf.model.validity import is_valid
 
 IFACES = [
     Interface(InterfaceKind.TOPIC, "a", "m/A"),

@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.cli.app import app
 
 DC_CAM1 = [
     "NDC1",

@@ -17,8 +17,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rosreconf import yamlsource as ys
-from rosreconf.structure import DocumentKind, fast_validator, json_schema
+from rosreconf.formats import yamlsource as ys
+from rosreconf.formats.structure import DocumentKind, fast_validator, json_schema
 
 REPO = Path(__file__).resolve().parent.parent
 YAML_FILES = sorted(

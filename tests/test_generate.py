@@ -9,14 +9,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.counting import count
-from rosreconf.generate import generate, write
-from rosreconf.instance import compile_instance
-from rosreconf.loader import load_paths
+from rosreconf.cli.app import app
+from rosreconf.formats.generate import generate, write
+from rosreconf.formats.loader import load_paths
 from rosreconf.model import Configuration
-from rosreconf.solver import ClingoEngine
-from rosreconf.validity import is_valid
+from rosreconf.model.validity import is_valid
+from rosreconf.solve.counting import count
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.solver import ClingoEngine
 
 
 def test_same_seed_same_bytes() -> None:

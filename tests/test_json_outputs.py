@@ -10,7 +10,7 @@ import jsonschema
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.cli.app import app
 from rosreconf.resources import Bundle, bundled
 
 CASES = Path(__file__).parent / "cases"

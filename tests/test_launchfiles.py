@@ -17,14 +17,14 @@ import pytest
 import xmlschema
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.commands.common import select
-from rosreconf.commands.target import targets
+from rosreconf.cli.app import app
+from rosreconf.cli.common import select
+from rosreconf.cli.target import targets
 from rosreconf.errors import RosreconfError
-from rosreconf.launchfiles import RosVersion, launch_file
 from rosreconf.model import ComponentLibrary
 from rosreconf.procs import run_program
 from rosreconf.resources import Bundle, bundled
+from rosreconf.ros.launchfiles import RosVersion, launch_file
 
 SCHEMA = "object_repositioning"
 SYSTEM_PYTHON = "/usr/bin/python3"

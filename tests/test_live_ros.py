@@ -20,11 +20,11 @@ import pytest
 import ros_harness
 from conftest import StartStandIn
 
-from rosreconf.cli import app
-from rosreconf.configfile import render_configurations
+from rosreconf.cli.app import app
 from rosreconf.errors import Severity
-from rosreconf.loader import check_loaded, load_bundled, load_paths
-from rosreconf.standins import standin_spec
+from rosreconf.formats.configfile import render_configurations
+from rosreconf.formats.loader import check_loaded, load_bundled, load_paths
+from rosreconf.ros.standins import standin_spec
 
 pytestmark = pytest.mark.ros
 

@@ -1,4 +1,4 @@
-"""Tests of rosreconf.livegraph: snapshots read and written without any master.
+"""Tests of rosreconf.ros.livegraph: snapshots read and written without any master.
 
 Snapshots in ``snapshots/valid`` must load and survive a round trip; each file in
 ``snapshots/invalid`` is named ``<problem code>--<what is wrong>.json`` and must be refused
@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from rosreconf.errors import InvalidInputError
-from rosreconf.livegraph import (
+from rosreconf.ros.livegraph import (
     SNAPSHOT_FORMAT,
     LiveGraph,
     LiveNode,

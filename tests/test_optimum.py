@@ -10,14 +10,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
-from rosreconf.factors import TooHard
-from rosreconf.generate import generate, write
-from rosreconf.instance import compile_instance
-from rosreconf.loader import load_paths
+from rosreconf.formats.generate import generate, write
+from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.optimum import minimise
-from rosreconf.solver import ClingoEngine, EliminationEngine, Objective, optimise, unary_costs
-from rosreconf.validity import is_valid
+from rosreconf.model.validity import is_valid
+from rosreconf.solve.factors import TooHard
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.optimum import minimise
+from rosreconf.solve.solver import ClingoEngine, EliminationEngine, Objective, optimise, unary_costs
 
 PROPS = settings(max_examples=150, deadline=None)
 

@@ -1,4 +1,4 @@
-"""Tests for rosreconf.pddl: names, golden files, parsers, VAL, and equivalence with clingo."""
+"""Tests for planning.pddl: names, golden files, parsers, VAL, and equivalence with clingo."""
 
 from __future__ import annotations
 
@@ -12,8 +12,7 @@ import pddl
 import pytest
 from pddlcheck import plan_all
 
-from rosreconf.instance import compile_instance
-from rosreconf.loader import load_checked
+from rosreconf.formats.loader import load_checked
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -26,11 +25,12 @@ from rosreconf.model import (
     Role,
     SystemGraph,
 )
-from rosreconf.pddl import PddlNameError, PddlNames, label, render
-from rosreconf.planners import FastDownward, solve
-from rosreconf.planning import write_task
-from rosreconf.solver import Objective, configurations
-from rosreconf.validity import is_valid
+from rosreconf.model.validity import is_valid
+from rosreconf.planning.pddl import PddlNameError, PddlNames, label, render
+from rosreconf.planning.planners import FastDownward, solve
+from rosreconf.planning.replan import write_task
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.solver import Objective, configurations
 
 GOLDEN = Path(__file__).parent / "golden"
 EXAMPLE = load_checked()

@@ -1,4 +1,4 @@
-"""Cross-check the PDDL encoding against clingo on generated libraries (rosreconf.generate).
+"""Cross-check the PDDL encoding against clingo on generated libraries (rosreconf.formats.generate).
 
 Two checks: enumerating by planning (forbid each configuration found) yields exactly
 clingo's set; and every Fast Downward plan on a random small instance, with random failures,
@@ -16,14 +16,14 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from pddlcheck import chosen, plan_all
 
-from rosreconf.generate import generate, write
-from rosreconf.instance import compile_instance
-from rosreconf.loader import load_paths
+from rosreconf.formats.generate import generate, write
+from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.pddl import PddlTask, render
-from rosreconf.planners import FastDownward, PlanResult, PlanStatus, solve
-from rosreconf.solver import Objective, configurations
-from rosreconf.validity import is_valid
+from rosreconf.model.validity import is_valid
+from rosreconf.planning.pddl import PddlTask, render
+from rosreconf.planning.planners import FastDownward, PlanResult, PlanStatus, solve
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.solver import Objective, configurations
 
 pytestmark = pytest.mark.planner
 
@@ -101,8 +101,8 @@ def test_optimal_planner_and_solver_agree_on_the_objective(
     planner (astar with lmcut: optimal for action costs) and the elimination optimum must
     reach the same (changes, metric) value, each with a valid configuration.
     """
-    from rosreconf.planning import plan
-    from rosreconf.solver import optimise
+    from rosreconf.planning.replan import plan
+    from rosreconf.solve.solver import optimise
 
     library, schema = generated(roles, candidates, 0.2, seed)
     current = dict(schema.nominal)

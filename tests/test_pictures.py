@@ -14,13 +14,14 @@ import pydot
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.commands.common import Selection, select
-from rosreconf.commands.target import targets
-from rosreconf.dot import DotGraph, format_for, quote
+from rosreconf.cli.app import app
+from rosreconf.cli.common import Selection, select
+from rosreconf.cli.target import targets
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.model import VertexKind
-from rosreconf.pictures import (
+from rosreconf.model.validity import ros_graph
+from rosreconf.render.dot import DotGraph, format_for, quote
+from rosreconf.render.pictures import (
     SHAPES,
     STYLES,
     RosPicture,
@@ -30,7 +31,6 @@ from rosreconf.pictures import (
     system_dot,
     write_picture,
 )
-from rosreconf.validity import ros_graph
 
 SCHEMA = "object_repositioning"
 

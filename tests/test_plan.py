@@ -1,4 +1,4 @@
-"""Tests for rosreconf plan / render-pddl and rosreconf.planning on the bundled example."""
+"""Tests for rosreconf plan / render-pddl and rosreconf.planning.replan on the bundled example."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.configfile import read_configurations
-from rosreconf.planners import PLANNERS, FastDownward, TaskFiles
+from rosreconf.cli.app import app
+from rosreconf.formats.configfile import read_configurations
+from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
 
 FAKES = Path(__file__).parent / "fakes"
 

@@ -1,4 +1,4 @@
-"""Tests for rosreconf.planners: real Fast Downward, fake planners, and what they leave behind."""
+"""Tests for planning.planners: real Fast Downward, fake planners, and what they leave behind."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 from conftest import DATA, FAKES, read_report, wait_until_gone
 
-from rosreconf.planners import (
+from rosreconf.planning.planners import (
     FF,
     PLANNERS,
     FastDownward,
@@ -21,8 +21,8 @@ from rosreconf.planners import (
     fast_downward_root,
     solve,
 )
-from rosreconf.planners import fast_downward as fd_module
-from rosreconf.planners.fast_downward import parse_plan
+from rosreconf.planning.planners import fast_downward as fd_module
+from rosreconf.planning.planners.fast_downward import parse_plan
 from rosreconf.procs import Terminated
 
 PDDL = DATA / "pddl"

@@ -8,9 +8,9 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.analysis.redundancy import redundancy, survival
+from rosreconf.cli.app import app
 from rosreconf.errors import UsageError
-from rosreconf.redundancy import redundancy, survival
 
 
 @pytest.mark.parametrize(("p", "n", "q"), [(0.05, 100, 0.999), (0.3, 10, 0.9), (0.01, 5000, 0.99)])

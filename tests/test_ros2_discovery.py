@@ -13,8 +13,8 @@ from typing import Any
 import pytest
 from conftest import Announce
 
-from rosreconf.livegraph import from_json, to_json, without_plumbing
-from rosreconf.qos import Durability, Liveliness, QosProfile, Reliability
+from rosreconf.model.qos import Durability, Liveliness, QosProfile, Reliability
+from rosreconf.ros.livegraph import from_json, to_json, without_plumbing
 from rosreconf.ros.ros2.discovery import read_ros2_graph
 
 TALKER: dict[str, Any] = {

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from rosreconf.qos import QosProfile, incompatibilities
+from rosreconf.model.qos import QosProfile, incompatibilities
 from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
 
 

@@ -1,4 +1,4 @@
-"""Tests of rosreconf.rosmaster: against a real roscore (marked ros) and against fakes."""
+"""Tests of rosreconf.ros.rosmaster: against a real roscore (marked ros) and against fakes."""
 
 from __future__ import annotations
 
@@ -18,8 +18,8 @@ import ros_harness
 from conftest import StartStandIn
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.livegraph import LiveNode, from_json, to_json, without_plumbing
-from rosreconf.rosmaster import alive, purge_dead, read_live_graph
+from rosreconf.ros.livegraph import LiveNode, from_json, to_json, without_plumbing
+from rosreconf.ros.rosmaster import alive, purge_dead, read_live_graph
 
 TALKER = {
     "name": "talker",

@@ -9,11 +9,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
-from rosreconf.analysis import analyse, exact_probability
-from rosreconf.counting import count
-from rosreconf.instance import compile_instance
+from rosreconf.analysis.library import analyse, exact_probability
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.solver import ClingoEngine, Objective
+from rosreconf.solve.counting import count
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.solver import ClingoEngine, Objective
 
 PROPS = settings(max_examples=120, deadline=None)
 

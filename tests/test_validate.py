@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.cli.app import app
 
 CASES = Path(__file__).parent / "cases"
 

@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
 LIBRARY = (REPO / "libraries" / "robot_arms.yaml").read_text(encoding="utf-8")

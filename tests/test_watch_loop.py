@@ -12,9 +12,9 @@ from types import SimpleNamespace
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
+from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError
-from rosreconf.watcher import Watcher
+from rosreconf.ros.watcher import Watcher
 
 ARGS = ["watch", "--master", "http://127.0.0.1:9/", "--only", "object_repositioning"]
 ARGS += ["--interval", "0.05"]

@@ -10,14 +10,14 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.cli import app
-from rosreconf.counting import count
-from rosreconf.generate import generate, write
-from rosreconf.instance import compile_instance
-from rosreconf.loader import load_bundled, load_paths
+from rosreconf.analysis.whatif import analyse
+from rosreconf.cli.app import app
+from rosreconf.formats.generate import generate, write
+from rosreconf.formats.loader import load_bundled, load_paths
 from rosreconf.model import Configuration
-from rosreconf.validity import is_valid
-from rosreconf.whatif import analyse
+from rosreconf.model.validity import is_valid
+from rosreconf.solve.counting import count
+from rosreconf.solve.instance import compile_instance
 
 
 def test_paper_example_critical_parts(

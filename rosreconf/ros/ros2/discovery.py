@@ -33,8 +33,8 @@ from datetime import UTC, datetime
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.livegraph import LiveGraph, LiveNode
-from rosreconf.qos import Durability, History, Liveliness, QosProfile, Reliability
+from rosreconf.model.qos import Durability, History, Liveliness, QosProfile, Reliability
+from rosreconf.ros.livegraph import LiveGraph, LiveNode
 from rosreconf.ros.ros2.names import DISCOVERY_TOPIC, Channel, ros_name, ros_type
 
 GID_SIZES = {"humble": 24, "iron": 16, "jazzy": 16, "kilted": 16, "rolling": 16}

@@ -1,0 +1,288 @@
+"""Answer the paper's Section 4 questions about a library L and a schema.
+
+* Orthogonality (Def. 8): does every label-respecting substitution give a valid
+  configuration? If not, how many do, and which pairs of components cannot work together.
+* Redundancy per role (the paper's r = card(nu^-1(a))), single points of failure, and
+  failure pairs that kill a schema although neither failure alone does.
+* Reconfigurability probability: the probability that at least one valid configuration has
+  every component working, each component failing independently with its own
+  ``failure_probability``. Computed exactly by factoring (Shannon expansion over the
+  components of the valid configurations, with memoisation and absorption of supersets)
+  when the configurations can be listed, else estimated by Monte Carlo with a 95 % Wilson
+  interval; the method is always named in the result.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import random
+from collections.abc import Collection, Iterable
+from dataclasses import dataclass, field
+from functools import cache
+
+from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+from rosreconf.solve.counting import count
+from rosreconf.solve.instance import Instance, compile_instance
+from rosreconf.solve.solver import ClingoEngine
+
+EXACT_LIMIT = 5_000
+"""Most configurations the exact probability (and usable-candidate) analysis lists."""
+
+PAIR_LIMIT = 80
+"""Most relevant components for which every failure pair is checked (whatif scales further)."""
+
+
+@dataclass(frozen=True)
+class IncompatiblePair:
+    """Two components that can never be in one configuration, and why."""
+
+    first: str
+    second: str
+    reason: str
+
+
+@dataclass(frozen=True)
+class RoleRedundancy:
+    """How many components can play a role.
+
+    Attributes:
+        role: the role's name.
+        abstraction: its label.
+        candidates: available components with the label that may serve in the schema (r).
+        usable: the candidates that appear in at least one valid configuration (None when
+            there were too many configurations to list).
+    """
+
+    role: str
+    abstraction: str
+    candidates: tuple[str, ...]
+    usable: tuple[str, ...] | None
+
+
+@dataclass(frozen=True)
+class Reliability:
+    """The reconfigurability probability of a schema.
+
+    Attributes:
+        probability: P(at least one valid configuration has every component working).
+        method: ``exact (factoring over N configurations)`` or ``Monte Carlo (N samples)``.
+        low: lower end of the 95 % interval (equal to ``probability`` when exact).
+        high: upper end of the 95 % interval.
+        assumed_reliable: components without a failure probability (taken as never failing).
+    """
+
+    probability: float
+    method: str
+    low: float
+    high: float
+    assumed_reliable: tuple[str, ...] = ()
+
+
+@dataclass
+class SchemaAnalysis:
+    """Everything ``rosreconf analyse`` says about one schema."""
+
+    schema: str
+    title: str
+    substitutions: int
+    valid: int
+    orthogonal: bool
+    incompatible: list[IncompatiblePair] = field(default_factory=list)
+    redundancy: list[RoleRedundancy] = field(default_factory=list)
+    single_points_of_failure: list[str] = field(default_factory=list)
+    critical_pairs: list[tuple[str, str]] | None = None
+    reliability: Reliability | None = None
+
+
+def analyse(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str] = (),
+    *,
+    samples: int = 20_000,
+    seed: int = 0,
+) -> SchemaAnalysis:
+    """Analyse ``schema`` over ``library`` with ``failed`` components already gone."""
+    inst = compile_instance(library, schema, failed)
+    substitutions = _substitutions(inst)
+    valid = count(inst)
+    result = SchemaAnalysis(
+        schema=schema.name,
+        title=schema.display_name,
+        substitutions=substitutions,
+        valid=valid,
+        orthogonal=valid == substitutions and valid > 0,
+        incompatible=incompatible_pairs(inst),
+    )
+    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
+    configs = [frozenset(c.components) for c in listed]
+    used: list[set[str]] = [set() for _ in inst.roles]
+    for cfg in listed:
+        for u, (_, comp) in enumerate(cfg.assignment):
+            used[u].add(comp)
+    for u, role in enumerate(inst.roles):
+        candidates = tuple(c.name for c in inst.domains[u])
+        usable = tuple(c for c in candidates if c in used[u]) if listed or valid == 0 else None
+        result.redundancy.append(RoleRedundancy(role.name, role.abstraction, candidates, usable))
+    if valid == 0:
+        return result
+    dead = frozenset(failed)
+
+    def kills(failures: frozenset[str]) -> bool:
+        # With every configuration listed, a failure set kills the schema exactly when it hits
+        # all of them; otherwise ask the counter.
+        if configs:
+            return all(cfg & failures for cfg in configs)
+        return count(compile_instance(library, schema, dead | failures)) == 0
+
+    relevant = sorted(set().union(*configs)) if configs else _relevant(inst)
+    result.single_points_of_failure = [c for c in relevant if kills(frozenset({c}))]
+    survivors = [c for c in relevant if c not in result.single_points_of_failure]
+    if len(survivors) <= PAIR_LIMIT:
+        result.critical_pairs = [
+            (a, b) for a, b in itertools.combinations(survivors, 2) if kills(frozenset({a, b}))
+        ]
+    p = {c.name: c.failure_probability or 0.0 for c in library}
+    assumed = tuple(sorted(c for c in relevant if library[c].failure_probability is None))
+    if configs:
+        exact = exact_probability(configs, p)
+        result.reliability = Reliability(
+            exact, f"exact (factoring over {len(configs)} configurations)", exact, exact, assumed
+        )
+    else:
+        result.reliability = monte_carlo(library, schema, dead, p, samples, seed, assumed)
+    return result
+
+
+def _substitutions(inst: Instance) -> int:
+    """Count label-respecting substitutions (distinct components, schema limits kept)."""
+    roles_of: dict[str, list[int]] = {}
+    for u, dom in enumerate(inst.domains):
+        for c in dom:
+            roles_of.setdefault(c.name, []).append(u)
+    if all(len(v) == 1 for v in roles_of.values()):
+        return math.prod(len(d) for d in inst.domains)
+    names = [[c.name for c in d] for d in inst.domains]
+    return sum(1 for combo in itertools.product(*names) if len(set(combo)) == len(combo))
+
+
+def _relevant(inst: Instance) -> list[str]:
+    return sorted({c.name for dom in inst.domains for c in dom})
+
+
+def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
+    """List pairs of candidates that no configuration can hold together, with the reason."""
+    out: dict[tuple[str, str], str] = {}
+    for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
+        # Name only what the consumer could want from this provider's role.
+        offered = {i.label for c in inst.domains[v] for i in c.provides}
+        for cu in inst.domains[u]:
+            wanted = [
+                " or ".join(o.label for o in r.options)
+                for r in cu.requires
+                if any(o.label in offered for o in r.options)
+            ]
+            for cv in inst.domains[v]:
+                if (cu.name, cv.name) in ok:
+                    continue
+                needs = ", ".join(wanted) or "nothing " + inst.roles[v].name + " offers"
+                has = ", ".join(sorted(i.label for i in cv.provides)) or "nothing"
+                out.setdefault(
+                    _key(cu.name, cv.name),
+                    f"{cu.name} requires {needs}; {cv.name} provides {has}",
+                )
+    holders = {c.name: u for u, dom in enumerate(inst.domains) for c in dom}
+    for u, dom in enumerate(inst.domains):
+        for c in dom:
+            for need in sorted(c.needs):
+                w = holders.get(need)
+                if w is None or w == u:
+                    continue
+                role = inst.roles[w].name
+                for other in inst.domains[w]:
+                    if other.name != need:
+                        out.setdefault(
+                            _key(c.name, other.name),
+                            f"{c.name} needs {need}; {other.name} would take role {role}",
+                        )
+            for ex in sorted(c.excludes):
+                if ex in holders:
+                    out.setdefault(_key(c.name, ex), f"{c.name} excludes {ex}")
+    return [IncompatiblePair(a, b, why) for (a, b), why in sorted(out.items())]
+
+
+def _key(a: str, b: str) -> tuple[str, str]:
+    return (a, b) if a <= b else (b, a)
+
+
+def _absorb(configs: Iterable[frozenset[str]]) -> frozenset[frozenset[str]]:
+    """Drop configurations that are supersets of others (they never add to survival)."""
+    ordered = sorted(set(configs), key=len)
+    kept: list[frozenset[str]] = []
+    for c in ordered:
+        if not any(k <= c for k in kept):
+            kept.append(c)
+    return frozenset(kept)
+
+
+def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) -> float:
+    """Return P(some configuration has all its components working), exactly.
+
+    Shannon expansion on the most frequent component: P = p_x * P(x failed) +
+    (1 - p_x) * P(x works), where "x failed" drops every configuration using x and "x works"
+    removes x from them; memoised on the (absorbed) set of configurations.
+    """
+
+    @cache
+    def works(state: frozenset[frozenset[str]]) -> float:
+        if not state:
+            return 0.0
+        if frozenset() in state:
+            return 1.0
+        freq: dict[str, int] = {}
+        for cfg in state:
+            for c in cfg:
+                freq[c] = freq.get(c, 0) + 1
+        x = max(sorted(freq), key=lambda c: freq[c])
+        if_failed = _absorb(cfg for cfg in state if x not in cfg)
+        if_works = _absorb(cfg - {x} for cfg in state)
+        return p[x] * works(if_failed) + (1 - p[x]) * works(if_works)
+
+    return works(_absorb(configs))
+
+
+def monte_carlo(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    dead: frozenset[str],
+    p: dict[str, float],
+    samples: int,
+    seed: int,
+    assumed: tuple[str, ...],
+) -> Reliability:
+    """Estimate the probability by sampling failure states (seeded, so reproducible)."""
+    rng = random.Random(seed)
+    names = sorted(p)
+    engine = ClingoEngine()
+    hits = 0
+    seen: dict[frozenset[str], bool] = {}
+    for _ in range(samples):
+        failed = frozenset(n for n in names if rng.random() < p[n]) | dead
+        if failed not in seen:
+            seen[failed] = engine.first(compile_instance(library, schema, failed)) is not None
+        hits += seen[failed]
+    est = hits / samples
+    low, high = wilson(hits, samples)
+    return Reliability(est, f"Monte Carlo ({samples} samples, seed {seed})", low, high, assumed)
+
+
+def wilson(hits: int, n: int, z: float = 1.959964) -> tuple[float, float]:
+    """Return the 95 % Wilson score interval of a binomial proportion."""
+    if n == 0:
+        return 0.0, 1.0
+    phat = hits / n
+    denom = 1 + z * z / n
+    centre = (phat + z * z / (2 * n)) / denom
+    half = z * math.sqrt(phat * (1 - phat) / n + z * z / (4 * n * n)) / denom
+    return max(0.0, centre - half), min(1.0, centre + half)

@@ -1,0 +1,20 @@
+"""The CLI's two output streams: one owner, so that every verb writes the same way.
+
+``--json`` documents go to stdout through ``write_stdout`` exactly as built (rich must not
+re-wrap them); human output, progress and errors go through the rich consoles.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from rich.console import Console
+
+stdout = Console(highlight=False, soft_wrap=True)
+stderr = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+def write_stdout(text: str) -> None:
+    """Write ``text`` to stdout exactly (JSON documents must not be re-wrapped by rich)."""
+    sys.stdout.write(text)
+    sys.stdout.flush()

@@ -1,0 +1,125 @@
+"""``rosreconf watch``: keep a live system in a valid configuration when its nodes fail."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from contextlib import ExitStack
+from pathlib import Path
+from typing import IO, Annotated
+
+import typer
+
+from rosreconf.cli.common import (
+    ConfigurationOption,
+    FailOption,
+    LibraryOption,
+    MasterOption,
+    SchemaOption,
+)
+from rosreconf.cli.console import stderr
+from rosreconf.cli.live import OnlySchemaOption, target
+from rosreconf.errors import ExitCode, ExternalToolError, UsageError
+from rosreconf.procs import private_workdir
+from rosreconf.ros.watcher import Event, Watcher
+
+
+def watch_command(
+    master: MasterOption,
+    configuration: ConfigurationOption = None,
+    only: OnlySchemaOption = None,
+    library: LibraryOption = None,
+    schema: SchemaOption = None,
+    fail: FailOption = None,
+    apply: Annotated[
+        bool, typer.Option("--apply", help="Stop and start components, not only replan.")
+    ] = False,
+    stand_ins: Annotated[
+        bool,
+        typer.Option("--stand-ins", help="Launch stand-in nodes instead of the real executables."),
+    ] = False,
+    interval: Annotated[float, typer.Option(min=0.05, help="Seconds between polls.")] = 1.0,
+    settle: Annotated[
+        float, typer.Option(min=1.0, help="Seconds a change may take to show on the master.")
+    ] = 30.0,
+    json_log: Annotated[
+        Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
+    ] = None,
+    once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
+) -> None:
+    """Watch the live system; when a node fails, replan with the fewest changes (and apply).
+
+    Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
+    started. With --once: exit 0 if the system conforms at the end, else 1.
+    """
+
+    lib, sch, config = target(library, schema, configuration, only)
+    for name in fail or []:
+        if name not in lib:
+            raise UsageError(f"--fail {name}: no such component")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    env["ROS_MASTER_URI"] = master
+    with ExitStack() as stack:
+        log_file: IO[str] | None = None
+        if json_log is not None:
+            log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
+
+        def log(event: Event) -> None:
+            stamp = event.time.isoformat(timespec="milliseconds")
+            stderr.print(f"{stamp} watch: {event.message}", markup=False)
+            if log_file is not None:
+                doc = {
+                    "time": event.time.isoformat(),
+                    "event": event.kind,
+                    "message": event.message,
+                    **event.data,
+                }
+                log_file.write(json.dumps(doc) + "\n")
+                log_file.flush()
+
+        work = stack.enter_context(private_workdir())
+        watcher = Watcher(
+            master,
+            lib,
+            sch,
+            config,
+            work,
+            env,
+            log,
+            apply=apply,
+            stand_ins=stand_ins,
+            settle=settle,
+            failed=set(fail or []),
+        )
+        stack.callback(watcher.close)
+        what = "and repairing" if apply else "(not repairing: no --apply)"
+        log(
+            Event(
+                "started",
+                f"watching {sch.display_name} on {master} {what}: {', '.join(config.components)}",
+                {"configuration": config.mapping},
+            )
+        )
+        started = False
+        lost_at: float | None = None
+        while True:
+            try:
+                check = watcher.step()
+            except ExternalToolError as exc:
+                # At start a wrong URI should fail fast; later, a restarting master is waited for.
+                if not started or once:
+                    raise
+                if lost_at is None:
+                    lost_at = time.monotonic()
+                    log(Event("master-lost", f"{exc}; retrying every {interval:g} s", {}))
+                time.sleep(interval)
+                continue
+            started = True
+            if lost_at is not None:
+                gone = time.monotonic() - lost_at
+                log(Event("master-back", f"the master answers again after {gone:.1f} s", {}))
+                lost_at = None
+            if once:
+                raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+            time.sleep(interval)

@@ -1,0 +1,344 @@
+"""Load component libraries and interoperability schemas from YAML, with positions.
+
+Each file goes through three steps: YAML -> positioned tree (``yamlsource``), structure
+checked against the shipped JSON Schema (``structure``, errors mapped back to
+``file:line:column``), then model objects (``model``). Problems are collected per file and
+across files; the caller gets the model of every well-formed file *and* the list of
+problems, so ``validate`` can report everything in one run while ``enumerate`` can refuse
+to work on invalid input.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+
+from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
+from rosreconf.formats import yamlsource as ys
+from rosreconf.formats.checks import check
+from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    ConfigurationLibrary,
+    Edge,
+    Interface,
+    InterfaceKind,
+    InteroperabilitySchema,
+    Requirement,
+    Role,
+    RosLaunch,
+    SystemGraph,
+)
+from rosreconf.resources import Bundle, bundled
+
+YAML_SUFFIXES = (".yaml", ".yml")
+
+
+@dataclass(frozen=True)
+class Source:
+    """One input file: its name as shown to the user and its bytes."""
+
+    name: str
+    data: bytes
+
+
+@dataclass
+class Loaded:
+    """What loading a set of files produced: the models that could be built, and problems.
+
+    Attributes:
+        libraries: one ComponentLibrary per well-formed library file.
+        schemas: one InteroperabilitySchema per well-formed schema file.
+        problems: every problem found, in every file.
+        files: the names of the files read.
+        library_complete: false when a file that is (or may be) a library failed to load, so
+            checks needing the whole library must not run.
+        note: how the files were chosen, for the user ("bundled example: ...").
+    """
+
+    libraries: list[ComponentLibrary] = field(default_factory=list)
+    schemas: list[InteroperabilitySchema] = field(default_factory=list)
+    problems: list[Problem] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    library_complete: bool = True
+    note: str = ""
+
+    @property
+    def library(self) -> ComponentLibrary:
+        """Return L: all library files joined into one."""
+        return ComponentLibrary.merge(self.libraries)
+
+    @property
+    def configurations(self) -> ConfigurationLibrary:
+        """Return C: all schemas, in file order."""
+        return ConfigurationLibrary(tuple(self.schemas))
+
+
+def discover(paths: Iterable[Path]) -> list[Path]:
+    """Expand folders into their YAML files (sorted, recursive); keep files as given.
+
+    Raises:
+        UsageError: a path does not exist.
+    """
+    out: list[Path] = []
+    for p in paths:
+        if p.is_dir():
+            out.extend(sorted(f for f in p.rglob("*") if f.is_file() and f.suffix in YAML_SUFFIXES))
+        elif p.is_file():
+            out.append(p)
+        else:
+            raise UsageError(f"{p}: no such file or folder")
+    return out
+
+
+def read_sources(paths: Iterable[Path]) -> list[Source]:
+    """Read files as bytes (size is checked by the parser), failing clearly when unreadable."""
+    sources = []
+    for p in paths:
+        try:
+            sources.append(Source(str(p), p.read_bytes()))
+        except OSError as exc:
+            raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
+    return sources
+
+
+def load_sources(sources: Iterable[Source]) -> Loaded:
+    """Parse and build every source, collecting problems instead of stopping at the first."""
+    loaded = Loaded()
+    for src in sources:
+        loaded.files.append(src.name)
+        try:
+            tree = ys.parse(src.data, src.name)
+        except InvalidInputError as exc:
+            loaded.problems.extend(exc.problems)
+            loaded.library_complete = False
+            continue
+        kind, problems = kind_of(tree, src.name)
+        if kind is None or tree is None:
+            loaded.problems.extend(problems)
+            loaded.library_complete = False
+            continue
+        structural = list(structure_problems(tree, kind))
+        if structural:
+            loaded.problems.extend(structural)
+            loaded.library_complete &= kind is not DocumentKind.LIBRARY
+            continue
+        assert isinstance(tree, ys.YMapping)
+        if kind is DocumentKind.LIBRARY:
+            loaded.libraries.append(_build_library(tree, src.name))
+        else:
+            loaded.schemas.append(_build_schema(tree, src.name))
+    return loaded
+
+
+def load_paths(paths: Sequence[Path]) -> Loaded:
+    """Load the YAML files at ``paths`` (files or folders)."""
+    return load_sources(read_sources(discover(paths)))
+
+
+def load_bundled() -> Loaded:
+    """Load the bundled example (the paper's robot arm and the mobile robot)."""
+    sources = []
+    for kind in (Bundle.LIBRARIES, Bundle.SCHEMAS):
+        for f in sorted(bundled(kind).iterdir(), key=lambda t: t.name):
+            if f.is_file() and f.name.endswith(YAML_SUFFIXES):
+                sources.append(Source(f"<bundled>/{kind.value}/{f.name}", f.read_bytes()))
+    loaded = load_sources(sources)
+    loaded.note = "no libraries/ or schemas/ here: using the bundled example"
+    return loaded
+
+
+DEFAULT_FOLDERS = (Path("libraries"), Path("schemas"))
+
+
+def load_selection(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
+    """Load what the user named, else ``libraries/`` and ``schemas/`` here, else the bundle.
+
+    This is the one rule every command uses to pick its input, so that ``rosreconf
+    validate``, ``enumerate`` and ``plan`` always look at the same files.
+    """
+    if paths:
+        return load_paths(paths)
+    here = base or Path()
+    folders = [here / f for f in DEFAULT_FOLDERS if (here / f).is_dir()]
+    if folders:
+        loaded = load_paths(folders)
+        loaded.note = "using " + " and ".join(f"{f.name}/" for f in folders)
+        return loaded
+    return load_bundled()
+
+
+def load_split(
+    library_paths: Sequence[Path], schema_paths: Sequence[Path], *, base: Path | None = None
+) -> Loaded:
+    """Load libraries and schemas chosen separately (``--library``/``--schema`` options).
+
+    Whichever side is not given comes from the default rule of ``load_selection``.
+    """
+    if not library_paths and not schema_paths:
+        return load_selection([], base=base)
+    default = load_selection([], base=base)
+    given = load_paths([*library_paths, *schema_paths])
+    if not library_paths:
+        given.libraries = default.libraries + given.libraries
+        given.files = [f for f in default.files if "librar" in f] + given.files
+    if not schema_paths:
+        given.schemas = given.schemas + default.schemas
+        given.files = given.files + [f for f in default.files if "schema" in f]
+    given.problems += [p for p in default.problems if p not in given.problems]
+    return given
+
+
+def check_loaded(loaded: Loaded) -> list[Problem]:
+    """Return the semantic problems of what ``loaded`` holds (see ``rosreconf.formats.checks``)."""
+    return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
+
+
+def load_checked(
+    library_paths: Sequence[Path] = (),
+    schema_paths: Sequence[Path] = (),
+    *,
+    base: Path | None = None,
+) -> Loaded:
+    """Load like ``load_split`` and refuse input with any error (for the solvers).
+
+    Raises:
+        InvalidInputError: with every structural and semantic error of the files.
+    """
+    loaded = load_split(library_paths, schema_paths, base=base)
+    problems = [*loaded.problems, *check_loaded(loaded)]
+    errors = [p for p in problems if p.severity is Severity.ERROR]
+    if errors:
+        raise InvalidInputError(errors)
+    return loaded
+
+
+# --- building model objects from well-formed trees --------------------------------------
+
+
+def _text(node: ys.YNode | None, default: str = "") -> str:
+    """Return a scalar as the text the user wrote (so names are never turned into numbers)."""
+    if isinstance(node, ys.YScalar):
+        return node.raw
+    return default
+
+
+def _seq(node: ys.YNode | None) -> list[ys.YNode]:
+    return node.items if isinstance(node, ys.YSequence) else []
+
+
+def _map(node: ys.YNode | None) -> dict[str, ys.YNode]:
+    return node.items if isinstance(node, ys.YMapping) else {}
+
+
+def _interface(node: ys.YNode) -> Interface:
+    items = _map(node)
+    kind = InterfaceKind.SERVICE if "service" in items else InterfaceKind.TOPIC
+    return Interface(kind, _text(items[kind.value]), _text(items["type"]))
+
+
+def _requirement(node: ys.YNode) -> Requirement:
+    items = _map(node)
+    if "any_of" in items:
+        return Requirement(tuple(_interface(o) for o in _seq(items["any_of"])), node.span)
+    return Requirement((_interface(node),), node.span)
+
+
+def _launch(node: ys.YNode | None) -> RosLaunch | None:
+    if node is None:
+        return None
+    items = _map(node)
+    params: dict[str, str | int | float | bool] = {}
+    for key, value in _map(items.get("parameters")).items():
+        assert isinstance(value, ys.YScalar) and value.value is not None
+        params[key] = value.value
+    remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
+    ns = items.get("namespace")
+    return RosLaunch(
+        package=_text(items["package"]),
+        executable=_text(items["executable"]),
+        parameters=MappingProxyType(params),
+        remappings=MappingProxyType(remaps),
+        namespace=_text(ns) if ns is not None else None,
+    )
+
+
+def _component(node: ys.YNode) -> Component:
+    items = _map(node)
+    fp = items.get("failure_probability")
+    metrics: dict[str, float] = {}
+    for key, value in _map(items.get("metrics")).items():
+        assert isinstance(value, ys.YScalar) and isinstance(value.value, int | float)
+        metrics[key] = float(value.value)
+    where = {"name": items["name"].span, "abstraction": items["abstraction"].span}
+    for key in ("needs", "excludes", "schemas"):
+        for n in _seq(items.get(key)):
+            where[f"{key}.{_text(n)}"] = n.span
+    for key in ("provides", "requires"):
+        for i, n in enumerate(_seq(items.get(key))):
+            where[f"{key}.{i}"] = n.span
+    return Component(
+        name=_text(items["name"]),
+        abstraction=_text(items["abstraction"]),
+        provides=frozenset(_interface(n) for n in _seq(items.get("provides"))),
+        requires=tuple(_requirement(n) for n in _seq(items.get("requires"))),
+        failure_probability=(
+            float(fp.value) if isinstance(fp, ys.YScalar) and fp.value is not None else None
+        ),
+        needs=frozenset(_text(n) for n in _seq(items.get("needs"))),
+        excludes=frozenset(_text(n) for n in _seq(items.get("excludes"))),
+        schemas=frozenset(_text(n) for n in _seq(items.get("schemas"))),
+        launch=_launch(items.get("ros")),
+        metrics=MappingProxyType(metrics),
+        description=_text(items.get("description")),
+        span=node.span,
+        where=MappingProxyType(where),
+    )
+
+
+def _build_library(tree: ys.YMapping, name: str) -> ComponentLibrary:
+    items = tree.items
+    return ComponentLibrary(
+        name=_text(items["name"]),
+        components=tuple(_component(n) for n in _seq(items["components"])),
+        description=_text(items.get("description")),
+        source=(name,),
+    )
+
+
+def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
+    items = tree.items
+    roles = tuple(
+        Role(
+            name=_text(_map(n)["name"]),
+            abstraction=_text(_map(n)["abstraction"]),
+            description=_text(_map(n).get("description")),
+            span=n.span,
+        )
+        for n in _seq(items["roles"])
+    )
+    edges = []
+    for n in _seq(items.get("edges")):
+        e = _map(n)
+        interfaces = frozenset(_text(i) for i in _seq(e.get("interfaces")))
+        for p in _seq(e["providers"]):
+            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, p.span))
+    nominal = {k: _text(v) for k, v in _map(items.get("nominal")).items()}
+    where = {"name": items["name"].span}
+    where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
+    for n in _seq(items["roles"]):
+        where[f"role.{_text(_map(n)['name'])}.abstraction"] = _map(n)["abstraction"].span
+    return InteroperabilitySchema(
+        name=_text(items["name"]),
+        title=_text(items.get("title")),
+        graph=SystemGraph(roles, tuple(edges)),
+        skill=_text(items["skill"]).strip(),
+        environment=_text(items["environment"]).strip(),
+        nominal=MappingProxyType(nominal),
+        span=tree.span,
+        source=name,
+        where=MappingProxyType(where),
+    )

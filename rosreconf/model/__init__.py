@@ -1,0 +1,68 @@
+"""The paper's model: immutable, free of I/O, named as in Aitken, Veres and Judge (2014).
+
+Every class here is a frozen dataclass of tuples and frozensets, so a loaded library or
+schema can be shared between the enumerator, the PDDL renderer and the reports without
+anyone changing it under the others' feet. Source positions are kept beside the values
+(``Span``) so that semantic checks made long after parsing can still point at a line.
+
+How the paper's names map onto this module::
+
+    paper                                  here
+    -------------------------------------  ------------------------------------------
+    Omega (interface label)                Interface.label
+    Gamma (message class)                  Interface.type
+    S+ / T+ (Def. 2, provision)            Component.provides
+    S- / T- (Def. 3, requirement)          Component.requires (each a Requirement)
+    abstraction N -> Lambda (Def. 5 (1))   Component.abstraction
+    component library L                    ComponentLibrary
+    system graph (Def. 5 (2))              SystemGraph (roles labelled from Lambda)
+    interoperability schema [G, x, e]      InteroperabilitySchema (graph, skill, environment)
+    configuration library C (Def. 8)       ConfigurationLibrary
+    ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
+    configuration                          Configuration (role -> component)
+"""
+
+# The model's public names, re-exported so that readers import them from one place.
+from rosreconf.model.library import (
+    NOWHERE,
+    Component,
+    ComponentLibrary,
+    Interface,
+    InterfaceKind,
+    Requirement,
+    RosLaunch,
+    Span,
+)
+from rosreconf.model.schema import (
+    Configuration,
+    ConfigurationLibrary,
+    Edge,
+    InteroperabilitySchema,
+    Role,
+    RosGraph,
+    SystemGraph,
+    VertexKind,
+    interface_vertex,
+    node_vertex,
+)
+
+__all__ = [
+    "NOWHERE",
+    "Component",
+    "ComponentLibrary",
+    "Configuration",
+    "ConfigurationLibrary",
+    "Edge",
+    "Interface",
+    "InterfaceKind",
+    "InteroperabilitySchema",
+    "Requirement",
+    "Role",
+    "RosGraph",
+    "RosLaunch",
+    "Span",
+    "SystemGraph",
+    "VertexKind",
+    "interface_vertex",
+    "node_vertex",
+]

@@ -1,0 +1,225 @@
+"""The paper's component library L: interfaces, provisions, requirements, components.
+
+Every class here is a frozen dataclass of tuples and frozensets, so a loaded library can be
+shared between the enumerator, the PDDL renderer and the reports without anyone changing it
+under the others' feet. Source positions are kept beside the values (``Span``) so that
+semantic checks made long after parsing can still point at a line. The name table of the
+whole model is in ``rosreconf.model``'s docstring.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import NamedTuple
+
+
+class Span(NamedTuple):
+    """Where a value was written: file, 1-based line and column.
+
+    A NamedTuple rather than a dataclass: a large library creates one per YAML event
+    (hundreds of thousands), and tuples are several times cheaper to build; they are just as
+    immutable, ordered and hashable.
+
+    Attributes:
+        file: the path as the user gave it (or a bundled resource name).
+        line: 1-based line number.
+        column: 1-based column number.
+    """
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+NOWHERE = Span("<model>", 0, 0)
+"""The span of values built in code rather than read from a file."""
+
+
+class InterfaceKind(enum.StrEnum):
+    """The two ways ROS nodes exchange messages (Section 3): topics and services."""
+
+    TOPIC = "topic"
+    SERVICE = "service"
+
+
+@dataclass(frozen=True, order=True)
+class Interface:
+    """One topic or service: a kind, a label (Omega) and a message class (Gamma).
+
+    Two interfaces match (a provision meets a requirement) exactly when all three are equal,
+    which is why this class is hashable and compared by value.
+
+    Attributes:
+        kind: topic or service.
+        label: the paper's Omega, a ROS graph resource name such as ``camera_image``.
+        type: the paper's Gamma, a ROS message or service type such as ``sensor_msgs/Image``.
+    """
+
+    kind: InterfaceKind
+    label: str
+    type: str
+
+    def __str__(self) -> str:
+        return f"{self.kind} '{self.label}' ({self.type})"
+
+
+@dataclass(frozen=True)
+class Requirement:
+    """One need of a component (Def. 3): any one of ``options`` satisfies it.
+
+    Most requirements have one option; the paper's reasoner NREA has two (it uses whichever
+    servo command the chosen arm offers), which is why a requirement is a disjunction.
+
+    Attributes:
+        options: the interfaces, any one of which satisfies this requirement (non-empty).
+        span: where the requirement was written.
+    """
+
+    options: tuple[Interface, ...]
+    span: Span = field(default=NOWHERE, compare=False)
+
+    def __str__(self) -> str:
+        if len(self.options) == 1:
+            return str(self.options[0])
+        return "any one of " + ", ".join(str(o) for o in self.options)
+
+    def met_by(self, provided: Iterable[Interface]) -> tuple[Interface, ...]:
+        """Return the options of this requirement found in ``provided`` (in option order)."""
+        have = frozenset(provided)
+        return tuple(o for o in self.options if o in have)
+
+
+@dataclass(frozen=True)
+class RosLaunch:
+    """How to start a component as a ROS node.
+
+    Attributes:
+        package: the ROS package that holds the executable.
+        executable: the executable (ROS 1 ``type``, ROS 2 ``exec``).
+        parameters: private parameters, name -> scalar value.
+        remappings: interface label -> the real ROS name the executable uses for it.
+        namespace: optional namespace to start the node in.
+    """
+
+    package: str
+    executable: str
+    parameters: Mapping[str, str | int | float | bool] = field(
+        default_factory=lambda: MappingProxyType({})
+    )
+    remappings: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    namespace: str | None = None
+
+
+@dataclass(frozen=True)
+class Component:
+    """A library node (Def. 2/3): what it provides, what it requires, what it is.
+
+    Attributes:
+        name: a valid ROS node base name, unique in the library (and case-insensitively so,
+            because PDDL names are case-insensitive).
+        abstraction: the Def. 5 label (Lambda) saying which role class it can play.
+        provides: services it serves and topics it publishes (S+, T+).
+        requires: services it calls and topics it subscribes (S-, T-), each a disjunction.
+        failure_probability: probability in [0, 1] that it is unavailable, if known.
+        needs: components that must be chosen with it (the paper's "NVP1 needs NCO1 and NCA1").
+        excludes: components that must not be chosen with it.
+        schemas: names of the schemas it may serve in (Table 1's "In Schema"); empty = any.
+        launch: how to start it, if known.
+        metrics: named numbers (cost, settling_time, ...) for optimisation.
+        description: free text for people.
+        span: where the component was written.
+        where: positions of individual values for error messages, keyed ``"name"``,
+            ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
+            ``"provides.<i>"``, ``"requires.<i>"``.
+    """
+
+    name: str
+    abstraction: str
+    provides: frozenset[Interface] = frozenset()
+    requires: tuple[Requirement, ...] = ()
+    failure_probability: float | None = None
+    needs: frozenset[str] = frozenset()
+    excludes: frozenset[str] = frozenset()
+    schemas: frozenset[str] = frozenset()
+    launch: RosLaunch | None = None
+    metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    description: str = ""
+    span: Span = field(default=NOWHERE, compare=False)
+    where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
+
+    def at(self, key: str) -> Span:
+        """Return where the value ``key`` (see ``where``) is written, else the component."""
+        return self.where.get(key, self.span)
+
+    def may_serve_in(self, schema_name: str) -> bool:
+        """Tell whether Table 1's "In Schema" column lets this component serve ``schema_name``."""
+        return not self.schemas or schema_name in self.schemas
+
+    def __hash__(self) -> int:
+        return hash(self.name)
+
+
+@dataclass(frozen=True)
+class ComponentLibrary:
+    """The component library L: the available nodes (a ROS system provision, Def. 2).
+
+    Attributes:
+        name: the library's name.
+        components: the components, in file order.
+        description: free text.
+        source: the file(s) it came from.
+    """
+
+    name: str
+    components: tuple[Component, ...]
+    description: str = ""
+    source: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_by_name", MappingProxyType({c.name: c for c in self.components}))
+
+    @property
+    def by_name(self) -> Mapping[str, Component]:
+        """Return the components keyed by name."""
+        by_name: Mapping[str, Component] = self._by_name  # type: ignore[attr-defined]
+        return by_name
+
+    def __getitem__(self, name: str) -> Component:
+        return self.by_name[name]
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.by_name
+
+    def __iter__(self) -> Iterator[Component]:
+        return iter(self.components)
+
+    def __len__(self) -> int:
+        return len(self.components)
+
+    def candidates(self, abstraction: str) -> tuple[Component, ...]:
+        """Return the components carrying ``abstraction``, in library order (nu^-1(a))."""
+        return tuple(c for c in self.components if c.abstraction == abstraction)
+
+    @property
+    def abstractions(self) -> frozenset[str]:
+        """Return the label set Lambda used by this library."""
+        return frozenset(c.abstraction for c in self.components)
+
+    @staticmethod
+    def merge(libraries: Iterable[ComponentLibrary]) -> ComponentLibrary:
+        """Join several library files into one L (names must already be unique)."""
+        libs = tuple(libraries)
+        if len(libs) == 1:
+            return libs[0]
+        return ComponentLibrary(
+            name="+".join(lib.name for lib in libs),
+            components=tuple(c for lib in libs for c in lib.components),
+            description="; ".join(lib.description for lib in libs if lib.description),
+            source=tuple(s for lib in libs for s in lib.source),
+        )

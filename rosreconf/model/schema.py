@@ -1,0 +1,211 @@
+"""The paper's system graphs, interoperability schemas and configurations (Def. 1, 5, 7, 8).
+
+Frozen like the component library (``rosreconf.model.library``); a configuration is only held
+here, its validity is decided by ``rosreconf.model.validity``.
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import networkx as nx
+
+from rosreconf.model.library import NOWHERE, Interface, InterfaceKind, Span
+
+
+@dataclass(frozen=True)
+class Role:
+    """A vertex of a system graph: a place one component fills.
+
+    Attributes:
+        name: the role's name, unique within its schema.
+        abstraction: the label (from Lambda) a component needs to fill it.
+        description: free text.
+        span: where it was written.
+    """
+
+    name: str
+    abstraction: str
+    description: str = ""
+    span: Span = field(default=NOWHERE, compare=False)
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A directed edge of a system graph: ``consumer`` uses what ``provider`` provides.
+
+    Information flows from the provider to the consumer (the provider serves the service or
+    publishes the topic; the consumer calls or subscribes). The edge is realised in a
+    configuration when some requirement option of the consumer's component is provided by the
+    provider's component; ``interfaces`` optionally restricts which labels may realise it.
+
+    Attributes:
+        consumer: the role that requires (calls a service, subscribes to a topic).
+        provider: the role that provides (serves, publishes).
+        interfaces: labels allowed to realise this edge; empty = any matching interface.
+        span: where it was written.
+    """
+
+    consumer: str
+    provider: str
+    interfaces: frozenset[str] = frozenset()
+    span: Span = field(default=NOWHERE, compare=False)
+
+    def allows(self, interface: Interface) -> bool:
+        """Tell whether ``interface`` may realise this edge."""
+        return not self.interfaces or interface.label in self.interfaces
+
+
+@dataclass(frozen=True)
+class SystemGraph:
+    """A system graph (Def. 5 (2)): roles labelled from Lambda and directed edges.
+
+    Attributes:
+        roles: the roles in the order reports list them (the paper's configuration rows).
+        edges: consumer -> provider edges, in file order.
+    """
+
+    roles: tuple[Role, ...]
+    edges: tuple[Edge, ...]
+
+    def role(self, name: str) -> Role:
+        """Return the role called ``name``."""
+        for r in self.roles:
+            if r.name == name:
+                return r
+        raise KeyError(name)
+
+    def providers_of(self, consumer: str) -> tuple[Edge, ...]:
+        """Return the edges whose consumer is ``consumer``."""
+        return tuple(e for e in self.edges if e.consumer == consumer)
+
+    def to_networkx(self) -> nx.DiGraph:
+        """Return the graph with edges drawn provider -> consumer (the information flow)."""
+        g = nx.DiGraph()
+        for r in self.roles:
+            g.add_node(r.name, abstraction=r.abstraction)
+        for e in self.edges:
+            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces))
+        return g
+
+
+@dataclass(frozen=True)
+class InteroperabilitySchema:
+    """An interoperability schema S = [G, x, e] (Def. 7).
+
+    Attributes:
+        name: identifier used by components' ``schemas`` lists and on the command line.
+        title: a human title ("Object Repositioning").
+        graph: the system graph G.
+        skill: x, the skill the graph implements.
+        environment: e, the environment the skill can operate in.
+        nominal: the declared running configuration, role -> component (may be empty).
+        span: where the schema was written.
+        source: the file it came from.
+        where: positions of values for error messages: ``"name"``, ``"nominal.<role>"``,
+            ``"role.<role>.abstraction"``.
+    """
+
+    name: str
+    graph: SystemGraph
+    skill: str
+    environment: str
+    title: str = ""
+    nominal: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    span: Span = field(default=NOWHERE, compare=False)
+    source: str = ""
+    where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
+
+    def at(self, key: str) -> Span:
+        """Return where the value ``key`` (see ``where``) is written, else the schema."""
+        return self.where.get(key, self.span)
+
+    @property
+    def display_name(self) -> str:
+        """Return the title when there is one, else the name."""
+        return self.title or self.name
+
+
+@dataclass(frozen=True)
+class ConfigurationLibrary:
+    """The configuration library C (Def. 8): the list of interoperability schemas."""
+
+    schemas: tuple[InteroperabilitySchema, ...]
+
+    def __iter__(self) -> Iterator[InteroperabilitySchema]:
+        return iter(self.schemas)
+
+    def __len__(self) -> int:
+        return len(self.schemas)
+
+    def get(self, name: str) -> InteroperabilitySchema:
+        """Return the schema called ``name``."""
+        for s in self.schemas:
+            if s.name == name:
+                return s
+        raise KeyError(name)
+
+
+@dataclass(frozen=True)
+class Configuration:
+    """A filling of every role of one schema by one component.
+
+    Whether it is *valid* is decided by ``rosreconf.model.validity``; this class only holds it.
+
+    Attributes:
+        schema: the schema's name.
+        assignment: role -> component name, in the schema's role order.
+    """
+
+    schema: str
+    assignment: tuple[tuple[str, str], ...]
+
+    @staticmethod
+    def of(schema: str, mapping: Mapping[str, str], roles: Iterable[Role]) -> Configuration:
+        """Build a configuration from a mapping, ordered by the schema's roles."""
+        return Configuration(schema, tuple((r.name, mapping[r.name]) for r in roles))
+
+    @property
+    def mapping(self) -> dict[str, str]:
+        """Return role -> component as a fresh dict."""
+        return dict(self.assignment)
+
+    @property
+    def components(self) -> tuple[str, ...]:
+        """Return the chosen components in role order (the paper's configuration rows)."""
+        return tuple(c for _, c in self.assignment)
+
+
+class VertexKind(enum.StrEnum):
+    """The three vertex kinds of a ROS-graph (Def. 1), never interchangeable."""
+
+    NODE = "node"
+    TOPIC = "topic"
+    SERVICE = "service"
+
+
+RosGraph = nx.DiGraph
+"""A ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
+
+Vertex ids are tuples ``(VertexKind, name)`` so that a node and a topic of the same name can
+never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
+(Omega) attributes. Edges run in the direction of information flow: provider node ->
+topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
+vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
+topic vertex's name is its label, because topics are many-to-many.
+"""
+
+
+def node_vertex(name: str) -> tuple[VertexKind, str]:
+    """Return the ROS-graph vertex id of the node ``name``."""
+    return (VertexKind.NODE, name)
+
+
+def interface_vertex(interface: Interface, provider: str) -> tuple[VertexKind, str]:
+    """Return the ROS-graph vertex id carrying ``interface`` as provided by ``provider``."""
+    if interface.kind is InterfaceKind.SERVICE:
+        return (VertexKind.SERVICE, f"{provider}/{interface.label}")
+    return (VertexKind.TOPIC, interface.label)

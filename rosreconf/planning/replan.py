@@ -1,0 +1,191 @@
+"""Re-plan one schema after failures: render PDDL, run a planner, read the plan back, check it.
+
+``plan`` joins the stages: ``instance`` (static tables) -> ``pddl`` (text and names) ->
+``planners.solve`` (an external planner) -> back through ``PddlNames`` to a Configuration,
+which is accepted only if ``validity.violations`` finds nothing wrong with it. clingo answers
+first whether any configuration exists at all, so that an impossible task gets its why-not
+text instead of a planner's bare "unsolvable", and how few changes are possible, so that the
+report can say whether the planner's plan is a minimal change.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.validity import violations
+from rosreconf.outfiles import write_atomic
+from rosreconf.planning.narrative import Change, changes, explain_impossible, explain_replan
+from rosreconf.planning.pddl import PddlTask, render
+from rosreconf.planning.pddl_names import Step
+from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
+from rosreconf.solve.instance import compile_instance, explain
+from rosreconf.solve.solver import ClingoEngine, Objective, best_configuration, optimise
+
+
+@dataclass(frozen=True)
+class ReplanResult:
+    """The answer for one schema.
+
+    Attributes:
+        schema: the schema.
+        status: SOLVED, UNSOLVABLE_PROVEN (no configuration exists: see ``why_not``) or the
+            planner's failure (TIMEOUT, PLANNER_ERROR, ...).
+        current: the running configuration it started from (role -> component; may be empty).
+        configuration: the new configuration (None unless SOLVED).
+        steps: the plan's steps in plain words, in order (Figure 8 style).
+        actions: the plan's PDDL action names, in order.
+        changes: per role, keep / replace / start.
+        explanation: sentences for the operator.
+        why_not: why no configuration exists (empty unless UNSOLVABLE_PROVEN).
+        message: how the planner run went, or what was wrong with its plan.
+        fewest_changes: the fewest role changes any valid configuration needs (clingo's proof).
+        planner: the planner's result (None when no planner ran).
+    """
+
+    schema: InteroperabilitySchema
+    status: PlanStatus
+    current: Mapping[str, str]
+    configuration: Configuration | None = None
+    steps: tuple[str, ...] = ()
+    actions: tuple[str, ...] = ()
+    changes: tuple[Change, ...] = ()
+    explanation: tuple[str, ...] = ()
+    why_not: str = ""
+    message: str = ""
+    fewest_changes: int | None = None
+    planner: PlanResult | None = field(default=None, repr=False)
+
+
+def current_configuration(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    weights: Mapping[str, float] | None = None,
+) -> dict[str, str]:
+    """Return what runs before the failure: the declared nominal, else the best by objective."""
+    if schema.nominal:
+        return dict(schema.nominal)
+    best = best_configuration(library, schema, Objective(weights=dict(weights or {})))
+    return best.mapping if best else {}
+
+
+def plan(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str],
+    current: Mapping[str, str],
+    planner: Planner,
+    *,
+    weights: Mapping[str, float] | None = None,
+    timeout: float = 60.0,
+    memory_limit_mb: int = 2048,
+    keep_pddl: Path | None = None,
+) -> ReplanResult:
+    """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``."""
+    inst = compile_instance(library, schema, failed)
+    objective = Objective(dict(current), dict(weights or {}))
+    best = optimise(inst, objective).configuration if current else ClingoEngine().first(inst)
+    if best is None:
+        why = explain(inst)
+        lines = explain_impossible(schema, inst.failed, current, why)
+        return ReplanResult(
+            schema, PlanStatus.UNSOLVABLE_PROVEN, current, why_not=why, explanation=tuple(lines)
+        )
+    fewest = objective.score(inst, best)[0] if current else None
+    task = render(inst, objective)
+    if keep_pddl is not None:
+        write_task(task, keep_pddl)
+    run = solve(
+        planner, task.domain, task.problem, timeout=timeout, memory_limit_mb=memory_limit_mb
+    )
+    if not run.solved:
+        message = run.message
+        if run.status is PlanStatus.UNSOLVABLE_PROVEN:  # clingo found one: the task is wrong
+            message = f"the planner found no plan, yet a configuration exists ({run.message})"
+            return ReplanResult(
+                schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run
+            )
+        return ReplanResult(schema, run.status, current, message=message, planner=run)
+    return _read_back(library, schema, inst.failed, current, task, run, fewest)
+
+
+def _read_back(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str],
+    current: Mapping[str, str],
+    task: PddlTask,
+    run: PlanResult,
+    fewest: int | None,
+) -> ReplanResult:
+    """Map the plan's actions back onto the model and accept only a valid configuration."""
+    steps: list[Step] = []
+    for name, args in run.actions:
+        step = task.names.step(name)
+        if step is None or args:
+            shown = f"({' '.join([name, *args])})"
+            message = f"plan names unknown action {shown}"
+            return ReplanResult(
+                schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run
+            )
+        steps.append(step)
+    chosen = {s.role: s.component for s in steps if s.kind == "choose"}
+    roles = schema.graph.roles
+    missing = [r.name for r in roles if r.name not in chosen]
+    if missing:
+        message = f"the plan leaves {', '.join(missing)} unfilled"
+        return ReplanResult(schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run)
+    # A connect step names the provider role; the provider is whatever the plan chose there.
+    steps = [
+        replace(s, component=chosen[s.provider_role])
+        if s.kind == "connect" and s.provider_role in chosen
+        else s
+        for s in steps
+    ]
+    config = Configuration.of(schema.name, chosen, roles)
+    wrong = violations(config, library, schema, failed)
+    if wrong:
+        message = "the plan is not a valid configuration: " + "; ".join(map(str, wrong))
+        return ReplanResult(schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run)
+    lines = explain_replan(library, schema, failed, current, config, fewest)
+    return ReplanResult(
+        schema,
+        PlanStatus.SOLVED,
+        current,
+        configuration=config,
+        steps=tuple(_step_text(s, current, chosen) for s in steps if s.kind != "finish"),
+        actions=tuple(name for name, _ in run.actions),
+        changes=tuple(changes(current, config)),
+        explanation=tuple(lines),
+        message=run.message,
+        fewest_changes=fewest,
+        planner=run,
+    )
+
+
+def _step_text(step: Step, current: Mapping[str, str], chosen: Mapping[str, str]) -> str:
+    """Say one plan step the way Figure 8 of the paper lists them."""
+    if step.kind == "choose":
+        before = current.get(step.role)
+        if before == step.component:
+            return f"keep {step.component} as {step.role}"
+        if before is None:
+            return f"start {step.component} as {step.role}"
+        return f"stop {before}, start {step.component} as {step.role}"
+    assert step.requirement is not None and step.provider_role is not None
+    labels = " or ".join(o.label for o in step.requirement.options)
+    return (
+        f"connect {chosen[step.role]} ({step.role}) to {step.component} "
+        f"({step.provider_role}) for {labels}"
+    )
+
+
+def write_task(task: PddlTask, folder: Path) -> Path:
+    """Write ``folder/<schema>/domain.pddl`` and ``problem.pddl``, each whole or not at all."""
+    target = folder / task.schema
+    target.mkdir(parents=True, exist_ok=True)
+    for name, text in (("domain.pddl", task.domain), ("problem.pddl", task.problem)):
+        write_atomic(target / name, text)
+    return target

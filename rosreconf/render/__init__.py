@@ -1,0 +1,1 @@
+"""Stage 7, output: pictures (DOT, SVG, PNG) and problem reports."""

@@ -1,0 +1,210 @@
+"""Compare what a ROS master says is running with the ROS-graph a configuration should have.
+
+The expected ROS-graph (Def. 1) comes from ``rosreconf.model.validity.ros_graph``; the live one from
+``rosreconf.ros.rosmaster.read_live_graph``. They speak different names: the model names nodes
+after components and interfaces after labels (Omega), the master uses global ROS names. One
+pair of functions maps model names to live names, and everything here goes through them::
+
+    model                                   live (global ROS name)
+    --------------------------------------  ------------------------------------------------
+    component C                             <ros.namespace or />/<C>         node_live_name
+    interface label X of component C        ros.remappings[X] if given, else X;  interface_live_name
+                                            a relative name is resolved in C's namespace
+
+So NSM3 is ``/NSM3`` and its ``elbow/digital_servo_command`` is ``/arm_servo/elbow/servo_command``
+(its remapping); a component with ``namespace: /arm`` and no remapping for ``joint_states``
+publishes ``/arm/joint_states``.
+
+The comparison reports (``Finding.code``): ``missing-node`` (not registered), ``dead-node``
+(registered but its API does not answer: SIGKILLed nodes linger in the master),
+``extra-node`` (alive, not plumbing, not in the configuration), ``missing-service`` /
+``missing-topic`` (an expected node does not serve, publish or subscribe what its ROS-graph
+edges say), ``wrong-type`` (the master's type of an expected topic differs), and
+``unmet-requirement`` (Lemma 4: an interface a running expected node uses along its
+ROS-graph edges is served or published by no live node).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Configuration,
+    InteroperabilitySchema,
+    VertexKind,
+)
+from rosreconf.model.validity import ros_graph
+from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
+
+
+def _join(namespace: str, name: str) -> str:
+    """Return the global name of ``name`` in ``namespace`` (``/arm`` + ``x`` -> ``/arm/x``)."""
+    parts = [p for p in (*namespace.split("/"), *name.split("/")) if p]
+    return "/" + "/".join(parts)
+
+
+def node_live_name(component: Component) -> str:
+    """Return the global name the node of ``component`` has on the master."""
+    namespace = component.launch.namespace if component.launch else None
+    return _join(namespace or "/", component.name)
+
+
+def interface_live_name(component: Component, label: str) -> str:
+    """Return the global ROS name ``component`` uses for its interface ``label``.
+
+    The remapping (``ros.remappings``, label -> real name) wins; a relative name is resolved
+    in the component's namespace, as ROS resolves it for a node started there.
+    """
+    launch = component.launch
+    target = launch.remappings.get(label, label) if launch else label
+    if target.startswith("/"):
+        return _join("/", target)
+    return _join((launch.namespace if launch else None) or "/", target)
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One way the live graph differs from the expected ROS-graph.
+
+    Attributes:
+        code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
+            ``missing-topic``, ``wrong-type`` or ``unmet-requirement``.
+        message: the difference in plain words.
+        component: the component concerned, if any (None for extra nodes).
+        live_name: the global ROS name concerned (node, topic or service).
+    """
+
+    code: str
+    message: str
+    component: str | None
+    live_name: str
+
+
+@dataclass(frozen=True)
+class Conformance:
+    """The outcome of comparing one configuration with a live graph.
+
+    Attributes:
+        schema: the schema's name.
+        configuration: the configuration expected to run.
+        live: the live graph compared (plumbing included, as read).
+        expected_nodes: component -> its live node name.
+        findings: every difference, in a stable order.
+    """
+
+    schema: str
+    configuration: Configuration
+    live: LiveGraph
+    expected_nodes: dict[str, str]
+    findings: tuple[Finding, ...]
+
+    @property
+    def ok(self) -> bool:
+        """Tell whether the live graph conforms (no findings)."""
+        return not self.findings
+
+    @property
+    def failed_components(self) -> tuple[str, ...]:
+        """Return the components whose node is missing or dead, in configuration order."""
+        bad = {f.component for f in self.findings if f.code in ("missing-node", "dead-node")}
+        return tuple(c for c in self.configuration.components if c in bad)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON shape ``rosreconf inspect --json`` prints."""
+        return {
+            "schema": self.schema,
+            "conformant": self.ok,
+            "master_uri": self.live.master_uri,
+            "taken_at": self.live.taken_at.isoformat(),
+            "configuration": self.configuration.mapping,
+            "expected_nodes": self.expected_nodes,
+            "findings": [
+                {
+                    "code": f.code,
+                    "component": f.component,
+                    "live_name": f.live_name,
+                    "message": f.message,
+                }
+                for f in self.findings
+            ],
+        }
+
+
+def compare(
+    configuration: Configuration,
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    live: LiveGraph,
+) -> Conformance:
+    """Compare ``live`` with the ROS-graph of ``configuration`` (which must be valid)."""
+    graph = without_plumbing(live)
+    answering = {n.name: n for n in graph.nodes if n.answered}
+    registered = {n.name for n in graph.nodes}
+    comps = {c: library[c] for c in configuration.components}
+    names = {c: node_live_name(comp) for c, comp in comps.items()}
+    found: list[Finding] = []
+    for c, name in names.items():
+        role = next(r for r, x in configuration.assignment if x == c)
+        if name in answering:
+            continue
+        if name in registered:
+            why = f"{c} ({role}): {name} is registered but does not answer (killed?)"
+            found.append(Finding("dead-node", why, c, name))
+        else:
+            found.append(Finding("missing-node", f"{c} ({role}): {name} is not running", c, name))
+    for name in sorted(set(answering) - set(names.values())):
+        found.append(
+            Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
+        )
+    found += _edges(configuration, library, schema, graph, answering, comps)
+    return Conformance(schema.name, configuration, live, names, tuple(found))
+
+
+def _edges(
+    configuration: Configuration,
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    graph: LiveGraph,
+    answering: dict[str, LiveNode],
+    comps: dict[str, Component],
+) -> list[Finding]:
+    """Check every topic/service vertex of the expected ROS-graph against the live nodes."""
+    found: list[Finding] = []
+    served = {s for n in answering.values() for s in n.serves}
+    published = {t for n in answering.values() for t in n.publishes}
+    expected = ros_graph(configuration, library, schema)
+    for vertex, data in sorted(expected.nodes(data=True)):
+        kind = vertex[0]
+        if kind is VertexKind.NODE:
+            continue
+        label, typ = str(data["label"]), str(data["type"])
+        (provider,) = (p for _, p in expected.predecessors(vertex))
+        consumers = sorted(c for _, c in expected.successors(vertex))
+        name = interface_live_name(comps[provider], label)
+        node = answering.get(node_live_name(comps[provider]))
+        what = "service" if kind is VertexKind.SERVICE else "topic"
+        if node is not None and name not in (node.serves if what == "service" else node.publishes):
+            verb = "serve" if what == "service" else "publish"
+            msg = f"{provider} does not {verb} {what} {name} ({label})"
+            found.append(Finding(f"missing-{what}", msg, provider, name))
+        live_type = graph.topic_types.get(name)
+        if what == "topic" and live_type is not None and live_type != typ:
+            msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
+            found.append(Finding("wrong-type", msg, provider, name))
+        for consumer in consumers:
+            user = answering.get(node_live_name(comps[consumer]))
+            own = interface_live_name(comps[consumer], label)
+            if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
+                msg = f"{consumer} does not subscribe to topic {name} ({label})"
+                found.append(Finding("missing-topic", msg, consumer, name))
+            if user is not None and name not in (served if what == "service" else published):
+                how = "serves" if what == "service" else "publishes"
+                msg = (
+                    f"{consumer} uses {what} {name} ({label}, {typ}) of {provider}, "
+                    f"which nothing live {how} (Lemma 4)"
+                )
+                found.append(Finding("unmet-requirement", msg, consumer, name))
+    return found

@@ -1,0 +1,131 @@
+"""Draft a component library from a running system, so a person starts from what really runs.
+
+What the master knows becomes YAML of ``docs/formats.md``; what it cannot know becomes a
+placeholder that still validates, marked with a ``# TODO`` comment::
+
+    master                               draft
+    -----------------------------------  ----------------------------------------------------
+    node /ns/name                        component ``name`` with ``ros.namespace: /ns``
+                                         (``ns_name`` if two nodes share a base name)
+    published topic /t (type T)          provides {topic: /t, type: T}
+    served service /s (no type known)    provides {service: /s, type: TODO_srvs/<Name>}
+    subscribed topic /t                  requires {topic: /t, type: T} when something live
+                                         publishes /t, else a commented-out TODO
+    called services                      invisible at the master: TODO comment
+    -                                    abstraction: TODO_<name>, ros.package: TODO_package,
+                                         ros.executable: TODO_executable
+
+Interface labels are the live global names, so ``rosreconf.ros.conformance.interface_live_name``
+maps them back to themselves and ``rosreconf inspect`` can compare the draft with the live
+system at once. Plumbing (``/rosout``, logger services) is left out.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
+
+HEADER = "# yaml-language-server: $schema=../rosreconf/data/component-library.schema.json"
+UNKNOWN_TOPIC_TYPE = "TODO_msgs/Unknown"
+"""The type written for a topic the master has no type for (it always has, in practice)."""
+
+
+def component_name(node: str, taken: set[str]) -> str:
+    """Return a valid component name for node ``node``, unique (any case) in ``taken``.
+
+    The base name is kept (``/arm/NSM3`` -> ``NSM3``); characters a component name cannot
+    hold become ``_``; on a clash the namespace is prefixed (``arm_NSM3``), then a number.
+    """
+    parts = [_clean(p) for p in node.split("/") if p] or ["node"]
+    for candidate in (parts[-1], "_".join(parts)):
+        if candidate.lower() not in taken:
+            taken.add(candidate.lower())
+            return candidate
+    n = 2
+    while f"{'_'.join(parts)}_{n}".lower() in taken:
+        n += 1
+    taken.add(f"{'_'.join(parts)}_{n}".lower())
+    return f"{'_'.join(parts)}_{n}"
+
+
+def _clean(part: str) -> str:
+    """Make one name segment a valid component name (letter first, then letters, digits, _)."""
+    text = re.sub(r"[^A-Za-z0-9_]", "_", part)
+    return text if text[:1].isalpha() else "N" + text
+
+
+def _service_type(service: str) -> str:
+    """Return the placeholder type of a service (its last segment, CamelCased)."""
+    base = "".join(w.capitalize() for w in re.split(r"[^A-Za-z0-9]+", service) if w)
+    return f"TODO_srvs/{_clean(base or 'Unknown')}"
+
+
+def _q(text: str) -> str:
+    """Quote ``text`` as a YAML (JSON) string."""
+    return json.dumps(text)
+
+
+def draft_library(graph: LiveGraph, name: str = "imported") -> str:
+    """Return the YAML text of a component library with one component per live node."""
+    live = without_plumbing(graph)
+    published = {t for n in live.nodes for t in n.publishes}
+    lines = [
+        HEADER,
+        "#",
+        f"# Drafted by 'rosreconf import' from the ROS master at {live.master_uri}",
+        f"# on {live.taken_at.isoformat()}. Fill in every TODO before using it for planning:",
+        "#   abstraction  the role class each component can play (Def. 5), shared by",
+        "#                interchangeable components;",
+        "#   TODO_srvs/*  service types (the master does not know them);",
+        "#   requires     services each node calls (the master does not know them either);",
+        "#   ros:         the package and executable that start each node;",
+        "#   needs/excludes, schemas, failure_probability, metrics: what only you know.",
+        "format: rosreconf/component-library",
+        "version: 1",
+        f"name: {_q(_clean(name))}",
+        f"description: {_q('Drafted from the live system at ' + live.master_uri)}",
+        "components:",
+    ]
+    taken: set[str] = set()
+    for node in live.nodes:
+        lines += _component(node, component_name(node.name, taken), live, published)
+    if not live.nodes:
+        lines[-1] = "components: []  # TODO: no node was running (this draft will not load)"
+    return "\n".join(lines) + "\n"
+
+
+def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) -> list[str]:
+    """Return the YAML lines of one component drafted from ``node``."""
+    namespace = node.name.rsplit("/", 1)[0]
+    lines = [
+        f"  - name: {comp}",
+        f"    abstraction: TODO_{comp}  # TODO: the role class {comp} can play",
+        f"    description: {_q('Live node ' + node.name)}",
+    ]
+    if not node.answered:
+        lines.append("    # TODO: this node did not answer (dead?) when the master was read")
+    provides = [
+        f"      - {{topic: {_q(t)}, type: {_q(live.topic_types.get(t, UNKNOWN_TOPIC_TYPE))}}}"
+        for t in node.publishes
+    ]
+    for s in node.serves:
+        provides.append(f"      - {{service: {_q(s)}, type: {_q(_service_type(s))}}}  # TODO: type")
+    lines += ["    provides:", *provides] if provides else ["    provides: []"]
+    requires: list[str] = []
+    unmet: list[str] = []
+    for t in node.subscribes:
+        entry = f"{{topic: {_q(t)}, type: {_q(live.topic_types.get(t, UNKNOWN_TOPIC_TYPE))}}}"
+        (requires if t in published else unmet).append(entry)
+    lines += ["    requires:", *(f"      - {r}" for r in requires)] if requires else []
+    lines += [f"    # TODO: subscribes {r}, which nothing live publishes" for r in unmet]
+    lines.append("    # TODO: add the services this node calls (invisible at the master)")
+    lines += [
+        "    ros:  # TODO: package and executable",
+        "      package: TODO_package",
+        "      executable: TODO_executable",
+    ]
+    if namespace:
+        lines.append(f"      namespace: {_q(namespace)}")
+    return lines

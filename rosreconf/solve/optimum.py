@@ -1,0 +1,147 @@
+"""Find a provably optimal configuration by min-plus variable elimination.
+
+The tables and the elimination order are counting's (``rosreconf.solve.factors``); only the
+algebra changes. Each allowed row costs 0, each role adds a unary table with its
+candidates' costs, joining adds costs, and eliminating a role keeps, per row of its
+neighbours, the cheapest candidate and remembers which one it was. After the last role the
+single value left is the optimum; walking the remembered choices back (traceback) gives a
+configuration that reaches it. On the small treewidth of real and generated system graphs
+this is exact and takes about as long as counting.
+
+Costs are lexicographic tuples of integers (fewest changes first, then the scaled metric
+sum, ``rosreconf.solve.solver``). They are packed into one Python integer per row so that joins
+add plain integers: level ``l`` is multiplied by one more than the largest total the lower
+levels can reach, which keeps the order lexicographic and the arithmetic exact.
+"""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Mapping, Sequence
+
+from rosreconf.model import Configuration
+from rosreconf.solve.factors import (
+    MAX_FACTOR_ROWS,
+    Factor,
+    TooHard,
+    constraint_factors,
+    eliminate,
+    elimination_order,
+    key_of,
+    paused_gc,
+)
+from rosreconf.solve.instance import Instance, prune
+
+__all__ = ["MAX_FACTOR_ROWS", "TooHard", "minimise"]
+
+Trace = list[tuple[int, tuple[int, ...], dict[tuple[str, ...], str]]]
+"""Per eliminated role: its neighbours' scope and, per neighbour row, the cheapest candidate."""
+
+
+def minimise(
+    inst: Instance,
+    costs: Sequence[Mapping[str, tuple[int, ...]]],
+    max_rows: int = MAX_FACTOR_ROWS,
+) -> tuple[Configuration, tuple[int, ...]] | None:
+    """Return a valid configuration of least total cost and that cost, or None if none exists.
+
+    ``costs[r][c]`` is the cost tuple (most important level first) of candidate ``c`` in
+    role ``r``; a configuration costs the element-wise sum over its roles, compared
+    lexicographically. Among equal costs, earlier candidates in library order win at every
+    elimination step, so the answer is deterministic.
+
+    Raises:
+        TooHard: an intermediate table would exceed ``max_rows`` rows.
+    """
+    with paused_gc():
+        return _minimise(inst, costs, max_rows)
+
+
+def _minimise(
+    inst: Instance, costs: Sequence[Mapping[str, tuple[int, ...]]], max_rows: int
+) -> tuple[Configuration, tuple[int, ...]] | None:
+    alive, _, _ = prune(inst)
+    if any(not a for a in alive):
+        return None
+    packed, unpack = _pack(alive, costs)
+    factors = constraint_factors(inst, alive, 0, max_rows)
+    order = elimination_order([f.scope for f in factors], len(inst.roles))
+    factors.extend(Factor((r,), {(c,): w for c, w in packed[r].items()}) for r in range(len(alive)))
+    rank = {c.name: i for i, c in enumerate(inst.library.components)}
+    trace: Trace = []
+
+    def min_out(f: Factor, var: int) -> Factor:
+        return _min_out(f, var, rank, trace)
+
+    done = eliminate(factors, order, operator.add, min_out, max_rows)
+    if done is None:
+        return None
+    scalars, free = done
+    chosen: dict[int, str] = {}
+    for var in free:  # pragma: no cover - every role has its unary table
+        chosen[var] = alive[var][0]
+    for var, scope, arg in reversed(trace):
+        chosen[var] = arg[tuple(chosen[v] for v in scope)]
+    mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
+    config = Configuration.of(inst.schema.name, mapping, inst.roles)
+    return config, unpack(sum(scalars))
+
+
+def _min_out(f: Factor, var: int, rank: Mapping[str, int], trace: Trace) -> Factor:
+    """Minimise ``var`` out of ``f``, recording the cheapest candidate per remaining row."""
+    pos = f.scope.index(var)
+    rest = key_of([i for i in range(len(f.scope)) if i != pos])
+    best: dict[tuple[str, ...], int] = {}
+    arg: dict[tuple[str, ...], str] = {}
+    for row, w in f.rows.items():
+        k = rest(row)
+        old = best.get(k)
+        if old is None or w < old or (w == old and rank[row[pos]] < rank[arg[k]]):
+            best[k] = w
+            arg[k] = row[pos]
+    scope = f.scope[:pos] + f.scope[pos + 1 :]
+    trace.append((var, scope, arg))
+    return Factor(scope, best)
+
+
+def _pack(
+    alive: list[list[str]], costs: Sequence[Mapping[str, tuple[int, ...]]]
+) -> tuple[list[dict[str, int]], _Unpack]:
+    """Pack each candidate's cost tuple into one non-negative integer, order preserved."""
+    levels = max((len(t) for m in costs for t in m.values()), default=0)
+
+    def level(r: int, c: str, i: int) -> int:
+        t = costs[r].get(c, ())
+        return t[i] if i < len(t) else 0
+
+    lows = [
+        [min(level(r, c, i) for c in names) for i in range(levels)] for r, names in enumerate(alive)
+    ]
+    spans = [
+        sum(max(level(r, c, i) for c in names) - lows[r][i] for r, names in enumerate(alive))
+        for i in range(levels)
+    ]
+    bases = [1] * levels
+    for i in range(levels - 2, -1, -1):
+        bases[i] = bases[i + 1] * (spans[i + 1] + 1)
+    packed = [
+        {c: sum((level(r, c, i) - lows[r][i]) * bases[i] for i in range(levels)) for c in names}
+        for r, names in enumerate(alive)
+    ]
+    offsets = [sum(low[i] for low in lows) for i in range(levels)]
+    return packed, _Unpack(bases, offsets)
+
+
+class _Unpack:
+    """Turn a packed total back into its cost tuple."""
+
+    def __init__(self, bases: list[int], offsets: list[int]) -> None:
+        self.bases = bases
+        self.offsets = offsets
+
+    def __call__(self, total: int) -> tuple[int, ...]:
+        out = []
+        for base, offset in zip(self.bases, self.offsets, strict=True):
+            q, total = divmod(total, base)
+            out.append(q + offset)
+        return tuple(out)

@@ -1,0 +1,260 @@
+"""Find configurations: enumerate, first, best, behind one small interface.
+
+The optimum comes from min-plus variable elimination (``rosreconf.solve.optimum``) when the system
+graph is sparse enough to eliminate exactly, else from clingo; both minimise the very same
+integers (``unary_costs``). Everything else is clingo (Potassco's ASP solver, PyPI
+``clingo``): configuration is a finite-domain problem and clingo is a kept, well-made solver
+for exactly that. The program below is fixed; everything specific to a library and schema
+arrives as ground facts from ``rosreconf.solve.instance``, so grounding stays linear in the size
+of the compatibility tables.
+
+Enumeration order is deterministic and reads like the paper's lists: a domain heuristic makes
+clingo decide roles in schema order and candidates in library order, and backtracking
+enumeration then yields configurations in that lexicographic order, one at a time (flat
+memory, ``limit`` stops early).
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Collection, Iterator, Mapping
+from dataclasses import dataclass, field
+
+import clingo
+
+from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.solve.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
+from rosreconf.solve.instance import Instance, compile_instance, explain
+from rosreconf.solve.optimum import minimise
+
+LOG = logging.getLogger(__name__)
+
+PROGRAM = """
+1 { x(R,C) : cand(R,C) } 1 :- role(R).
+:- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).
+sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).
+:- x(U,CU), req(U,CU,I), not sat(U,I).
+chosen(C) :- x(_,C).
+:- x(_,C), needs(C,D), not chosen(D).
+:- x(_,C), excludes(C,D), chosen(D).
+:- x(R1,C), x(R2,C), R1 < R2.
+#show x/2.
+"""
+
+OPTIMISE = """
+#minimize { 1@2,R : x(R,C), current(R,D), C != D }.
+#minimize { W@1,R,C : x(R,C), weight(C,W) }.
+"""
+
+METRIC_SCALE = 1000
+"""Metrics are real numbers; clingo optimises integers, so weights are scaled and rounded."""
+
+
+@dataclass(frozen=True)
+class Objective:
+    """What "best" means: keep the running components first, then a weighted metric sum.
+
+    Attributes:
+        current: role -> component of the running configuration (changes cost 1 each, and
+            are minimised before anything else: the paper's minimal reconfiguration).
+        weights: metric name -> weight; a component's score is the weighted sum of its
+            metrics (missing metrics count 0); lower is better.
+    """
+
+    current: Mapping[str, str] = field(default_factory=dict)
+    weights: Mapping[str, float] = field(default_factory=dict)
+
+    def score(self, inst: Instance, config: Configuration) -> tuple[int, float]:
+        """Return (changes against current, weighted metric sum) of ``config``."""
+        changes = sum(1 for r, c in config.assignment if r in self.current and self.current[r] != c)
+        metric = sum(
+            w * inst.library[c].metrics.get(m, 0.0)
+            for _, c in config.assignment
+            for m, w in self.weights.items()
+        )
+        return changes, metric
+
+    def cost(self, inst: Instance, config: Configuration) -> tuple[int, int]:
+        """Return the exact (changes, scaled metric sum) that every engine minimises."""
+        costs = unary_costs(inst, self)
+        index = inst.role_index
+        changes = metric = 0
+        for role, comp in config.assignment:
+            c, m = costs[index[role]][comp]
+            changes, metric = changes + c, metric + m
+        return changes, metric
+
+
+def scaled_metric(objective: Objective, component: Component) -> int:
+    """Return the component's weighted metric sum as the integer clingo optimises."""
+    w = sum(wt * component.metrics.get(m, 0.0) for m, wt in objective.weights.items())
+    return round(w * METRIC_SCALE)
+
+
+def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[int, int]]]:
+    """Return per role, candidate -> (change against current, scaled metric): the objective.
+
+    A change counts when ``current`` names, for that role, another component of the
+    library; exactly the ``current``/``weight`` facts clingo receives.
+    """
+    known = {c.name for c in inst.library.components}
+    out = []
+    for role, dom in zip(inst.roles, inst.domains, strict=True):
+        now = objective.current.get(role.name)
+        watch = now is not None and now in known
+        out.append(
+            {c.name: (int(watch and c.name != now), scaled_metric(objective, c)) for c in dom}
+        )
+    return out
+
+
+def _facts(inst: Instance, objective: Objective | None = None) -> str:
+    """Render the instance as ASP facts (integers for roles and components: fast to ground)."""
+    ids = {c.name: i for i, c in enumerate(inst.library.components)}
+    out: list[str] = []
+    width = max((len(d) for d in inst.domains), default=1) + 1
+    n = len(inst.roles)
+    for r, dom in enumerate(inst.domains):
+        out.append(f"role({r}).")
+        for j, c in enumerate(dom):
+            out.append(f"cand({r},{ids[c.name]}).")
+            level = (n - r) * width + (width - j)
+            out.append(f"#heuristic x({r},{ids[c.name]}). [{level},true]")
+    for e, ((u, v), ok) in enumerate(zip(inst.edges, inst.edge_ok, strict=True)):
+        out.append(f"edge({e},{u},{v}).")
+        out.extend(f"ok({e},{ids[a]},{ids[b]})." for a, b in ok)
+    for (u, cu, i), pairs in inst.meets.items():
+        out.append(f"req({u},{ids[cu]},{i}).")
+        out.extend(f"meets({u},{ids[cu]},{i},{v},{ids[cv]})." for v, cv in pairs)
+    for c in inst.library.components:
+        out.extend(f"needs({ids[c.name]},{ids[d]})." for d in c.needs if d in ids)
+        out.extend(f"excludes({ids[c.name]},{ids[d]})." for d in c.excludes if d in ids)
+    if objective is not None:
+        index = inst.role_index
+        for role, comp in objective.current.items():
+            if role in index and comp in ids:
+                out.append(f"current({index[role]},{ids[comp]}).")
+        for c in inst.library.components:
+            out.append(f"weight({ids[c.name]},{scaled_metric(objective, c)}).")
+    return "\n".join(out)
+
+
+def _control(inst: Instance, objective: Objective | None, args: list[str]) -> clingo.Control:
+    ctl = clingo.Control(["--warn=none", *args])
+    ctl.add("base", [], PROGRAM + (OPTIMISE if objective is not None else ""))
+    ctl.add("base", [], _facts(inst, objective))
+    ctl.ground([("base", [])])
+    return ctl
+
+
+def _configuration(inst: Instance, model: clingo.Model) -> Configuration:
+    names = [c.name for c in inst.library.components]
+    chosen = {}
+    for sym in model.symbols(shown=True):
+        r, c = sym.arguments
+        chosen[inst.roles[r.number].name] = names[c.number]
+    return Configuration.of(inst.schema.name, chosen, inst.roles)
+
+
+class ClingoEngine:
+    """Enumerate and optimise configurations with clingo."""
+
+    name = "clingo"
+
+    def configurations(self, inst: Instance, limit: int | None = None) -> Iterator[Configuration]:
+        """Yield valid configurations in role/library order, at most ``limit`` of them."""
+        if any(not d for d in inst.domains):
+            return
+        models = "0" if limit is None else str(limit)
+        ctl = _control(inst, None, [f"--models={models}", "--heuristic=Domain", "--enum-mode=bt"])
+        with ctl.solve(yield_=True) as handle:
+            for model in handle:
+                yield _configuration(inst, model)
+
+    def first(self, inst: Instance) -> Configuration | None:
+        """Return one valid configuration, or None when there is none."""
+        return next(self.configurations(inst, limit=1), None)
+
+    def best(self, inst: Instance, objective: Objective) -> Configuration | None:
+        """Return a configuration optimal for ``objective`` (proven), or None."""
+        if any(not d for d in inst.domains):
+            return None
+        ctl = _control(inst, objective, ["--opt-mode=opt", "--opt-strategy=usc"])
+        best: Configuration | None = None
+        with ctl.solve(yield_=True) as handle:
+            for model in handle:  # each model improves on the last; the final one is optimal
+                best = _configuration(inst, model)
+        return best
+
+
+class EliminationEngine:
+    """Optimise configurations exactly by min-plus variable elimination (no enumeration)."""
+
+    name = "elimination"
+
+    def __init__(self, max_rows: int = MAX_FACTOR_ROWS) -> None:
+        self.max_rows = max_rows
+
+    def best(self, inst: Instance, objective: Objective) -> Configuration | None:
+        """Return a configuration optimal for ``objective`` (proven), or None.
+
+        Raises:
+            TooHard: the system graph is too dense for tables of ``max_rows`` rows.
+        """
+        found = minimise(inst, unary_costs(inst, objective), self.max_rows)
+        return found[0] if found else None
+
+
+ENGINES = {"clingo": ClingoEngine}
+"""The engines that enumerate (one today); the CLI does not care which one answers."""
+
+
+@dataclass(frozen=True)
+class Best:
+    """An optimum and who proved it.
+
+    Attributes:
+        configuration: an optimal configuration, or None when there is none.
+        engine: the name of the engine that answered ("elimination" or "clingo").
+    """
+
+    configuration: Configuration | None
+    engine: str
+
+
+def optimise(inst: Instance, objective: Objective, max_rows: int = MAX_FACTOR_ROWS) -> Best:
+    """Return an optimum for ``objective``: by elimination, by clingo when that is too hard."""
+    try:
+        return Best(EliminationEngine(max_rows).best(inst, objective), EliminationEngine.name)
+    except TooHard as exc:
+        LOG.info("optimum by clingo: %s", exc)
+        return Best(ClingoEngine().best(inst, objective), ClingoEngine.name)
+
+
+def configurations(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str] = (),
+    limit: int | None = None,
+) -> Iterator[Configuration]:
+    """Yield the valid configurations of ``schema`` (streaming, deterministic order)."""
+    return ClingoEngine().configurations(compile_instance(library, schema, failed), limit)
+
+
+def best_configuration(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    objective: Objective,
+    failed: Collection[str] = (),
+) -> Configuration | None:
+    """Return a configuration optimal for ``objective``, or None when there is none."""
+    with paused_gc():  # compiling allocates many small tuples too
+        inst = compile_instance(library, schema, failed)
+    return optimise(inst, objective).configuration
+
+
+def why_not(
+    library: ComponentLibrary, schema: InteroperabilitySchema, failed: Collection[str] = ()
+) -> str:
+    """Say in plain words why ``schema`` has no configuration."""
+    return explain(compile_instance(library, schema, failed))
