@@ -1,4 +1,4 @@
-"""``rosreconf snapshot``, ``import`` and ``inspect``: read a running ROS 1 system."""
+"""``rosreconf snapshot``, ``import`` and ``inspect``: read a running ROS 1 or ROS 2 system."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ from rosreconf.cli.common import (
     ConfigurationOption,
     JsonOption,
     LibraryOption,
-    MasterOption,
     SchemaOption,
     select,
 )
@@ -25,11 +24,28 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import draft_library
 from rosreconf.ros.livegraph import LiveGraph, from_json, to_json, without_plumbing
-from rosreconf.ros.rosmaster import read_live_graph
+from rosreconf.ros.sources import open_source
 
 OnlySchemaOption = Annotated[
     str | None,
     typer.Option("--only", help="The schema, when the configuration names several."),
+]
+OptionalMasterOption = Annotated[
+    str | None,
+    typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
+]
+Ros2Option = Annotated[
+    bool, typer.Option("--ros2", help="Read a ROS 2 graph from DDS discovery (rosreconf[ros2]).")
+]
+DomainOption = Annotated[
+    int,
+    typer.Option("--domain", envvar="ROS_DOMAIN_ID", help="The ROS 2 domain id (ROS_DOMAIN_ID)."),
+]
+DistroOption = Annotated[
+    str | None,
+    typer.Option(
+        "--distro", help="The ROS 2 distribution (humble, jazzy, ...); default: read both layouts."
+    ),
 ]
 
 
@@ -62,14 +78,17 @@ def target(
 
 
 def snapshot_command(
-    master: MasterOption,
+    master: OptionalMasterOption = None,
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
     ] = None,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
-    """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
+    """Save the live graph (nodes, topics, services, types; pids or QoS) as JSON."""
 
-    text = to_json(read_live_graph(master))
+    text = to_json(_live(master, None, ros2, domain, distro))
     if output is None:
         write_stdout(text)
     else:
@@ -85,10 +104,13 @@ def import_command(
         Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
     ] = None,
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
-    graph = _live(master, snapshot)
+    graph = _live(master, snapshot, ros2, domain, distro)
     text = draft_library(graph, name)
     write_atomic(output, text)
     todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
@@ -98,24 +120,30 @@ def import_command(
     )
 
 
-def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
-    """Read the live graph from exactly one of a master and a snapshot file."""
-    if (master is None) == (snapshot is None):
-        raise UsageError("give exactly one of --master URI and --snapshot FILE")
+def _live(
+    master: str | None,
+    snapshot: Path | None,
+    ros2: bool = False,
+    domain: int = 0,
+    distro: str | None = None,
+) -> LiveGraph:
+    """Read the live graph from exactly one of a master, ROS 2 discovery and a snapshot."""
+    if sum((master is not None, snapshot is not None, ros2)) != 1:
+        raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
     if snapshot is not None:
         try:
             return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
         except OSError as exc:
             raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
-    assert master is not None
-    return read_live_graph(master)
+    source = open_source(master, ros2, domain, distro)
+    try:
+        return source.read()
+    finally:
+        source.close()
 
 
 def inspect_command(
-    master: Annotated[
-        str | None,
-        typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
-    ] = None,
+    master: OptionalMasterOption = None,
     snapshot: Annotated[
         Path | None,
         typer.Option("--snapshot", help="Inspect a saved 'rosreconf snapshot' instead."),
@@ -125,11 +153,14 @@ def inspect_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     as_json: JsonOption = False,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
 
     lib, sch, config = target(library, schema, configuration, only)
-    graph = _live(master, snapshot)
+    graph = _live(master, snapshot, ros2, domain, distro)
     result = compare(config, lib, sch, graph)
     if as_json:
         write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")

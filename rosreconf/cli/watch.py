@@ -15,18 +15,26 @@ from rosreconf.cli.common import (
     ConfigurationOption,
     FailOption,
     LibraryOption,
-    MasterOption,
     SchemaOption,
 )
 from rosreconf.cli.console import stderr
-from rosreconf.cli.live import OnlySchemaOption, target
+from rosreconf.cli.live import (
+    DistroOption,
+    DomainOption,
+    OnlySchemaOption,
+    OptionalMasterOption,
+    Ros2Option,
+    target,
+)
 from rosreconf.errors import ExitCode, ExternalToolError, UsageError
 from rosreconf.procs import private_workdir
+from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.sources import open_source
 from rosreconf.ros.watcher import Event, Watcher
 
 
 def watch_command(
-    master: MasterOption,
+    master: OptionalMasterOption = None,
     configuration: ConfigurationOption = None,
     only: OnlySchemaOption = None,
     library: LibraryOption = None,
@@ -47,6 +55,18 @@ def watch_command(
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
     ] = None,
     once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
+    launch_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--launch-dir",
+            file_okay=False,
+            exists=True,
+            help="Write the launch files here (default: a private temp dir, removed at exit).",
+        ),
+    ] = None,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
@@ -59,8 +79,15 @@ def watch_command(
         if name not in lib:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
-    env["ROS_MASTER_URI"] = master
+    source = open_source(master, ros2, domain, distro)
+    if stand_ins and source.ros_version is RosVersion.ROS2:
+        raise UsageError("--stand-ins starts ROS 1 stand-in nodes: it cannot be used with --ros2")
+    if master is not None:
+        env["ROS_MASTER_URI"] = master
+    else:
+        env["ROS_DOMAIN_ID"] = str(domain)
     with ExitStack() as stack:
+        stack.callback(source.close)
         log_file: IO[str] | None = None
         if json_log is not None:
             log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
@@ -80,7 +107,7 @@ def watch_command(
 
         work = stack.enter_context(private_workdir())
         watcher = Watcher(
-            master,
+            source,
             lib,
             sch,
             config,
@@ -91,13 +118,15 @@ def watch_command(
             stand_ins=stand_ins,
             settle=settle,
             failed=set(fail or []),
+            launch_dir=launch_dir,
         )
         stack.callback(watcher.close)
         what = "and repairing" if apply else "(not repairing: no --apply)"
         log(
             Event(
                 "started",
-                f"watching {sch.display_name} on {master} {what}: {', '.join(config.components)}",
+                f"watching {sch.display_name} on {source.uri} {what}: "
+                f"{', '.join(config.components)}",
                 {"configuration": config.mapping},
             )
         )

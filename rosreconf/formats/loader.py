@@ -257,12 +257,14 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
         params[key] = value.value
     remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
     ns = items.get("namespace")
+    lifecycle = items.get("lifecycle")
     return RosLaunch(
         package=_text(items["package"]),
         executable=_text(items["executable"]),
         parameters=MappingProxyType(params),
         remappings=MappingProxyType(remaps),
         namespace=_text(ns) if ns is not None else None,
+        lifecycle=isinstance(lifecycle, ys.YScalar) and lifecycle.value is True,
     )
 
 

@@ -105,6 +105,8 @@ class RosLaunch:
         parameters: private parameters, name -> scalar value.
         remappings: interface label -> the real ROS name the executable uses for it.
         namespace: optional namespace to start the node in.
+        lifecycle: ROS 2: the node is a managed (lifecycle) node, taken in and out of service
+            by lifecycle transitions rather than by starting and killing its process.
     """
 
     package: str
@@ -114,6 +116,7 @@ class RosLaunch:
     )
     remappings: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     namespace: str | None = None
+    lifecycle: bool = False
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,6 @@ from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
 from rosreconf.model.qos import QosProfile
 from rosreconf.resources import Bundle, bundled
-from rosreconf.ros.ros2 import names as ros2_names
 
 SNAPSHOT_FORMAT = "rosreconf-live-graph"
 """The ``format`` member every snapshot carries."""
@@ -58,6 +57,29 @@ PLUMBING_TOPICS = frozenset({"/rosout", "/rosout_agg"})
 """Topics every client library uses for logging."""
 PLUMBING_SERVICE_SUFFIXES = ("/get_loggers", "/set_logger_level")
 """Services every rospy/roscpp node serves under its own name."""
+
+ROS2_PLUMBING_TOPICS = frozenset({"/rosout", "/parameter_events"})
+"""Topics every rclcpp/rclpy node publishes (and subscribes) for logging and parameters."""
+ROS2_PLUMBING_SERVICE_SUFFIXES = (
+    "/describe_parameters",
+    "/get_parameter_types",
+    "/get_parameters",
+    "/list_parameters",
+    "/set_parameters",
+    "/set_parameters_atomically",
+    "/get_type_description",
+)
+"""Services every node serves under its own name (parameters; type descriptions, Jazzy on)."""
+LIFECYCLE_SERVICE_SUFFIXES = (
+    "/change_state",
+    "/get_state",
+    "/get_available_states",
+    "/get_available_transitions",
+    "/get_transition_graph",
+)
+"""Services a lifecycle (managed) node serves under its own name (rclcpp_lifecycle)."""
+LIFECYCLE_TOPIC_SUFFIX = "/transition_event"
+"""The topic a lifecycle node publishes its transitions on, under its own name."""
 
 
 @dataclass(frozen=True)
@@ -155,11 +177,24 @@ def is_plumbing_service(node: str, service: str) -> bool:
     return any(service == node + suffix for suffix in PLUMBING_SERVICE_SUFFIXES)
 
 
+def is_ros2_plumbing_service(node: str, service: str) -> bool:
+    """Tell whether ``service`` is a parameter/type service every node ``node`` serves."""
+    return any(service == node + suffix for suffix in ROS2_PLUMBING_SERVICE_SUFFIXES)
+
+
+def is_lifecycle_service(node: str, service: str) -> bool:
+    """Tell whether ``service`` is one of the lifecycle services of the managed node ``node``."""
+    return any(service == node + suffix for suffix in LIFECYCLE_SERVICE_SUFFIXES)
+
+
+def is_hidden_node(name: str) -> bool:
+    """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's)."""
+    return name.rsplit("/", 1)[-1].startswith("_")
+
+
 def _ros2_plumbing_service(node: str, service: str) -> bool:
     """Tell whether ``service`` is a parameter or lifecycle service every such node has."""
-    return ros2_names.is_plumbing_service(node, service) or ros2_names.is_lifecycle_service(
-        node, service
-    )
+    return is_ros2_plumbing_service(node, service) or is_lifecycle_service(node, service)
 
 
 def without_plumbing(graph: LiveGraph) -> LiveGraph:
@@ -170,13 +205,13 @@ def without_plumbing(graph: LiveGraph) -> LiveGraph:
     parameter services and a lifecycle node's state services and ``transition_event`` topic.
     """
     if graph.ros_version == 2:
-        topics = ros2_names.PLUMBING_TOPICS
+        topics = ROS2_PLUMBING_TOPICS
         plumbing_service = _ros2_plumbing_service
     else:
         topics, plumbing_service = PLUMBING_TOPICS, is_plumbing_service
 
     def keep_topic(node: str, topic: str) -> bool:
-        lifecycle = graph.ros_version == 2 and topic == node + ros2_names.LIFECYCLE_TOPIC_SUFFIX
+        lifecycle = graph.ros_version == 2 and topic == node + LIFECYCLE_TOPIC_SUFFIX
         return topic not in topics and not lifecycle
 
     nodes = tuple(
@@ -190,7 +225,7 @@ def without_plumbing(graph: LiveGraph) -> LiveGraph:
             subscribe_qos={t: q for t, q in n.subscribe_qos.items() if keep_topic(n.name, t)},
         )
         for n in graph.nodes
-        if n.name not in PLUMBING_NODES and not ros2_names.is_hidden_node(n.name)
+        if n.name not in PLUMBING_NODES and not is_hidden_node(n.name)
     )
     types = {t: ty for t, ty in graph.topic_types.items() if t not in topics}
     services = dict(graph.service_types)

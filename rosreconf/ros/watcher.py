@@ -30,8 +30,8 @@ from rosreconf.planning.narrative import explain_replan
 from rosreconf.procs import Background, stop_all
 from rosreconf.ros.conformance import Conformance, compare, node_live_name
 from rosreconf.ros.launchfiles import RosVersion, launch_file
-from rosreconf.ros.rosmaster import purge_dead, read_live_graph, shutdown_node
-from rosreconf.ros.standins import start_roslaunch, write_standin_package
+from rosreconf.ros.sources import LiveSource, lifecycle_steps
+from rosreconf.ros.standins import write_standin_package
 from rosreconf.solve.solver import Objective, best_configuration, why_not
 
 
@@ -58,7 +58,7 @@ class Watcher:
     """Watch one schema's configuration on one master, and repair it when asked to.
 
     Attributes:
-        master_uri: the ROS master.
+        source: the running system (a ROS 1 master or a ROS 2 DDS domain).
         library, schema: what the configuration is made of.
         current: the configuration that should run now (changes on replanning).
         workdir: a private directory for launch files, the stand-in package and logs.
@@ -68,10 +68,11 @@ class Watcher:
         stand_ins: launch stand-in nodes instead of the components' real executables.
         settle: seconds to wait for the live graph to conform after applying a change.
         failed: components known to have failed (sticky).
-        launches: the roslaunch processes started, stopped by ``close``.
+        launches: the roslaunch / ros2 launch processes started, stopped by ``close``.
+        launch_dir: where launch files are written (default: ``workdir``).
     """
 
-    master_uri: str
+    source: LiveSource
     library: ComponentLibrary
     schema: InteroperabilitySchema
     current: Configuration
@@ -83,13 +84,16 @@ class Watcher:
     settle: float = 30.0
     failed: set[str] = field(default_factory=set)
     launches: list[Background] = field(default_factory=list)
+    launch_dir: Path | None = None
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
+    _unlaunched: int = 0
+    _launched: set[str] = field(default_factory=set)
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
-        graph = read_live_graph(self.master_uri)
+        graph = self.source.read()
         check = compare(self.current, self.library, self.schema, graph)
         missing = []
         for comp in self.current.components:
@@ -107,7 +111,7 @@ class Watcher:
                 self._seen.add(comp)
         dead = [n.name for n in graph.nodes if not n.answered]
         if dead:
-            purged = purge_dead(self.master_uri, graph, only=dead)
+            purged = self.source.purge(graph, dead)
             if purged:
                 self._say(
                     "purged",
@@ -117,7 +121,7 @@ class Watcher:
         if self.failed & set(self.current.components):
             if self._replan():
                 return self._confirm()
-        elif missing:
+        elif missing := [c for c in missing if c not in self._launched]:
             if not self.apply and tuple(missing) != self._missing:
                 self._missing = tuple(missing)
                 self._say(
@@ -125,13 +129,12 @@ class Watcher:
                     f"not running: {', '.join(missing)} (use --apply to start)",
                     components=missing,
                 )
-            elif self.apply:
-                self._start(missing, "not running yet")
+            elif self.apply and self._start(missing, "not running yet"):
                 return self._confirm()
         return (
             check
             if not dead
-            else compare(self.current, self.library, self.schema, read_live_graph(self.master_uri))
+            else compare(self.current, self.library, self.schema, self.source.read())
         )
 
     def _role(self, comp: str) -> str:
@@ -174,12 +177,13 @@ class Watcher:
         if not self.apply:
             self.current = new
             return False
-        graph = read_live_graph(self.master_uri)
+        graph = self.source.read()
         for role, old_comp, new_comp in changes:
-            node = self.library[old_comp]
-            uri = next((n.uri for n in graph.nodes if n.name == node_live_name(node)), None)
-            if uri is not None and old_comp not in self.failed:
-                shutdown_node(uri, f"rosreconf: {role} is now {new_comp}")
+            self._lifecycle(old_comp, new_comp, role)
+            name = node_live_name(self.library[old_comp])
+            alive = any(n.name == name for n in graph.nodes)
+            reason = f"rosreconf: {role} is now {new_comp}"
+            if alive and old_comp not in self.failed and self.source.stop(graph, name, reason):
                 self._say(
                     "stop",
                     f"stopped {old_comp} ({role}): replaced by {new_comp}",
@@ -187,39 +191,70 @@ class Watcher:
                 )
         self.current = new
         self._seen -= {a for _, a, _ in changes}
-        self._start([b for _, _, b in changes], "new in the configuration")
-        return True
+        return self._start([b for _, _, b in changes], "new in the configuration")
 
-    def _start(self, components: Collection[str], why: str) -> None:
-        """Start ``components`` with one roslaunch process."""
-        n = len(self.launches) + 1
-        launch = self.workdir / f"step{n}.launch"
+    def _lifecycle(self, old_comp: str, new_comp: str, role: str) -> None:
+        """List the lifecycle transitions swapping managed nodes (ROS 2 ``ros.lifecycle``)."""
+        if self.source.ros_version is not RosVersion.ROS2:
+            return
+        steps: list[str] = []
+        for comp, stop in ((old_comp, True), (new_comp, False)):
+            launch = self.library[comp].launch
+            if launch is not None and launch.lifecycle:
+                steps += lifecycle_steps(node_live_name(self.library[comp]), stop=stop)
+        if steps:
+            self._say(
+                "lifecycle",
+                f"{role}: lifecycle transitions {old_comp} -> {new_comp}: {'; '.join(steps)}",
+                role=role,
+                transitions=steps,
+            )
+
+    def _start(self, components: Collection[str], why: str) -> bool:
+        """Start ``components`` with one launch process (or say what would run); True if run."""
+        n = len(self.launches) + self._unlaunched + 1
+        version = self.source.ros_version
+        suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
+        launch = (self.launch_dir or self.workdir) / f"step{n}{suffix}"
         text = launch_file(
             self.library,
             self.schema,
             self.current,
-            RosVersion.ROS1,
+            version,
             only=components,
             stand_ins=self.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
         pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
-        self.launches.append(start_roslaunch(launch, self.env, package_path=pkg))
+        process = self.source.start(launch, self.env, pkg)
+        self._launched |= set(components)
+        command = " ".join(self.source.launch_command(launch))
+        if process is None:
+            self._unlaunched += 1
+            self._say(
+                "would-launch",
+                f"no launcher here: would run '{command}' to start {', '.join(components)} "
+                f"({why}); wrote {launch}",
+                components=list(components),
+                launch_file=str(launch),
+                command=command,
+            )
+            return False
+        self.launches.append(process)
         how = "stand-ins of " if self.stand_ins else ""
         self._say(
             "launch",
-            f"roslaunch started {how}{', '.join(components)} ({why})",
+            f"'{command}' started {how}{', '.join(components)} ({why})",
             components=list(components),
             launch_file=str(launch),
         )
+        return True
 
     def _confirm(self) -> Conformance:
         """Wait until the live graph conforms or ``settle`` passes; log which."""
         start = time.monotonic()
         while True:
-            check = compare(
-                self.current, self.library, self.schema, read_live_graph(self.master_uri)
-            )
+            check = compare(self.current, self.library, self.schema, self.source.read())
             took = time.monotonic() - start
             if check.ok:
                 self._seen |= set(self.current.components)
@@ -245,5 +280,6 @@ class Watcher:
         """Stop every roslaunch this watcher started, and the nodes they run."""
         if self.launches:
             stop_all(self.launches)
-            self._say("stopped", f"stopped the {len(self.launches)} roslaunch process(es) started")
+            self._say("stopped", f"stopped the {len(self.launches)} launch process(es) started")
         self.launches.clear()
+        self.source.close()

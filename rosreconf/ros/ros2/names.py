@@ -27,29 +27,6 @@ REPLY_PREFIX = "rr"
 DISCOVERY_TOPIC = "ros_discovery_info"
 """rmw_dds_common's graph topic: its DDS name has no prefix."""
 
-PLUMBING_TOPICS = frozenset({"/rosout", "/parameter_events"})
-"""Topics every rclcpp/rclpy node publishes (and subscribes) for logging and parameters."""
-PLUMBING_SERVICE_SUFFIXES = (
-    "/describe_parameters",
-    "/get_parameter_types",
-    "/get_parameters",
-    "/list_parameters",
-    "/set_parameters",
-    "/set_parameters_atomically",
-    "/get_type_description",
-)
-"""Services every node serves under its own name (parameters; type descriptions, Jazzy on)."""
-LIFECYCLE_SERVICE_SUFFIXES = (
-    "/change_state",
-    "/get_state",
-    "/get_available_states",
-    "/get_available_transitions",
-    "/get_transition_graph",
-)
-"""Services a lifecycle (managed) node serves under its own name (rclcpp_lifecycle)."""
-LIFECYCLE_TOPIC_SUFFIX = "/transition_event"
-"""The topic a lifecycle node publishes its transitions on, under its own name."""
-
 
 class Channel(enum.StrEnum):
     """What a DDS topic carries for ROS 2."""
@@ -90,18 +67,3 @@ def ros_type(dds_type: str) -> str | None:
     if not name:
         return None
     return head.replace("::", "/") + "/" + name
-
-
-def is_plumbing_service(node: str, service: str) -> bool:
-    """Tell whether ``service`` is a parameter/type service every node ``node`` serves."""
-    return any(service == node + suffix for suffix in PLUMBING_SERVICE_SUFFIXES)
-
-
-def is_lifecycle_service(node: str, service: str) -> bool:
-    """Tell whether ``service`` is one of the lifecycle services of the managed node ``node``."""
-    return any(service == node + suffix for suffix in LIFECYCLE_SERVICE_SUFFIXES)
-
-
-def is_hidden_node(name: str) -> bool:
-    """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's)."""
-    return name.rsplit("/", 1)[-1].startswith("_")
