@@ -131,7 +131,13 @@ Announce = Callable[..., Any]
 @pytest.fixture
 def ros2_domain(monkeypatch: pytest.MonkeyPatch) -> int:
     """Return an unused DDS domain id (>= 42); this process's DDS uses loopback only."""
+    import importlib.util
+
     import ros2_harness
+
+    if importlib.util.find_spec("cyclonedds") is None:
+        # make test installs the ros2 extra: a missing cyclonedds is a failure, never a skip.
+        pytest.fail("cyclonedds is not installed: pip install -e '.[ros2]' (make test does)")
 
     monkeypatch.setenv("CYCLONEDDS_URI", ros2_harness.loopback_config())
     return ros2_harness.free_domain()
