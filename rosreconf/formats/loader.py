@@ -32,6 +32,7 @@ from rosreconf.model import (
     RosLaunch,
     SystemGraph,
 )
+from rosreconf.model.qos import QosProfile
 from rosreconf.resources import Bundle, bundled
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -234,6 +235,11 @@ def _map(node: ys.YNode | None) -> dict[str, ys.YNode]:
     return node.items if isinstance(node, ys.YMapping) else {}
 
 
+def _plain(node: ys.YNode) -> dict[str, object]:
+    """Return a (schema-checked) mapping of scalars as plain Python values."""
+    return {k: v.value for k, v in _map(node).items() if isinstance(v, ys.YScalar)}
+
+
 def _interface(node: ys.YNode) -> Interface:
     items = _map(node)
     kind = InterfaceKind.SERVICE if "service" in items else InterfaceKind.TOPIC
@@ -282,6 +288,14 @@ def _component(node: ys.YNode) -> Component:
     for key in ("provides", "requires"):
         for i, n in enumerate(_seq(items.get(key))):
             where[f"{key}.{i}"] = n.span
+    qos: dict[str, QosProfile] = {}
+    for n in [*_seq(items.get("provides")), *_seq(items.get("requires"))]:
+        for option in _seq(_map(n).get("any_of")) or [n]:
+            spec = _map(option).get("qos")
+            if spec is not None:
+                label = _text(_map(option).get("topic", _map(option).get("service")))
+                qos[label] = QosProfile.from_dict(_plain(spec))
+                where[f"qos.{label}"] = spec.span
     return Component(
         name=_text(items["name"]),
         abstraction=_text(items["abstraction"]),
@@ -295,6 +309,7 @@ def _component(node: ys.YNode) -> Component:
         schemas=frozenset(_text(n) for n in _seq(items.get("schemas"))),
         launch=_launch(items.get("ros")),
         metrics=MappingProxyType(metrics),
+        qos=MappingProxyType(qos),
         description=_text(items.get("description")),
         span=node.span,
         where=MappingProxyType(where),

@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import NamedTuple
 
+from rosreconf.model.qos import QosProfile
+
 
 class Span(NamedTuple):
     """Where a value was written: file, 1-based line and column.
@@ -135,11 +137,14 @@ class Component:
         schemas: names of the schemas it may serve in (Table 1's "In Schema"); empty = any.
         launch: how to start it, if known.
         metrics: named numbers (cost, settling_time, ...) for optimisation.
+        qos: ROS 2: topic label -> the QoS of this component's publisher (a provision) or
+            subscription (a requirement) on it; labels not listed use the rmw default
+            profile (``rosreconf.model.qos``).
         description: free text for people.
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``.
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"qos.<label>"``.
     """
 
     name: str
@@ -152,6 +157,7 @@ class Component:
     schemas: frozenset[str] = frozenset()
     launch: RosLaunch | None = None
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
