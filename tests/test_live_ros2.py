@@ -78,9 +78,11 @@ def test_inspect_kill_and_replan(
         start_new_session=True,
     )
     try:
-        ros2_harness_wait(lambda: len(_events(log)) >= 1 or watch.poll() is not None, 20)
-        time.sleep(1.0)  # let watch's first read settle on the full graph
-        assert [e["event"] for e in _events(log)] == ["started"], _events(log)
+        ros2_harness_wait(
+            lambda: "running" in [e["event"] for e in _events(log)] or watch.poll() is not None,
+            DETECT_TIMEOUT,
+        )
+        assert [e["event"] for e in _events(log)] == ["started", "running"], _events(log)
 
         killed_at = time.monotonic()
         nodes["NSM3"].kill()
@@ -91,11 +93,11 @@ def test_inspect_kill_and_replan(
             DETECT_TIMEOUT,
         )
         took = time.monotonic() - killed_at
-        events = _events(log)
+        events = _events(log)[2:]
         kinds = [e["event"] for e in events]
-        assert kinds[:3] == ["started", "failed", "replanned"], events
-        assert events[1]["component"] == "NSM3"
-        new = events[2]["configuration"]
+        assert kinds[:2] == ["failed", "replanned"], events
+        assert events[0]["component"] == "NSM3"
+        new = events[1]["configuration"]
         assert [new[r] for r in ("base_joint", "elbow_joint", "gripper_joint")] == [
             "NDC1", "NDC3", "NDC5"
         ]  # fmt: skip
@@ -150,3 +152,53 @@ def ros2_harness_wait(check: Any, timeout: float) -> None:
     while not check():
         assert time.monotonic() < deadline, "timed out"
         time.sleep(0.05)
+
+
+def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
+    announce: Announce, ros2_domain: int, tmp_path: Path
+) -> None:
+    from dataclasses import replace
+
+    from rosreconf.model import ComponentLibrary, Configuration
+    from rosreconf.ros.sources import Ros2Source
+    from rosreconf.ros.watcher import Event, Watcher
+
+    library, schema = _nominal()
+    managed = ComponentLibrary(
+        library.name,
+        tuple(
+            replace(c, launch=replace(c.launch, lifecycle=True)) if c.launch else c
+            for c in library.components
+        ),
+    )
+    nodes = {c: announce([ros2_harness.node_spec(library[c])]) for c in schema.nominal.values()}
+    events: list[Event] = []
+    config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    no_ros2 = {"PATH": str(tmp_path)}  # no `ros2` command on this PATH
+    watcher = Watcher(Ros2Source(ros2_domain), managed, schema, config, tmp_path, no_ros2,
+                      events.append, apply=True, launch_dir=tmp_path)  # fmt: skip
+    try:
+        assert watcher.step().ok
+        nodes["NSM3"].kill()
+        deadline = time.monotonic() + DETECT_TIMEOUT
+        while not any(e.kind == "replanned" for e in events):
+            assert time.monotonic() < deadline, [e.message for e in events]
+            watcher.step()
+            time.sleep(0.2)
+        steps = {e.data["role"]: e.data["transitions"] for e in events if e.kind == "lifecycle"}
+        assert steps["elbow_joint"] == [
+            "ros2 lifecycle set /NSM3 deactivate",
+            "ros2 lifecycle set /NSM3 cleanup",
+            "ros2 lifecycle set /NDC3 configure",
+            "ros2 lifecycle set /NDC3 activate",
+        ]
+        (would,) = (e for e in events if e.kind == "would-launch")
+        launch = tmp_path / "step1.launch.xml"
+        assert would.data["command"] == f"ros2 launch {launch}"
+        text = launch.read_text()
+        assert '<node pkg="robot_arm_dc"' in text and 'name="NDC3"' in text
+        assert "NSM1" not in text  # only the new components are started
+        watcher.step()
+        assert [e.kind for e in events].count("would-launch") == 1  # said once, not every poll
+    finally:
+        watcher.close()

@@ -40,8 +40,10 @@ class Event:
     """One decision or observation, for people (``message``) and programs (``data``).
 
     Attributes:
-        kind: ``started``, ``stopped``, ``failed``, ``purged``, ``replanned``, ``no-configuration``,
-            ``stop``, ``launch``, ``conformant``, ``not-conformant``, ``missing``.
+        kind: ``started``, ``running`` (once: every component seen alive), ``stopped``,
+            ``failed``, ``purged``, ``replanned``, ``why``, ``no-configuration``, ``stop``,
+            ``launch``, ``would-launch`` (no launcher here), ``lifecycle`` (ROS 2 managed
+            nodes), ``conformant``, ``not-conformant``, ``missing``.
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).
@@ -90,6 +92,7 @@ class Watcher:
     _missing: tuple[str, ...] = ()
     _unlaunched: int = 0
     _launched: set[str] = field(default_factory=set)
+    _running: bool = False
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
@@ -109,6 +112,13 @@ class Watcher:
                 missing.append(comp)
             else:
                 self._seen.add(comp)
+        if not self._running and self._seen >= set(self.current.components):
+            self._running = True
+            self._say(
+                "running",
+                f"all {len(self.current.components)} components of the configuration run",
+                components=list(self.current.components),
+            )
         dead = [n.name for n in graph.nodes if not n.answered]
         if dead:
             purged = self.source.purge(graph, dead)
@@ -258,6 +268,7 @@ class Watcher:
             took = time.monotonic() - start
             if check.ok:
                 self._seen |= set(self.current.components)
+                self._running = True  # "conformant" says it
                 self._say(
                     "conformant",
                     f"the live system conforms to the configuration "

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterable
+from contextlib import suppress
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
@@ -236,6 +237,7 @@ class Ros2Discovery:
     _readers: dict[str, Any] = field(default_factory=dict, repr=False)
     _info_readers: dict[int, Any] = field(default_factory=dict, repr=False)
     _infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]] = field(default_factory=dict)
+    _conditions: dict[str, tuple[Any, Any]] = field(default_factory=dict, repr=False)
     _last_endpoints: dict[bytes, Endpoint] = field(default_factory=dict, repr=False)
     _settled: bool = False
 
@@ -252,6 +254,21 @@ class Ros2Discovery:
                 "publication": b.BuiltinDataReader(self._dp, b.BuiltinTopicDcpsPublication),
                 "subscription": b.BuiltinDataReader(self._dp, b.BuiltinTopicDcpsSubscription),
             }
+            core = dds.core
+            for name, reader in list(self._readers.items()):
+                # Only alive instances are read: a gone participant's or endpoint's last
+                # sample carries no valid data, and the binding fails on it ("Sampleinfo
+                # errored"); those are taken out separately and dropped.
+                any_sample = core.ViewState.Any | core.SampleState.Any
+                self._conditions[name] = (
+                    core.ReadCondition(reader, any_sample | core.InstanceState.Alive),
+                    core.ReadCondition(
+                        reader,
+                        any_sample
+                        | core.InstanceState.NotAliveDisposed
+                        | core.InstanceState.NotAliveNoWriters,
+                    ),
+                )
             info_qos = dds.qos.Qos(
                 policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1)),
                 policy.Durability.TransientLocal,
@@ -281,23 +298,36 @@ class Ros2Discovery:
         self._info_readers.clear()
         self._dp = None
 
+    def _alive(self, name: str) -> list[Any]:
+        """Return the samples of alive instances of a built-in topic; drop the others."""
+        reader = self._readers[name]
+        alive, gone = self._conditions[name]
+        for attempt in range(5):
+            # The binding raises a bare Exception on a sample without data; an instance may
+            # die between the take and the read, so try again.
+            with suppress(Exception):
+                reader.take(N=1_000_000, condition=gone)
+            try:
+                samples: list[Any] = reader.read(N=1_000_000, condition=alive)
+            except Exception as exc:
+                if attempt == 4:
+                    raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
+                time.sleep(0.01)
+                continue
+            return [s for s in samples if s.sample_info.instance_state == _ALIVE]
+        return []
+
     def _participants(self) -> dict[bytes, bytes]:
         """Return alive participants: GUID -> USER_DATA."""
         policy = self._dds.qos.Policy
-        found: dict[bytes, bytes] = {}
-        for s in self._readers["participant"].read(N=100_000):
-            if s.sample_info.instance_state == _ALIVE:
-                found[s.key.bytes] = _user_data(s.qos, policy)
-        return found
+        return {s.key.bytes: _user_data(s.qos, policy) for s in self._alive("participant")}
 
     def _endpoints(self) -> dict[bytes, Endpoint]:
         """Return every alive endpoint, keyed by GUID."""
         policy = self._dds.qos.Policy
         found: dict[bytes, Endpoint] = {}
         for kind in ("publication", "subscription"):
-            for s in self._readers[kind].read(N=1_000_000):
-                if s.sample_info.instance_state != _ALIVE:
-                    continue
+            for s in self._alive(kind):
                 found[s.key.bytes] = Endpoint(
                     guid=s.key.bytes,
                     participant=s.participant_key.bytes,
@@ -313,6 +343,8 @@ class Ros2Discovery:
         """Take new ``ros_discovery_info`` samples; keep each participant's newest."""
         for size, reader in self._info_readers.items():
             for sample in reader.take(N=100_000):
+                if not hasattr(sample, "gid"):
+                    continue  # an InvalidSample: a writer left, no data
                 gid = bytes(sample.gid.data)
                 if len(gid) != size or any(gid[16:]):
                     continue  # another layout misread: not a GID
@@ -337,7 +369,7 @@ class Ros2Discovery:
                 return (16,) if b"typehash=" in e.user_data else (24,)
         return (16, 24)
 
-    def read(self, *, settle: float = 0.3, timeout: float = 5.0) -> LiveGraph:
+    def read(self, *, settle: float = 1.0, timeout: float = 8.0) -> LiveGraph:
         """Return the ROS 2 graph now.
 
         The first call waits (at most ``timeout`` s) until discovery is complete: every ROS
@@ -370,7 +402,7 @@ class Ros2Discovery:
                 break
             if complete and ros and now - stable_since >= settle:
                 break
-            if not ros and now - start >= max(settle * 4, 1.0):
+            if not ros and now - start >= max(settle * 2, 1.0):
                 break
             time.sleep(0.05)
         self._settled = True
@@ -460,7 +492,7 @@ def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
 
 
 def read_ros2_graph(
-    domain: int, *, distro: str | None = None, settle: float = 0.3, timeout: float = 5.0
+    domain: int, *, distro: str | None = None, settle: float = 1.0, timeout: float = 8.0
 ) -> LiveGraph:
     """Join ``domain``, wait for discovery to settle, and return the ROS 2 graph."""
     with Ros2Discovery(domain, distro) as session:
