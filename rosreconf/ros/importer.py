@@ -146,11 +146,13 @@ def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) 
         entry = f"{{topic: {_q(t)}, type: {_q(_topic_type(live, t))}}}"
         (requires if t in published else unmet).append(entry)
     served = {x for n in live.nodes for x in n.serves}
+    uncalled: list[str] = []
     for c in node.clients:  # ROS 2 only: a ROS 1 master does not know callers
         entry = f"{{service: {_q(c)}, type: {_q(_library_type(live, c))}}}"
-        (requires if c in served else unmet).append(entry)
+        (requires if c in served else uncalled).append(entry)
     lines += ["    requires:", *(f"      - {r}" for r in requires)] if requires else []
-    lines += [f"    # TODO: uses {r}, which nothing live provides" for r in unmet]
+    lines += [f"    # TODO: subscribes {r}, which nothing live publishes" for r in unmet]
+    lines += [f"    # TODO: calls {r}, which nothing live serves" for r in uncalled]
     if live.ros_version == 1:
         lines.append("    # TODO: add the services this node calls (invisible at the master)")
     lines += [
