@@ -29,7 +29,7 @@ from rosreconf.procs import Background, start_program
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes, graph_uri
-from rosreconf.ros.rosmaster import purge_dead, read_live_graph, shutdown_node
+from rosreconf.ros.rosmaster import purge_dead, read_live, read_live_graph, shutdown_node
 from rosreconf.ros.standins import start_roslaunch
 
 
@@ -188,3 +188,27 @@ def open_source(
     check_domain(domain)
     gid_sizes(distro)  # refuse an unknown distribution before joining the domain
     return Ros2Source(domain, distro)
+
+
+def read_any(
+    master: str | None,
+    snapshot: Path | None,
+    ros2: bool = False,
+    domain: int = 0,
+    distro: str | None = None,
+) -> LiveGraph:
+    """Read the live graph from exactly one of a master, ROS 2 discovery and a snapshot.
+
+    Raises:
+        UsageError: not exactly one is given, or the snapshot cannot be read.
+        ExternalToolError: the master does not answer, or DDS cannot be used.
+    """
+    if sum((master is not None, snapshot is not None, ros2)) != 1:
+        raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
+    if snapshot is not None:
+        return read_live(None, snapshot)
+    source = open_source(master, ros2, domain, distro)
+    try:
+        return source.read()
+    finally:
+        source.close()
