@@ -20,8 +20,10 @@ import time
 from pathlib import Path
 from typing import Any
 
+import jsonschema
 import ros2_harness
 from conftest import Announce
+from test_json_outputs import schema_of
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
@@ -115,6 +117,7 @@ def test_inspect_kill_and_replan(
 
     result = runner.invoke(app, inspect)
     assert result.exit_code == 1
+    jsonschema.validate(json.loads(result.stdout), schema_of("inspect"))
     findings = json.loads(result.stdout)["findings"]
     assert {"code": "missing-node", "component": "NSM3"}.items() <= findings[0].items()
     assert any(f["code"] == "unmet-requirement" and "NSM3" in f["message"] for f in findings)
@@ -144,6 +147,10 @@ def test_qos_mismatch_is_reported_with_both_sides(
     assert "best effort publisher and reliable subscription" in line
     assert "subscription has a deadline (0.1 s), but publisher does not" in line
     assert len(result.stdout.splitlines()) == 2, result.stdout  # nothing else is wrong
+    as_json = runner.invoke(app, [*argv, "--json"])
+    report = json.loads(as_json.stdout)
+    jsonschema.validate(report, schema_of("inspect"))
+    assert [f["code"] for f in report["findings"]] == ["qos-incompatible"]
 
 
 def ros2_harness_wait(check: Any, timeout: float) -> None:
