@@ -101,7 +101,7 @@ def node_spec(component: Component, qos: dict[str, dict[str, Any]] | None = None
 
     node: dict[str, Any] = {
         "namespace": ns,
-        "name": component.name,
+        "name": (launch.node if launch else None) or component.name,
         "publishers": [],
         "subscriptions": [],
         "servers": [],

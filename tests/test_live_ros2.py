@@ -70,11 +70,11 @@ def test_inspect_kill_and_replan(
 
     log = tmp_path / "watch.jsonl"
     argv = [sys.executable, "-m", "rosreconf", "watch", *ros2, "--only", SCHEMA, "--apply",
-            "--interval", "0.2", "--json-log", str(log), "--launch-dir", str(tmp_path)]  # fmt: skip
+            "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
     err = (tmp_path / "watch.err").open("wb")
     watch = subprocess.Popen(
         argv,
-        env=ros2_harness.dds_env(),
+        env={**ros2_harness.dds_env(), "ROS_LOG_DIR": str(tmp_path)},
         stdout=subprocess.DEVNULL,
         stderr=err,
         start_new_session=True,
@@ -107,7 +107,8 @@ def test_inspect_kill_and_replan(
         (would,) = (e for e in _events(log) if e["event"] == "would-launch")
         assert would["command"].startswith("ros2 launch ")
         written = Path(would["launch_file"])
-        assert written.parent == tmp_path and "<launch>" in written.read_text()
+        assert written.parent.parent == tmp_path and "<launch>" in written.read_text()
+        assert written.parent.name.startswith("rosreconf-watch-")
         print(f"SIGKILL -> replanned: {took:.2f} s (lease {ros2_harness.LEASE:g} s)")
     finally:
         if watch.poll() is None:

@@ -17,9 +17,11 @@ from rosreconf.errors import ExternalToolError
 from rosreconf.procs import (
     GRACE_SECONDS,
     MISSING_RETURNCODE,
+    Background,
     Terminated,
     private_workdir,
     run_program,
+    start_program,
 )
 
 PY = sys.executable
@@ -159,3 +161,21 @@ def test_bad_arguments_are_programming_errors() -> None:
         run_program([], timeout=1)
     with pytest.raises(ValueError):
         run_program([PY, "-c", "pass"], timeout=0)
+
+
+def test_new_output_gives_each_part_of_the_log_once_and_only_its_tail(tmp_path: Path) -> None:
+    log = tmp_path / "prog.log"
+    code = "import time; print('a' * 50, flush=True); time.sleep(30)"
+    prog = start_program([sys.executable, "-c", code], log=log)
+    try:
+        deadline = time.monotonic() + 10
+        while log.stat().st_size < 51 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert prog.new_output(limit=10) == "a" * 9 + "\n"
+        assert prog.new_output() == ""
+        with log.open("a") as f:
+            f.write("ERROR: more\n")
+        assert prog.new_output() == "ERROR: more\n"
+    finally:
+        prog.stop(grace=1.0)
+    assert Background(("x",), prog.process).new_output() == ""  # no log known

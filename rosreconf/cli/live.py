@@ -13,6 +13,8 @@ from rosreconf.cli.common import (
     DomainOption,
     JsonOption,
     LibraryOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
     OnlySchemaOption,
     OptionalMasterOption,
     Ros2Option,
@@ -25,8 +27,9 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.importer import draft_library
+from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import to_json, without_plumbing
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.sources import read_any
 from rosreconf.solve.running import one_target
 
@@ -36,13 +39,25 @@ def snapshot_command(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
     ] = None,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
 ) -> None:
     """Save the live graph (nodes, topics, services, types; pids or QoS) as JSON."""
 
-    text = to_json(read_any(master, None, ros2, domain, distro))
+    text = to_json(
+        read_any(
+            master,
+            None,
+            ros2,
+            domain,
+            distro,
+            timeout=master_timeout,
+            max_bytes=max_answer_mb << 20,
+        )
+    )
     if output is None:
         write_stdout(text)
     else:
@@ -58,20 +73,40 @@ def import_command(
         Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
     ] = None,
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
-    graph = read_any(master, snapshot, ros2, domain, distro)
+    graph = read_any(
+        master,
+        snapshot,
+        ros2,
+        domain,
+        distro,
+        timeout=master_timeout,
+        max_bytes=max_answer_mb << 20,
+    )
     text = draft_library(graph, name)
     write_atomic(output, text)
-    todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
+    live = without_plumbing(graph).nodes
+    todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
+    anonymous = [n.name for n in live if is_anonymous(n.name)]
+    if anonymous:
+        stderr.print(
+            f"rosreconf: warning: {', '.join(anonymous)} "
+            f"{'has an anonymous name' if len(anonymous) == 1 else 'have anonymous names'}"
+            " that change on every restart; inspect and watch will not find them again"
+            " (start them under fixed names and set ros.node)",
+            markup=False,
+        )
 
 
 def inspect_command(
@@ -85,6 +120,8 @@ def inspect_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     as_json: JsonOption = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
@@ -93,7 +130,15 @@ def inspect_command(
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
-    live = read_any(master, snapshot, ros2, domain, distro)
-    result = compare(target.configuration, sel.library, target.schema, live)
+    graph = read_any(
+        master,
+        snapshot,
+        ros2,
+        domain,
+        distro,
+        timeout=master_timeout,
+        max_bytes=max_answer_mb << 20,
+    )
+    result = compare(target.configuration, sel.library, target.schema, graph)
     write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

@@ -29,7 +29,15 @@ from rosreconf.procs import Background, start_program
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes, graph_uri
-from rosreconf.ros.rosmaster import purge_dead, read_live, read_live_graph, shutdown_node
+from rosreconf.ros.rosmaster import (
+    DEFAULT_MAX_BYTES,
+    DEFAULT_TIMEOUT,
+    master_identity,
+    purge_dead,
+    read_live,
+    read_live_graph,
+    shutdown_node,
+)
 from rosreconf.ros.standins import start_roslaunch
 
 
@@ -48,6 +56,10 @@ class LiveSource(Protocol):
 
     def read(self) -> LiveGraph:
         """Return the live graph now."""
+        ...
+
+    def identity(self) -> tuple[int | None, str | None] | None:
+        """Return the master's pid and ``/run_id``, which change when it restarts (None: none)."""
         ...
 
     def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
@@ -75,9 +87,11 @@ class LiveSource(Protocol):
 
 @dataclass
 class MasterSource:
-    """A ROS 1 system, read from its master."""
+    """A ROS 1 system, read from its master (each call with a deadline and an answer cap)."""
 
     master_uri: str
+    timeout: float = DEFAULT_TIMEOUT
+    max_bytes: int = DEFAULT_MAX_BYTES
     ros_version: RosVersion = RosVersion.ROS1
 
     @property
@@ -87,16 +101,22 @@ class MasterSource:
 
     def read(self) -> LiveGraph:
         """Return what the master lists, with each node's pid."""
-        return read_live_graph(self.master_uri)
+        return read_live_graph(self.master_uri, timeout=self.timeout, max_bytes=self.max_bytes)
+
+    def identity(self) -> tuple[int | None, str | None] | None:
+        """Return the master's pid and ``/run_id`` (they change when it restarts)."""
+        return master_identity(self.master_uri, timeout=self.timeout, max_bytes=self.max_bytes)
 
     def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
         """Unregister dead nodes (SIGKILLed nodes linger in the master)."""
-        return purge_dead(self.master_uri, graph, only=dead)
+        return purge_dead(
+            self.master_uri, graph, only=dead, timeout=self.timeout, max_bytes=self.max_bytes
+        )
 
     def stop(self, graph: LiveGraph, node: str, reason: str) -> bool:
         """Call the node API's ``shutdown`` (what ``rosnode kill`` does)."""
         uri = next((n.uri for n in graph.nodes if n.name == node), None)
-        return uri is not None and shutdown_node(uri, reason)
+        return uri is not None and shutdown_node(uri, reason, timeout=self.timeout)
 
     def start(
         self, launch: Path, env: Mapping[str, str], package_path: Path | None
@@ -131,6 +151,10 @@ class Ros2Source:
         if self._session is None:
             self._session = Ros2Discovery(self.domain, self.distro)
         return self._session.read()
+
+    def identity(self) -> tuple[int | None, str | None] | None:
+        """Return None: a ROS 2 graph has no master to restart."""
+        return None
 
     def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
         """Forget nothing: DDS drops a participant whose lease expired by itself."""
@@ -172,7 +196,13 @@ def lifecycle_steps(node: str, *, stop: bool) -> list[str]:
 
 
 def open_source(
-    master: str | None, ros2: bool, domain: int, distro: str | None
+    master: str | None,
+    ros2: bool,
+    domain: int,
+    distro: str | None,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
 ) -> MasterSource | Ros2Source:
     """Return the source the options name: ``--master URI`` or ``--ros2 [--domain N]``.
 
@@ -184,7 +214,7 @@ def open_source(
     if master is not None:
         if distro is not None:
             raise UsageError("--distro is for --ros2 (ROS 2 over DDS) only")
-        return MasterSource(master)
+        return MasterSource(master, timeout, max_bytes)
     check_domain(domain)
     gid_sizes(distro)  # refuse an unknown distribution before joining the domain
     return Ros2Source(domain, distro)
@@ -196,6 +226,9 @@ def read_any(
     ros2: bool = False,
     domain: int = 0,
     distro: str | None = None,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
 ) -> LiveGraph:
     """Read the live graph from exactly one of a master, ROS 2 discovery and a snapshot.
 
@@ -207,7 +240,7 @@ def read_any(
         raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
     if snapshot is not None:
         return read_live(None, snapshot)
-    source = open_source(master, ros2, domain, distro)
+    source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
     try:
         return source.read()
     finally:
