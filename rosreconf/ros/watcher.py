@@ -205,6 +205,7 @@ class Watcher:
         self._seen.clear()
         self._launched.clear()
         self._missing = ()
+        self._running = False
 
     def _dir(self) -> Path:
         return self.launch_dir if self.launch_dir is not None else self.workdir
