@@ -21,9 +21,9 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr, write_stdout
+from rosreconf.cli.console import stderr, write_output, write_stdout
 from rosreconf.errors import ExitCode
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_target
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
@@ -37,8 +37,8 @@ from rosreconf.solve.running import one_target
 def snapshot_command(
     master: OptionalMasterOption = None,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
-    ] = None,
+        str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
+    ] = "-",
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
     ros2: Ros2Option = False,
@@ -47,6 +47,7 @@ def snapshot_command(
 ) -> None:
     """Save the live graph (nodes, topics, services, types; pids or QoS) as JSON."""
 
+    target = output_target(output)
     text = to_json(
         read_any(
             master,
@@ -58,14 +59,13 @@ def snapshot_command(
             max_bytes=max_answer_mb << 20,
         )
     )
-    if output is None:
-        write_stdout(text)
-    else:
-        write_atomic(output, text)
+    write_output(target, text)
 
 
 def import_command(
-    output: Annotated[Path, typer.Option("--output", "-o", help="The library file to write.")],
+    output: Annotated[
+        str, typer.Option("--output", "-o", help="The library file to write (- for stdout).")
+    ],
     master: Annotated[
         str | None, typer.Option("--master", help="Read this ROS master's URI.")
     ] = None,
@@ -81,6 +81,7 @@ def import_command(
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
+    target = output_target(output)
     graph = read_any(
         master,
         snapshot,
@@ -91,11 +92,11 @@ def import_command(
         max_bytes=max_answer_mb << 20,
     )
     text = draft_library(graph, name)
-    write_atomic(output, text)
+    where = write_output(target, text)
     live = without_plumbing(graph).nodes
     todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
-        f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
+        f"rosreconf: wrote {where}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
     anonymous = [n.name for n in live if is_anonymous(n.name)]

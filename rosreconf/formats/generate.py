@@ -27,7 +27,7 @@ import random
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_folder, write_atomic
 
 LAYERS = ("sen", "per", "ctl", "act")
 """Layer prefixes in the order information flows (Fig. 2)."""
@@ -219,6 +219,5 @@ def write(generated: Generated, directory: Path) -> tuple[Path, Path]:
         directory / "schemas" / "generated.yaml",
     )
     for path, text in zip(paths, (generated.library, generated.schema), strict=True):
-        path.parent.mkdir(parents=True, exist_ok=True)
-        write_atomic(path, text)
+        write_atomic(output_folder(path.parent) / path.name, text)
     return paths

@@ -10,6 +10,8 @@ to work on invalid input.
 
 from __future__ import annotations
 
+import errno
+import os
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -20,6 +22,7 @@ from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.checks import check
 from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+from rosreconf.formats.values import duplicate_edges, value_problems
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -32,9 +35,11 @@ from rosreconf.model import (
     Role,
     RosLaunch,
     Span,
+    Substitution,
     SystemGraph,
 )
 from rosreconf.model.qos import QosProfile
+from rosreconf.outfiles import special_kind
 from rosreconf.resources import Bundle, bundled
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -46,6 +51,8 @@ class Source:
 
     name: str
     data: bytes
+    size: int = -1
+    """The file's size when only its first bytes were read (over the limit); else -1."""
 
 
 @dataclass
@@ -83,26 +90,67 @@ class Loaded:
 def discover(paths: Iterable[Path]) -> list[Path]:
     """Expand folders into their YAML files (sorted, recursive); keep files as given.
 
+    A FIFO, a device or a symlink loop is named for what it is, given directly or found in a
+    folder under a YAML name: reading one would block, never end, or fail obscurely. A folder
+    without YAML files is an error too: a CI job pointed at the wrong folder must fail, not
+    report "0 file(s) valid".
+
     Raises:
-        UsageError: a path does not exist.
+        UsageError: a path does not exist, is not a regular file or folder, or a folder holds
+            no YAML file.
     """
     out: list[Path] = []
     for p in paths:
-        if p.is_dir():
-            out.extend(sorted(f for f in p.rglob("*") if f.is_file() and f.suffix in YAML_SUFFIXES))
-        elif p.is_file():
+        kind = _file_kind(p)
+        if kind == "a folder":
+            found = []
+            for f in sorted(p.rglob("*")):
+                if f.suffix not in YAML_SUFFIXES or f.is_dir():
+                    continue
+                inner = _file_kind(f)
+                if inner != "a regular file":
+                    raise UsageError(f"{f}: is {inner}, not a YAML file (remove or rename it)")
+                found.append(f)
+            if not found:
+                raise UsageError(
+                    f"{p}: folder has no .yaml or .yml files (is it the right folder?)"
+                )
+            out.extend(found)
+        elif kind == "a regular file":
             out.append(p)
-        else:
+        elif kind is None:
             raise UsageError(f"{p}: no such file or folder")
+        else:
+            raise UsageError(f"{p}: is {kind}, not a YAML file or folder")
     return out
 
 
+def _file_kind(path: Path) -> str | None:
+    """Name what ``path`` is ("a regular file", "a FIFO (named pipe)"...); None if nothing."""
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "a symlink loop"
+        if os.path.islink(path):
+            return "a broken symlink"
+        return None
+    return special_kind(info.st_mode)
+
+
 def read_sources(paths: Iterable[Path]) -> list[Source]:
-    """Read files as bytes (size is checked by the parser), failing clearly when unreadable."""
+    """Read files as bytes, at most one byte over the parser's limit, failing clearly.
+
+    Reading stops after ``MAX_BYTES + 1`` bytes, so a 200 MB file costs no more than the limit
+    and the parser still reports it as too large (with its real size from ``stat``).
+    """
     sources = []
     for p in paths:
         try:
-            sources.append(Source(str(p), p.read_bytes()))
+            with open(p, "rb") as f:
+                data = f.read(ys.MAX_BYTES + 1)
+                size = max(len(data), os.fstat(f.fileno()).st_size)
+            sources.append(Source(str(p), data, size))
         except OSError as exc:
             raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
     return sources
@@ -113,6 +161,10 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
     loaded = Loaded()
     for src in sources:
         loaded.files.append(src.name)
+        if src.size > ys.MAX_BYTES:
+            loaded.problems.append(ys.too_large(src.name, src.size))
+            loaded.library_complete = False
+            continue
         try:
             tree = ys.parse(src.data, src.name)
         except InvalidInputError as exc:
@@ -126,6 +178,8 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
             continue
         loaded.problems.extend(todo_marks(src))
         structural = list(structure_problems(tree, kind))
+        if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
+            structural = value_problems(tree)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
@@ -134,6 +188,7 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
         if kind is DocumentKind.LIBRARY:
             loaded.libraries.append(_build_library(tree, src.name))
         else:
+            loaded.problems.extend(duplicate_edges(tree))
             loaded.schemas.append(_build_schema(tree, src.name))
     return loaded
 
@@ -210,6 +265,8 @@ def load_split(
     """
     if not library_paths and not schema_paths:
         return load_selection([], base=base)
+    if library_paths and schema_paths:  # both given: the defaults are not read at all
+        return load_paths([*library_paths, *schema_paths])
     default = load_selection([], base=base)
     given = load_paths([*library_paths, *schema_paths])
     if not library_paths:
@@ -288,6 +345,9 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
     items = _map(node)
     params: dict[str, str | int | float | bool] = {}
     for key, value in _map(items.get("parameters")).items():
+        if isinstance(value, ys.YMapping):  # {substitution: ...}, marked by the user
+            params[key] = Substitution(_text(value.items["substitution"]))
+            continue
         assert isinstance(value, ys.YScalar) and value.value is not None
         params[key] = value.value
     remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}

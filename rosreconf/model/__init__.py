@@ -34,6 +34,7 @@ from rosreconf.model.library import (
     Requirement,
     RosLaunch,
     Span,
+    Substitution,
 )
 from rosreconf.model.schema import (
     Configuration,
@@ -75,6 +76,7 @@ __all__ = [
     "RosGraph",
     "RosLaunch",
     "Span",
+    "Substitution",
     "SystemGraph",
     "VertexKind",
     "interface_vertex",

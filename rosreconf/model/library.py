@@ -97,6 +97,16 @@ class Requirement:
         return tuple(o for o in self.options if o in have)
 
 
+class Substitution(str):
+    """A launch parameter value the user marked as a roslaunch substitution (``$(find ...)``).
+
+    Launch files evaluate ``$(...)`` in every value; only values of this type may carry one,
+    so that a library cannot run code on the robot by accident (``rosreconf.formats.values``).
+    """
+
+    __slots__ = ()
+
+
 @dataclass(frozen=True)
 class RosLaunch:
     """How to start a component as a ROS node.

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_folder, write_files_atomic
 from rosreconf.planning.narrative import Change, changes, explain_impossible, explain_replan
 from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
@@ -172,12 +172,13 @@ def _step_text(step: Step, current: Mapping[str, str], chosen: Mapping[str, str]
 
 
 def write_task(task: PddlTask, folder: Path) -> Path:
-    """Write ``folder/<schema>/domain.pddl`` and ``problem.pddl``, each whole or not at all."""
-    target = folder / task.schema
-    target.mkdir(parents=True, exist_ok=True)
-    for name, text in (("domain.pddl", task.domain), ("problem.pddl", task.problem)):
-        write_atomic(target / name, text)
-    return target
+    """Write ``folder/<schema>/domain.pddl`` and ``problem.pddl`` as one pair.
+
+    The pair moves into place in one step (``write_files_atomic``), so two runs writing into
+    one folder never leave a domain of one beside a problem of the other.
+    """
+    files = {"domain.pddl": task.domain, "problem.pddl": task.problem}
+    return write_files_atomic(output_folder(folder) / task.schema, files)
 
 
 def replan_all(

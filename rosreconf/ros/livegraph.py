@@ -41,6 +41,7 @@ from typing import Any
 
 import jsonschema
 
+from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
 from rosreconf.model.qos import QosProfile
@@ -270,7 +271,7 @@ def to_json(graph: LiveGraph) -> str:
     if graph.ros_version == 2:
         doc["ros_version"] = 2
         doc["service_types"] = dict(graph.service_types)
-    return json.dumps(doc, indent=2) + "\n"
+    return jsonout.dumps(doc, indent=2) + "\n"
 
 
 def from_json(text: str, source: str = "<snapshot>") -> LiveGraph:

@@ -263,14 +263,14 @@ class Watcher:
         self._say(
             "replanned",
             f"replanned without {', '.join(sorted(failed))}: "
-            f"{len(changes)} change(s), the fewest possible: {text}",
+            f"{len(changes)} change(s), the fewest possible (exact optimum): {text}",
             failed=sorted(failed),
             configuration=new.mapping,
             changes=[{"role": r, "from": a, "to": b} for r, a, b in changes],
         )
-        for line in explain_replan(
-            self.library, self.schema, failed, old, new, fewest_changes=len(changes)
-        ):
+        # best_configuration is the exact optimum of the change count, so it is the fewest by
+        # proof; passing len(changes) as "fewest" would only compare a number with itself.
+        for line in explain_replan(self.library, self.schema, failed, old, new):
             self._say("why", line)
         if not self.apply:
             self.current = new

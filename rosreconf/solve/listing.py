@@ -27,6 +27,8 @@ class Listing:
         listed: how many ``configurations()`` yielded.
         first: the first configuration (listed, or found for a picture when counting).
         why_not: why there is none (None unless ``total`` is 0).
+        counted_by_listing: exact counting would have needed too large a table, so the count
+            was made by listing every configuration (slow; the CLI says so).
     """
 
     def __init__(
@@ -47,10 +49,12 @@ class Listing:
         self.listed = 0
         self.first: Configuration | None = None
         self.why_not: str | None = None
+        self.counted_by_listing = False
         if count_only:
             try:
                 self.total = count(self._inst)
-            except CountTooHard:
+            except CountTooHard:  # said in the output: the user asked for a count, not a list
+                self.counted_by_listing = True
                 self.total = sum(1 for _ in ClingoEngine().configurations(self._inst))
             if want_first and self.total:
                 self.first = ClingoEngine().first(self._inst)
