@@ -99,6 +99,10 @@ COMMANDS: dict[str, Verb] = {
         "rosreconf.cli.whatif:whatif_command",
         "Show which schemas survive each set of up to K failures: critical parts and pairs.",
     ),
+    "simulate": Verb(
+        "rosreconf.cli.simulate:simulate_command",
+        "Simulate every valid configuration's control loops; rank by settling time and error.",
+    ),
 }
 """Every verb, in the order ``rosreconf --help`` lists them."""
 

@@ -31,6 +31,14 @@ def generate_command(
         ),
     ] = 0.2,
     seed: Annotated[int, typer.Option(help="Random seed; the same seed gives the same files.")] = 0,
+    dynamics: Annotated[
+        bool,
+        typer.Option(
+            "--dynamics",
+            help="Also give every component a transfer function and the schema a simulation "
+            "block (one loop per actuator), for rosreconf simulate.",
+        ),
+    ] = False,
 ) -> None:
     """Generate a layered library and schema shaped like the paper's Figure 2.
 
@@ -41,7 +49,7 @@ def generate_command(
 
     folder = output_folder(output)
     try:
-        generated = generate(roles, candidates, coupling, seed)
+        generated = generate(roles, candidates, coupling, seed, dynamics=dynamics)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     lib, schema = write(generated, folder)

@@ -27,16 +27,20 @@ from rosreconf.model import (
     Component,
     ComponentLibrary,
     ConfigurationLibrary,
+    ControlLoop,
     Edge,
     Interface,
     InterfaceKind,
     InteroperabilitySchema,
+    PerformanceRequirements,
     Requirement,
     Role,
     RosLaunch,
+    Simulation,
     Span,
     Substitution,
     SystemGraph,
+    TransferFunction,
 )
 from rosreconf.model.qos import QosProfile
 from rosreconf.outfiles import special_kind
@@ -366,6 +370,70 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
     )
 
 
+def _number(node: ys.YNode | None, default: float) -> float:
+    if isinstance(node, ys.YScalar) and isinstance(node.value, int | float):
+        return float(node.value)
+    return default
+
+
+def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> TransferFunction | None:
+    """Build a transfer function and record where its values are (keys under ``key``)."""
+    if node is None:
+        return None
+    items = _map(node)
+    tf = _map(items["transfer_function"])
+    where[key] = node.span
+    coefficients: dict[str, tuple[float, ...]] = {}
+    for part in ("num", "den"):
+        where[f"{key}.{part}"] = tf[part].span
+        values = _seq(tf[part])
+        for i, n in enumerate(values):
+            where[f"{key}.{part}.{i}"] = n.span
+        coefficients[part] = tuple(_number(n, 0.0) for n in values)
+    if "delay" in items:
+        where[f"{key}.delay"] = items["delay"].span
+    return TransferFunction(
+        coefficients["num"], coefficients["den"], _number(items.get("delay"), 0.0)
+    )
+
+
+def _simulation(node: ys.YNode | None, where: dict[str, Span]) -> Simulation | None:
+    """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
+    if node is None:
+        return None
+    items = _map(node)
+    where["simulation"] = node.span
+    loops = []
+    for i, n in enumerate(_seq(items["loops"])):
+        loop = _map(n)
+        key = f"simulation.loops.{i}"
+        where[key] = n.span
+        where[f"{key}.name"] = loop["name"].span
+        paths: dict[str, tuple[str, ...]] = {}
+        for path in ("forward", "feedback"):
+            roles = _seq(loop.get(path))
+            for j, r in enumerate(roles):
+                where[f"{key}.{path}.{j}"] = r.span
+            paths[path] = tuple(_text(r) for r in roles)
+        plant = _dynamics(loop["plant"], f"{key}.plant", where)
+        assert plant is not None
+        loops.append(ControlLoop(_text(loop["name"]), paths["forward"], plant, paths["feedback"]))
+    limits = _map(items.get("requirements"))
+    for metric, value in limits.items():
+        where[f"simulation.requirements.{metric}"] = value.span
+    for key in ("reference", "duration"):
+        if key in items:
+            where[f"simulation.{key}"] = items[key].span
+    return Simulation(
+        loops=tuple(loops),
+        reference=_number(items.get("reference"), 1.0),
+        duration=_number(items.get("duration"), 10.0),
+        requirements=PerformanceRequirements(
+            **{m: _number(v, 0.0) for m, v in limits.items()}  # keys fixed by the JSON Schema
+        ),
+    )
+
+
 def _component(node: ys.YNode) -> Component:
     items = _map(node)
     fp = items.get("failure_probability")
@@ -390,6 +458,7 @@ def _component(node: ys.YNode) -> Component:
                 where[f"qos.{label}"] = spec.span
     for i, n in enumerate(_seq(_map(items.get("ros")).get("args"))):
         where[f"ros.args.{i}"] = n.span
+    dynamics = _dynamics(items.get("dynamics"), "dynamics", where)
     return Component(
         name=_text(items["name"]),
         abstraction=_text(items["abstraction"]),
@@ -404,6 +473,7 @@ def _component(node: ys.YNode) -> Component:
         launch=_launch(items.get("ros")),
         metrics=MappingProxyType(metrics),
         qos=MappingProxyType(qos),
+        dynamics=dynamics,
         description=_text(items.get("description")),
         span=node.span,
         where=MappingProxyType(where),
@@ -444,6 +514,7 @@ def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
     where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
     for n in _seq(items["roles"]):
         where[f"role.{_text(_map(n)['name'])}.abstraction"] = _map(n)["abstraction"].span
+    simulation = _simulation(items.get("simulation"), where)
     return InteroperabilitySchema(
         name=_text(items["name"]),
         title=_text(items.get("title")),
@@ -451,6 +522,7 @@ def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
         skill=_text(items["skill"]).strip(),
         environment=_text(items["environment"]).strip(),
         nominal=MappingProxyType(nominal),
+        simulation=simulation,
         span=tree.span,
         source=name,
         where=MappingProxyType(where),

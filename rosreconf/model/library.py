@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import NamedTuple
 
+from rosreconf.model.dynamics import TransferFunction
 from rosreconf.model.qos import QosProfile
 
 
@@ -157,6 +158,8 @@ class Component:
         qos: ROS 2: topic label -> the QoS of this component's publisher (a provision) or
             subscription (a requirement) on it; labels not listed use the rmw default
             profile (``rosreconf.model.qos``).
+        dynamics: its dynamical model for the M-solution (``rosreconf simulate``), if known;
+            a role whose component has none is simulated as unity gain.
         description: free text for people.
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
@@ -175,6 +178,7 @@ class Component:
     launch: RosLaunch | None = None
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
     qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
+    dynamics: TransferFunction | None = None
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
