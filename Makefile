@@ -10,7 +10,7 @@ STAMP  := $(VENV)/.installed-stamp
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,planners,plot,dask]'
+	$(PY) -m pip install --quiet -e '.[test,planners,plot,dask,ros2]'
 	touch $(STAMP)
 
 ## Install the Debian packages the tests need (ROS 1, Graphviz); a no-op when present.

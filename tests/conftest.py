@@ -245,3 +245,37 @@ def standin(ros_master: ros_harness.Master) -> Iterator[StartStandIn]:
 
     yield start
     ros_harness.stop(*(node.process for node in started))
+
+
+Announce = Callable[..., Any]
+
+
+@pytest.fixture
+def ros2_domain(monkeypatch: pytest.MonkeyPatch) -> int:
+    """Return an unused DDS domain id (>= 42); this process's DDS uses loopback only."""
+    import importlib.util
+
+    import ros2_harness
+
+    if importlib.util.find_spec("cyclonedds") is None:
+        # make test installs the ros2 extra: a missing cyclonedds is a failure, never a skip.
+        pytest.fail("cyclonedds is not installed: pip install -e '.[ros2]' (make test does)")
+
+    monkeypatch.setenv("CYCLONEDDS_URI", ros2_harness.loopback_config())
+    return ros2_harness.free_domain()
+
+
+@pytest.fixture
+def announce(ros2_domain: int, tmp_path: Path) -> Iterator[Announce]:
+    """Start ROS 2 announcer processes on ``ros2_domain``; stop them all after the test."""
+    import ros2_harness
+
+    started: list[ros2_harness.Announcer] = []
+
+    def start(nodes: list[dict[str, Any]], **kwargs: Any) -> ros2_harness.Announcer:
+        a = ros2_harness.start(tmp_path, ros2_domain, nodes, **kwargs)
+        started.append(a)
+        return a
+
+    yield start
+    ros2_harness.stop(started)

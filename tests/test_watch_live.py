@@ -21,6 +21,7 @@ from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration
+from rosreconf.ros.sources import MasterSource
 from rosreconf.ros.standins import standin_spec
 from rosreconf.ros.watcher import Event, Watcher
 
@@ -37,8 +38,9 @@ def _watcher(
     nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     work = tmp_path / "work"
     work.mkdir()
+    source = MasterSource(master.uri)
     return Watcher(
-        master.uri, bundle.library, schema, nominal, work, master.env(), events.append,
+        source, bundle.library, schema, nominal, work, master.env(), events.append,
         apply=True, **kw,  # type: ignore[arg-type]
     )  # fmt: skip
 
@@ -119,6 +121,6 @@ def test_without_apply_a_restart_leaves_components_missing_not_failed(
     ros_harness.restart_master(ros_master)
     check = watcher.step()
     kinds = [e.kind for e in events]
-    assert kinds == ["master-restarted", "missing"], kinds
+    assert kinds == ["running", "master-restarted", "missing"], kinds
     assert not check.ok and "failed" not in kinds
-    assert events[1].data["components"] == list(watcher.current.components)
+    assert events[2].data["components"] == list(watcher.current.components)

@@ -69,7 +69,7 @@ COMMANDS: dict[str, Verb] = {
     ),
     "snapshot": Verb(
         "rosreconf.cli.live:snapshot_command",
-        "Save what the ROS master lists (nodes, topics, services, types, pids) as JSON.",
+        "Save the live graph (nodes, topics, services, types; pids or QoS) as JSON.",
     ),
     "import": Verb(
         "rosreconf.cli.live:import_command",

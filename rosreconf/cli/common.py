@@ -19,6 +19,8 @@ from rosreconf.formats.selection import Selection, select
 __all__ = [  # the input the options select, then the options
     "ConfigurationOption",
     "CurrentOption",
+    "DistroOption",
+    "DomainOption",
     "FailOption",
     "JsonOption",
     "LibraryOption",
@@ -26,7 +28,9 @@ __all__ = [  # the input the options select, then the options
     "ObjectiveOption",
     "OnlyOption",
     "OnlySchemaOption",
+    "OptionalMasterOption",
     "OutputOption",
+    "Ros2Option",
     "SchemaOption",
     "Selection",
     "finite",
@@ -123,6 +127,23 @@ MaxAnswerOption = Annotated[
 OnlySchemaOption = Annotated[
     str | None,
     typer.Option("--only", help="The schema, when the configuration names several."),
+]
+OptionalMasterOption = Annotated[
+    str | None,
+    typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
+]
+Ros2Option = Annotated[
+    bool, typer.Option("--ros2", help="Read a ROS 2 graph from DDS discovery (rosreconf[ros2]).")
+]
+DomainOption = Annotated[
+    int,
+    typer.Option("--domain", envvar="ROS_DOMAIN_ID", help="The ROS 2 domain id (ROS_DOMAIN_ID)."),
+]
+DistroOption = Annotated[
+    str | None,
+    typer.Option(
+        "--distro", help="The ROS 2 distribution (humble, jazzy, ...); default: read both layouts."
+    ),
 ]
 CurrentOption = Annotated[
     Path | None,

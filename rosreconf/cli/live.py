@@ -1,4 +1,4 @@
-"""``rosreconf snapshot``, ``import`` and ``inspect``: read a running ROS 1 system."""
+"""``rosreconf snapshot``, ``import`` and ``inspect``: read a running ROS 1 or ROS 2 system."""
 
 from __future__ import annotations
 
@@ -9,12 +9,15 @@ import typer
 
 from rosreconf.cli.common import (
     ConfigurationOption,
+    DistroOption,
+    DomainOption,
     JsonOption,
     LibraryOption,
-    MasterOption,
     MasterTimeoutOption,
     MaxAnswerOption,
     OnlySchemaOption,
+    OptionalMasterOption,
+    Ros2Option,
     SchemaOption,
     select,
 )
@@ -26,22 +29,36 @@ from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import to_json, without_plumbing
-from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_live, read_live_graph
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.sources import read_any
 from rosreconf.solve.running import one_target
 
 
 def snapshot_command(
-    master: MasterOption,
+    master: OptionalMasterOption = None,
     output: Annotated[
         str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
     ] = "-",
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
-    """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
+    """Save the live graph (nodes, topics, services, types; pids or QoS) as JSON."""
 
     target = output_target(output)
-    text = to_json(read_live_graph(master, timeout=master_timeout, max_bytes=max_answer_mb << 20))
+    text = to_json(
+        read_any(
+            master,
+            None,
+            ros2,
+            domain,
+            distro,
+            timeout=master_timeout,
+            max_bytes=max_answer_mb << 20,
+        )
+    )
     write_output(target, text)
 
 
@@ -58,11 +75,22 @@ def import_command(
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
     target = output_target(output)
-    graph = read_live(master, snapshot, timeout=master_timeout, max_bytes=max_answer_mb << 20)
+    graph = read_any(
+        master,
+        snapshot,
+        ros2,
+        domain,
+        distro,
+        timeout=master_timeout,
+        max_bytes=max_answer_mb << 20,
+    )
     text = draft_library(graph, name)
     where = write_output(target, text)
     live = without_plumbing(graph).nodes
@@ -83,10 +111,7 @@ def import_command(
 
 
 def inspect_command(
-    master: Annotated[
-        str | None,
-        typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
-    ] = None,
+    master: OptionalMasterOption = None,
     snapshot: Annotated[
         Path | None,
         typer.Option("--snapshot", help="Inspect a saved 'rosreconf snapshot' instead."),
@@ -98,12 +123,23 @@ def inspect_command(
     as_json: JsonOption = False,
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
-    graph = read_live(master, snapshot, timeout=master_timeout, max_bytes=max_answer_mb << 20)
+    graph = read_any(
+        master,
+        snapshot,
+        ros2,
+        domain,
+        distro,
+        timeout=master_timeout,
+        max_bytes=max_answer_mb << 20,
+    )
     result = compare(target.configuration, sel.library, target.schema, graph)
     write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

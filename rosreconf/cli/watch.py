@@ -12,12 +12,15 @@ import typer
 
 from rosreconf.cli.common import (
     ConfigurationOption,
+    DistroOption,
+    DomainOption,
     FailOption,
     LibraryOption,
-    MasterOption,
     MasterTimeoutOption,
     MaxAnswerOption,
     OnlySchemaOption,
+    OptionalMasterOption,
+    Ros2Option,
     SchemaOption,
     finite,
     select,
@@ -26,13 +29,15 @@ from rosreconf.cli.console import stderr
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
+from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.sources import open_source
 from rosreconf.ros.watcher import Event, Watcher, launch_log_dir
 from rosreconf.solve.running import one_target
 
 
 def watch_command(
-    master: MasterOption,
+    master: OptionalMasterOption = None,
     configuration: ConfigurationOption = None,
     only: OnlySchemaOption = None,
     library: LibraryOption = None,
@@ -63,6 +68,9 @@ def watch_command(
     once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
+    ros2: Ros2Option = False,
+    domain: DomainOption = 0,
+    distro: DistroOption = None,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
@@ -78,7 +86,15 @@ def watch_command(
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
-    env["ROS_MASTER_URI"] = master
+    source = open_source(
+        master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
+    )
+    if stand_ins and source.ros_version is RosVersion.ROS2:
+        raise UsageError("--stand-ins starts ROS 1 stand-in nodes: it cannot be used with --ros2")
+    if master is not None:
+        env["ROS_MASTER_URI"] = master
+    else:
+        env["ROS_DOMAIN_ID"] = str(domain)
     keep: Path | None = None
     if apply:
         try:
@@ -88,6 +104,7 @@ def watch_command(
             msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
             raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
+        stack.callback(source.close)
         if keep is not None:
             stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
@@ -103,9 +120,9 @@ def watch_command(
         work = stack.enter_context(private_workdir())
         sch, config = target.schema, target.configuration
         watcher = Watcher(
-            master, sel.library, sch, config, work, env, log,
+            source, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
-            timeout=master_timeout, max_bytes=max_answer_mb << 20, launch_dir=keep,
+            launch_dir=keep,
         )  # fmt: skip
         stack.callback(watcher.close)
         what = (
@@ -116,7 +133,8 @@ def watch_command(
         log(
             Event(
                 "started",
-                f"watching {sch.display_name} on {master} {what}: {', '.join(config.components)}",
+                f"watching {sch.display_name} on {source.uri} {what}: "
+                f"{', '.join(config.components)}",
                 {"configuration": config.mapping},
             )
         )

@@ -42,6 +42,7 @@ from rosreconf.model import (
     SystemGraph,
     TransferFunction,
 )
+from rosreconf.model.qos import QosProfile
 from rosreconf.outfiles import special_kind
 from rosreconf.resources import Bundle, bundled
 
@@ -324,6 +325,11 @@ def _map(node: ys.YNode | None) -> dict[str, ys.YNode]:
     return node.items if isinstance(node, ys.YMapping) else {}
 
 
+def _plain(node: ys.YNode) -> dict[str, object]:
+    """Return a (schema-checked) mapping of scalars as plain Python values."""
+    return {k: v.value for k, v in _map(node).items() if isinstance(v, ys.YScalar)}
+
+
 def _interface(node: ys.YNode) -> Interface:
     items = _map(node)
     kind = InterfaceKind.SERVICE if "service" in items else InterfaceKind.TOPIC
@@ -350,6 +356,7 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
         params[key] = value.value
     remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
     ns = items.get("namespace")
+    lifecycle = items.get("lifecycle")
     node_name = items.get("node")
     return RosLaunch(
         package=_text(items["package"]),
@@ -357,6 +364,7 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
         parameters=MappingProxyType(params),
         remappings=MappingProxyType(remaps),
         namespace=_text(ns) if ns is not None else None,
+        lifecycle=isinstance(lifecycle, ys.YScalar) and lifecycle.value is True,
         node=_text(node_name) if node_name is not None else None,
         args=tuple(_text(a) for a in _seq(items.get("args"))),
     )
@@ -440,6 +448,14 @@ def _component(node: ys.YNode) -> Component:
     for key in ("provides", "requires"):
         for i, n in enumerate(_seq(items.get(key))):
             where[f"{key}.{i}"] = n.span
+    qos: dict[str, QosProfile] = {}
+    for n in [*_seq(items.get("provides")), *_seq(items.get("requires"))]:
+        for option in _seq(_map(n).get("any_of")) or [n]:
+            spec = _map(option).get("qos")
+            if spec is not None:
+                label = _text(_map(option).get("topic", _map(option).get("service")))
+                qos[label] = QosProfile.from_dict(_plain(spec))
+                where[f"qos.{label}"] = spec.span
     for i, n in enumerate(_seq(_map(items.get("ros")).get("args"))):
         where[f"ros.args.{i}"] = n.span
     dynamics = _dynamics(items.get("dynamics"), "dynamics", where)
@@ -456,6 +472,7 @@ def _component(node: ys.YNode) -> Component:
         schemas=frozenset(_text(n) for n in _seq(items.get("schemas"))),
         launch=_launch(items.get("ros")),
         metrics=MappingProxyType(metrics),
+        qos=MappingProxyType(qos),
         dynamics=dynamics,
         description=_text(items.get("description")),
         span=node.span,

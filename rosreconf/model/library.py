@@ -16,6 +16,7 @@ from types import MappingProxyType
 from typing import NamedTuple
 
 from rosreconf.model.dynamics import TransferFunction
+from rosreconf.model.qos import QosProfile
 
 
 class Span(NamedTuple):
@@ -117,6 +118,8 @@ class RosLaunch:
         parameters: private parameters, name -> scalar value.
         remappings: interface label -> the real ROS name the executable uses for it.
         namespace: optional namespace to start the node in.
+        lifecycle: ROS 2: the node is a managed (lifecycle) node, taken in and out of service
+            by lifecycle transitions rather than by starting and killing its process.
         node: the ROS node base name when it differs from the component's library name
             (two live nodes ``/robot/scan_listener`` and ``/scan_listener`` are two
             components but both run as ``scan_listener``); None = the component's name.
@@ -131,6 +134,7 @@ class RosLaunch:
     )
     remappings: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     namespace: str | None = None
+    lifecycle: bool = False
     node: str | None = None
     args: tuple[str, ...] = ()
 
@@ -151,13 +155,16 @@ class Component:
         schemas: names of the schemas it may serve in (Table 1's "In Schema"); empty = any.
         launch: how to start it, if known.
         metrics: named numbers (cost, settling_time, ...) for optimisation.
+        qos: ROS 2: topic label -> the QoS of this component's publisher (a provision) or
+            subscription (a requirement) on it; labels not listed use the rmw default
+            profile (``rosreconf.model.qos``).
         dynamics: its dynamical model for the M-solution (``rosreconf simulate``), if known;
             a role whose component has none is simulated as unity gain.
         description: free text for people.
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``.
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``.
     """
 
     name: str
@@ -170,6 +177,7 @@ class Component:
     schemas: frozenset[str] = frozenset()
     launch: RosLaunch | None = None
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
     dynamics: TransferFunction | None = None
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)

@@ -21,7 +21,12 @@ The comparison reports (``Finding.code``): ``missing-node`` (not registered), ``
 ``missing-topic`` (an expected node does not serve, publish or subscribe what its ROS-graph
 edges say), ``wrong-type`` (the master's type of an expected topic differs), and
 ``unmet-requirement`` (Lemma 4: an interface a running expected node uses along its
-ROS-graph edges is served or published by no live node).
+ROS-graph edges is served or published by no live node). A ROS 2 graph (DDS discovery) also
+knows the services a node calls and every endpoint's QoS, which adds ``missing-client`` (an
+expected node does not call a service its edges say it calls) and ``qos-incompatible`` (the
+provider's publisher offers a QoS the consumer's subscription cannot accept, by
+``rosreconf.model.qos.incompatibilities``; both sides are named). ROS 2 types
+(``pkg/msg/Name``) equal the library's ``pkg/Name``.
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from rosreconf.model import (
     InteroperabilitySchema,
     VertexKind,
 )
+from rosreconf.model.qos import incompatibilities
 from rosreconf.model.validity import ros_graph
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 
@@ -75,7 +81,8 @@ class Finding:
 
     Attributes:
         code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
-            ``missing-topic``, ``wrong-type`` or ``unmet-requirement``.
+            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, and from a ROS 2
+            graph ``missing-client`` and ``qos-incompatible``.
         message: the difference in plain words.
         component: the component concerned, if any (None for extra nodes).
         live_name: the global ROS name concerned (node, topic or service).
@@ -195,7 +202,7 @@ def _edges(
             msg = f"{provider} does not {verb} {what} {name} ({label})"
             found.append(Finding(f"missing-{what}", msg, provider, name))
         live_type = graph.topic_types.get(name)
-        if what == "topic" and live_type is not None and live_type != typ:
+        if what == "topic" and live_type is not None and not same_type(live_type, typ):
             msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
             found.append(Finding("wrong-type", msg, provider, name))
         for consumer in consumers:
@@ -204,6 +211,16 @@ def _edges(
             if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
                 msg = f"{consumer} does not subscribe to topic {name} ({label})"
                 found.append(Finding("missing-topic", msg, consumer, name))
+            if (
+                what == "service"
+                and graph.ros_version == 2
+                and user is not None
+                and not {name, own} & set(user.clients)
+            ):
+                msg = f"{consumer} does not call service {name} ({label})"
+                found.append(Finding("missing-client", msg, consumer, name))
+            if what == "topic" and node is not None and user is not None:
+                found += _qos(provider, node, consumer, user, name, own, label)
             if user is not None and name not in (served if what == "service" else published):
                 how = "serves" if what == "service" else "publishes"
                 msg = (
@@ -212,3 +229,37 @@ def _edges(
                 )
                 found.append(Finding("unmet-requirement", msg, consumer, name))
     return found
+
+
+def same_type(live: str, library: str) -> bool:
+    """Tell whether a live type names the library's (ROS 2 ``pkg/msg/Name`` = ``pkg/Name``)."""
+
+    def short(t: str) -> str:
+        parts = t.split("/")
+        return f"{parts[0]}/{parts[-1]}" if len(parts) == 3 else t
+
+    return live == library or short(live) == short(library)
+
+
+def _qos(
+    provider: str,
+    node: LiveNode,
+    consumer: str,
+    user: LiveNode,
+    name: str,
+    own: str,
+    label: str,
+) -> list[Finding]:
+    """Report a publisher's offered QoS that the consumer's subscription cannot accept."""
+    offered = node.publish_qos.get(name)
+    requested = user.subscribe_qos.get(name, user.subscribe_qos.get(own))
+    if offered is None or requested is None:
+        return []  # ROS 1, or an endpoint missing (reported as such)
+    why = incompatibilities(offered, requested)
+    if not why:
+        return []
+    msg = (
+        f"topic {name} ({label}): {provider} offers [{offered}] but {consumer} requests "
+        f"[{requested}]: {'; '.join(w.message for w in why)} (no messages will flow)"
+    )
+    return [Finding("qos-incompatible", msg, consumer, name)]

@@ -84,9 +84,32 @@ def _service_type(service: str) -> str:
     return f"TODO_srvs/{_clean(base or 'Unknown')}"
 
 
+def _library_type(live: LiveGraph, service: str) -> str:
+    """Return a ROS 2 service's type in the library's ``pkg/Name`` form."""
+    return _short(live.service_types.get(service, _service_type(service)))
+
+
+def _topic_type(live: LiveGraph, topic: str) -> str:
+    """Return a topic's type in the library's ``pkg/Name`` form (ROS 2 says ``pkg/msg/Name``)."""
+    return _short(live.topic_types.get(topic, UNKNOWN_TOPIC_TYPE))
+
+
+def _short(ros_type: str) -> str:
+    """Drop the ``msg``/``srv`` part of a ROS 2 type: the library writes ``pkg/Name``."""
+    parts = ros_type.split("/")
+    return f"{parts[0]}/{parts[-1]}" if len(parts) == 3 else ros_type
+
+
 def _q(text: str) -> str:
     """Quote ``text`` as a YAML (JSON) string."""
     return json.dumps(text)
+
+
+def _where(live: LiveGraph) -> str:
+    """Say where the graph was read, for the draft's header."""
+    if live.ros_version == 2:
+        return f"ROS 2 DDS discovery ({live.master_uri})"
+    return f"the ROS master at {live.master_uri}"
 
 
 def draft_library(graph: LiveGraph, name: str = "imported") -> str:
@@ -96,7 +119,7 @@ def draft_library(graph: LiveGraph, name: str = "imported") -> str:
     lines = [
         header(),
         "#",
-        f"# Drafted by 'rosreconf import' from the ROS master at {live.master_uri}",
+        f"# Drafted by 'rosreconf import' from {_where(live)}",
         f"# on {live.taken_at.isoformat()}. Fill in every TODO before using it for planning:",
         "#   abstraction  the role class each component can play (Def. 5), shared by",
         "#                interchangeable components;",
@@ -135,20 +158,31 @@ def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) 
     if not node.answered:
         lines.append("    # TODO: this node did not answer (dead?) when the master was read")
     provides = [
-        f"      - {{topic: {_q(t)}, type: {_q(live.topic_types.get(t, UNKNOWN_TOPIC_TYPE))}}}"
-        for t in node.publishes
+        f"      - {{topic: {_q(t)}, type: {_q(_topic_type(live, t))}}}" for t in node.publishes
     ]
     for s in node.serves:
-        provides.append(f"      - {{service: {_q(s)}, type: {_q(_service_type(s))}}}  # TODO: type")
+        if s in live.service_types:  # ROS 2 discovery knows service types
+            provides.append(f"      - {{service: {_q(s)}, type: {_q(_library_type(live, s))}}}")
+        else:
+            provides.append(
+                f"      - {{service: {_q(s)}, type: {_q(_service_type(s))}}}  # TODO: type"
+            )
     lines += ["    provides:", *provides] if provides else ["    provides: []"]
     requires: list[str] = []
     unmet: list[str] = []
     for t in node.subscribes:
-        entry = f"{{topic: {_q(t)}, type: {_q(live.topic_types.get(t, UNKNOWN_TOPIC_TYPE))}}}"
+        entry = f"{{topic: {_q(t)}, type: {_q(_topic_type(live, t))}}}"
         (requires if t in published else unmet).append(entry)
+    served = {x for n in live.nodes for x in n.serves}
+    uncalled: list[str] = []
+    for c in node.clients:  # ROS 2 only: a ROS 1 master does not know callers
+        entry = f"{{service: {_q(c)}, type: {_q(_library_type(live, c))}}}"
+        (requires if c in served else uncalled).append(entry)
     lines += ["    requires:", *(f"      - {r}" for r in requires)] if requires else []
     lines += [f"    # TODO: subscribes {r}, which nothing live publishes" for r in unmet]
-    lines.append("    # TODO: add the services this node calls (invisible at the master)")
+    lines += [f"    # TODO: calls {r}, which nothing live serves" for r in uncalled]
+    if live.ros_version == 1:
+        lines.append("    # TODO: add the services this node calls (invisible at the master)")
     lines += [
         "    ros:  # TODO: package and executable",
         "      package: TODO_package",

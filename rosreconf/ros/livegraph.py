@@ -44,6 +44,7 @@ import jsonschema
 from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
+from rosreconf.model.qos import QosProfile
 from rosreconf.resources import Bundle, bundled
 
 SNAPSHOT_FORMAT = "rosreconf-live-graph"
@@ -58,6 +59,29 @@ PLUMBING_TOPICS = frozenset({"/rosout", "/rosout_agg"})
 PLUMBING_SERVICE_SUFFIXES = ("/get_loggers", "/set_logger_level")
 """Services every rospy/roscpp node serves under its own name."""
 
+ROS2_PLUMBING_TOPICS = frozenset({"/rosout", "/parameter_events"})
+"""Topics every rclcpp/rclpy node publishes (and subscribes) for logging and parameters."""
+ROS2_PLUMBING_SERVICE_SUFFIXES = (
+    "/describe_parameters",
+    "/get_parameter_types",
+    "/get_parameters",
+    "/list_parameters",
+    "/set_parameters",
+    "/set_parameters_atomically",
+    "/get_type_description",
+)
+"""Services every node serves under its own name (parameters; type descriptions, Jazzy on)."""
+LIFECYCLE_SERVICE_SUFFIXES = (
+    "/change_state",
+    "/get_state",
+    "/get_available_states",
+    "/get_available_transitions",
+    "/get_transition_graph",
+)
+"""Services a lifecycle (managed) node serves under its own name (rclcpp_lifecycle)."""
+LIFECYCLE_TOPIC_SUFFIX = "/transition_event"
+"""The topic a lifecycle node publishes its transitions on, under its own name."""
+
 
 @dataclass(frozen=True)
 class LiveNode:
@@ -71,6 +95,11 @@ class LiveNode:
         publishes: topics it publishes, sorted.
         subscribes: topics it subscribes to, sorted.
         serves: services it serves, sorted.
+        clients: services it calls, sorted (ROS 2 only: a ROS 1 master does not know them).
+        alive: ROS 2: whether its DDS participant was alive (None for ROS 1, where the pid
+            tells).
+        publish_qos: ROS 2: topic -> the QoS its publisher offers.
+        subscribe_qos: ROS 2: topic -> the QoS its subscription requests.
     """
 
     name: str
@@ -79,11 +108,15 @@ class LiveNode:
     publishes: tuple[str, ...] = ()
     subscribes: tuple[str, ...] = ()
     serves: tuple[str, ...] = ()
+    clients: tuple[str, ...] = ()
+    alive: bool | None = None
+    publish_qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
+    subscribe_qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
 
     @property
     def answered(self) -> bool:
-        """Tell whether the node's own API answered ``getPid`` when the graph was read."""
-        return self.pid is not None
+        """Tell whether the node was alive when read (ROS 1: its API answered ``getPid``)."""
+        return self.alive if self.alive is not None else self.pid is not None
 
 
 @dataclass(frozen=True)
@@ -96,17 +129,25 @@ class LiveGraph:
         nodes: the nodes, sorted by name.
         topic_types: topic -> message type. The master never forgets a type, so this may
             name topics no node uses any more; ``topics`` gives the ones in use.
+        ros_version: 1 (a master) or 2 (DDS discovery; ``master_uri`` is then
+            ``ros2://domain/<id>``).
+        service_types: ROS 2: service -> service type (a ROS 1 master does not know them).
     """
 
     master_uri: str
     taken_at: datetime
     nodes: tuple[LiveNode, ...]
     topic_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    ros_version: int = 1
+    service_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "nodes", tuple(sorted(self.nodes, key=lambda n: n.name)))
         object.__setattr__(
             self, "topic_types", MappingProxyType(dict(sorted(self.topic_types.items())))
+        )
+        object.__setattr__(
+            self, "service_types", MappingProxyType(dict(sorted(self.service_types.items())))
         )
 
     @property
@@ -137,42 +178,99 @@ def is_plumbing_service(node: str, service: str) -> bool:
     return any(service == node + suffix for suffix in PLUMBING_SERVICE_SUFFIXES)
 
 
+def is_ros2_plumbing_service(node: str, service: str) -> bool:
+    """Tell whether ``service`` is a parameter/type service every node ``node`` serves."""
+    return any(service == node + suffix for suffix in ROS2_PLUMBING_SERVICE_SUFFIXES)
+
+
+def is_lifecycle_service(node: str, service: str) -> bool:
+    """Tell whether ``service`` is one of the lifecycle services of the managed node ``node``."""
+    return any(service == node + suffix for suffix in LIFECYCLE_SERVICE_SUFFIXES)
+
+
+def is_hidden_node(name: str) -> bool:
+    """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's)."""
+    return name.rsplit("/", 1)[-1].startswith("_")
+
+
+def _ros2_plumbing_service(node: str, service: str) -> bool:
+    """Tell whether ``service`` is a parameter or lifecycle service every such node has."""
+    return is_ros2_plumbing_service(node, service) or is_lifecycle_service(node, service)
+
+
 def without_plumbing(graph: LiveGraph) -> LiveGraph:
-    """Return ``graph`` without roscore's logging node, topics and per-node logger services."""
+    """Return ``graph`` without the client libraries' own nodes, topics and services.
+
+    ROS 1: roscore's ``/rosout`` node, ``/rosout``/``/rosout_agg`` and the logger services.
+    ROS 2: hidden nodes (``_ros2cli_...``), ``/rosout``, ``/parameter_events``, every node's
+    parameter services and a lifecycle node's state services and ``transition_event`` topic.
+    """
+    if graph.ros_version == 2:
+        topics = ROS2_PLUMBING_TOPICS
+        plumbing_service = _ros2_plumbing_service
+    else:
+        topics, plumbing_service = PLUMBING_TOPICS, is_plumbing_service
+
+    def keep_topic(node: str, topic: str) -> bool:
+        lifecycle = graph.ros_version == 2 and topic == node + LIFECYCLE_TOPIC_SUFFIX
+        return topic not in topics and not lifecycle
+
     nodes = tuple(
         replace(
             n,
-            publishes=tuple(t for t in n.publishes if t not in PLUMBING_TOPICS),
-            subscribes=tuple(t for t in n.subscribes if t not in PLUMBING_TOPICS),
-            serves=tuple(s for s in n.serves if not is_plumbing_service(n.name, s)),
+            publishes=tuple(t for t in n.publishes if keep_topic(n.name, t)),
+            subscribes=tuple(t for t in n.subscribes if keep_topic(n.name, t)),
+            serves=tuple(s for s in n.serves if not plumbing_service(n.name, s)),
+            clients=tuple(s for s in n.clients if not plumbing_service(n.name, s)),
+            publish_qos={t: q for t, q in n.publish_qos.items() if keep_topic(n.name, t)},
+            subscribe_qos={t: q for t, q in n.subscribe_qos.items() if keep_topic(n.name, t)},
         )
         for n in graph.nodes
-        if n.name not in PLUMBING_NODES
+        if n.name not in PLUMBING_NODES and not is_hidden_node(n.name)
     )
-    types = {t: ty for t, ty in graph.topic_types.items() if t not in PLUMBING_TOPICS}
-    return replace(graph, nodes=nodes, topic_types=types)
+    types = {t: ty for t, ty in graph.topic_types.items() if t not in topics}
+    services = dict(graph.service_types)
+    if graph.ros_version == 2:
+        in_use = {t for n in nodes for t in (*n.publishes, *n.subscribes)}
+        called = {s for n in nodes for s in (*n.serves, *n.clients)}
+        types = {t: ty for t, ty in types.items() if t in in_use}
+        services = {s: ty for s, ty in services.items() if s in called}
+    return replace(graph, nodes=nodes, topic_types=types, service_types=services)
+
+
+def _node_json(n: LiveNode, ros_version: int) -> dict[str, Any]:
+    """Return one node's snapshot entry (ROS 2 adds clients, alive and QoS)."""
+    doc: dict[str, Any] = {
+        "name": n.name,
+        "uri": n.uri,
+        "pid": n.pid,
+        "publishes": sorted(n.publishes),
+        "subscribes": sorted(n.subscribes),
+        "serves": sorted(n.serves),
+    }
+    if ros_version == 2:
+        doc["clients"] = sorted(n.clients)
+        doc["alive"] = n.alive
+        doc["qos"] = {
+            "publishes": {t: q.to_dict() for t, q in sorted(n.publish_qos.items())},
+            "subscribes": {t: q.to_dict() for t, q in sorted(n.subscribe_qos.items())},
+        }
+    return doc
 
 
 def to_json(graph: LiveGraph) -> str:
     """Return the snapshot of ``graph`` (format above), ending in a newline."""
-    doc = {
+    doc: dict[str, Any] = {
         "format": SNAPSHOT_FORMAT,
         "version": SNAPSHOT_VERSION,
         "master_uri": graph.master_uri,
         "taken_at": graph.taken_at.isoformat(),
-        "nodes": [
-            {
-                "name": n.name,
-                "uri": n.uri,
-                "pid": n.pid,
-                "publishes": sorted(n.publishes),
-                "subscribes": sorted(n.subscribes),
-                "serves": sorted(n.serves),
-            }
-            for n in graph.nodes
-        ],
+        "nodes": [_node_json(n, graph.ros_version) for n in graph.nodes],
         "topic_types": dict(graph.topic_types),
     }
+    if graph.ros_version == 2:
+        doc["ros_version"] = 2
+        doc["service_types"] = dict(graph.service_types)
     return jsonout.dumps(doc, indent=2) + "\n"
 
 
@@ -200,18 +298,32 @@ def from_json(text: str, source: str = "<snapshot>") -> LiveGraph:
     if dups:
         msg = f"node(s) listed twice: {', '.join(dups)}"
         raise InvalidInputError([Problem(start, msg, code="duplicate-node")])
-    nodes = tuple(
-        LiveNode(
-            name=n["name"],
-            uri=n["uri"],
-            pid=n["pid"],
-            publishes=tuple(sorted(n["publishes"])),
-            subscribes=tuple(sorted(n["subscribes"])),
-            serves=tuple(sorted(n["serves"])),
-        )
-        for n in doc["nodes"]
+    nodes = tuple(_node_from_json(n) for n in doc["nodes"])
+    return LiveGraph(
+        doc["master_uri"],
+        taken_at,
+        nodes,
+        dict(doc["topic_types"]),
+        ros_version=doc.get("ros_version", 1),
+        service_types=dict(doc.get("service_types", {})),
     )
-    return LiveGraph(doc["master_uri"], taken_at, nodes, dict(doc["topic_types"]))
+
+
+def _node_from_json(n: dict[str, Any]) -> LiveNode:
+    """Build one node from its (schema-checked) snapshot entry."""
+    qos = n.get("qos", {})
+    return LiveNode(
+        name=n["name"],
+        uri=n["uri"],
+        pid=n["pid"],
+        publishes=tuple(sorted(n["publishes"])),
+        subscribes=tuple(sorted(n["subscribes"])),
+        serves=tuple(sorted(n["serves"])),
+        clients=tuple(sorted(n.get("clients", ()))),
+        alive=n.get("alive"),
+        publish_qos={t: QosProfile.from_dict(q) for t, q in qos.get("publishes", {}).items()},
+        subscribe_qos={t: QosProfile.from_dict(q) for t, q in qos.get("subscribes", {}).items()},
+    )
 
 
 def _schema_problems(doc: Any, source: str) -> list[Problem]:

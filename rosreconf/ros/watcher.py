@@ -46,16 +46,9 @@ from rosreconf.procs import Background, stop_all
 from rosreconf.ros.conformance import Conformance, compare, node_live_name
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.rosmaster import (
-    DEFAULT_MAX_BYTES,
-    DEFAULT_TIMEOUT,
-    master_identity,
-    printable,
-    purge_dead,
-    read_live_graph,
-    shutdown_node,
-)
-from rosreconf.ros.standins import start_roslaunch, write_standin_package
+from rosreconf.ros.rosmaster import printable
+from rosreconf.ros.sources import LiveSource, lifecycle_steps
+from rosreconf.ros.standins import write_standin_package
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.solver import why_not
 
@@ -65,10 +58,11 @@ class Event:
     """One decision or observation, for people (``message``) and programs (``data``).
 
     Attributes:
-        kind: ``started``, ``stopped``, ``failed``, ``purged``, ``replanned``, ``no-configuration``,
-            ``stop``, ``launch``, ``launch-error``, ``launch-exited``, ``conformant``,
-            ``not-conformant``, ``missing``, ``master-lost``, ``master-back``,
-            ``master-restarted``, ``kept``.
+        kind: ``started``, ``running`` (once: every component seen alive), ``stopped``,
+            ``failed``, ``purged``, ``replanned``, ``why``, ``no-configuration``, ``stop``,
+            ``launch``, ``would-launch`` (no launcher here), ``lifecycle`` (ROS 2 managed
+            nodes), ``launch-error``, ``launch-exited``, ``conformant``, ``not-conformant``,
+            ``missing``, ``master-lost``, ``master-back``, ``master-restarted``, ``kept``.
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).
@@ -85,7 +79,8 @@ class Watcher:
     """Watch one schema's configuration on one master, and repair it when asked to.
 
     Attributes:
-        master_uri: the ROS master.
+        source: the running system: a ROS 1 master (with its call deadline and answer cap)
+            or a ROS 2 DDS domain (``rosreconf.ros.sources``).
         library, schema: what the configuration is made of.
         current: the configuration that should run now (changes on replanning).
         workdir: a private directory for the stand-in package (removed by the caller).
@@ -94,15 +89,13 @@ class Watcher:
         apply: stop and start components, rather than only say what should change.
         stand_ins: launch stand-in nodes instead of the components' real executables.
         settle: seconds to wait for the live graph to conform after applying a change.
-        timeout: each XML-RPC call's total deadline (seconds).
-        max_bytes: the cap on each answer from the master.
         launch_dir: where launch files and roslaunch's output go, kept after the watcher
             ends (default: ``workdir``).
         failed: components known to have failed (sticky).
         launches: the roslaunch processes started, stopped by ``close``.
     """
 
-    master_uri: str
+    source: LiveSource
     library: ComponentLibrary
     schema: InteroperabilitySchema
     current: Configuration
@@ -112,8 +105,6 @@ class Watcher:
     apply: bool = False
     stand_ins: bool = False
     settle: float = 30.0
-    timeout: float = DEFAULT_TIMEOUT
-    max_bytes: int = DEFAULT_MAX_BYTES
     launch_dir: Path | None = None
     failed: set[str] = field(default_factory=set)
     launches: list[Background] = field(default_factory=list)
@@ -124,9 +115,10 @@ class Watcher:
     _launched: set[str] = field(default_factory=set)
     _exited: set[int] = field(default_factory=set)
     _steps: int = 0
+    _running: bool = False
 
     def _read(self) -> LiveGraph:
-        return read_live_graph(self.master_uri, timeout=self.timeout, max_bytes=self.max_bytes)
+        return self.source.read()
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
@@ -148,11 +140,16 @@ class Watcher:
                 missing.append(comp)
             else:
                 self._seen.add(comp)
+        if not self._running and self._seen >= set(self.current.components):
+            self._running = True
+            self._say(
+                "running",
+                f"all {len(self.current.components)} components of the configuration run",
+                components=list(self.current.components),
+            )
         dead = [n.name for n in graph.nodes if not n.answered]
         if dead:
-            purged = purge_dead(
-                self.master_uri, graph, only=dead, timeout=self.timeout, max_bytes=self.max_bytes
-            )
+            purged = self.source.purge(graph, dead)
             if purged:
                 self._say(
                     "purged",
@@ -167,23 +164,23 @@ class Watcher:
             stuck = [c for c in missing if c in self._launched] if self.apply else missing
             if stuck and tuple(stuck) != self._missing:
                 self._missing = tuple(stuck)
-                why = (
-                    f"launched but not running (see roslaunch's output in {self._dir()})"
-                    if self.apply
-                    else "use --apply to start"
-                )
+                if not self.apply:
+                    why = "use --apply to start"
+                elif self.launches:
+                    why = f"launched but not running (see the launch output in {self._dir()})"
+                else:
+                    why = f"no launcher here: the launch file is in {self._dir()}"
                 self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
             fresh = [c for c in missing if c not in stuck]
-            if fresh:
-                self._start(fresh, "not running yet")
+            if fresh and self._start(fresh, "not running yet"):
                 return self._confirm()
         return check if not dead else compare(self.current, self.library, self.schema, self._read())
 
     def _check_master(self) -> None:
         """Notice a restarted master, and start over from what the new one lists."""
-        now = master_identity(self.master_uri, timeout=self.timeout, max_bytes=self.max_bytes)
+        now = self.source.identity()
         before, self._master = self._master, now
-        if before is None or before == now:
+        if before is None or now is None or before == now:
             return
         what = f"pid {before[0]} -> {now[0]}" if before[0] != now[0] else "new /run_id"
         self._say(
@@ -208,6 +205,7 @@ class Watcher:
         self._seen.clear()
         self._launched.clear()
         self._missing = ()
+        self._running = False
 
     def _dir(self) -> Path:
         return self.launch_dir if self.launch_dir is not None else self.workdir
@@ -305,10 +303,11 @@ class Watcher:
             return False
         graph = self._read()
         for role, old_comp, new_comp in changes:
-            node = self.library[old_comp]
-            uri = next((n.uri for n in graph.nodes if n.name == node_live_name(node)), None)
-            if uri is not None and old_comp not in self.failed:
-                shutdown_node(uri, f"rosreconf: {role} is now {new_comp}", timeout=self.timeout)
+            self._lifecycle(old_comp, new_comp, role)
+            name = node_live_name(self.library[old_comp])
+            alive = any(n.name == name for n in graph.nodes)
+            reason = f"rosreconf: {role} is now {new_comp}"
+            if alive and old_comp not in self.failed and self.source.stop(graph, name, reason):
                 self._say(
                     "stop",
                     f"stopped {old_comp} ({role}): replaced by {new_comp}",
@@ -316,34 +315,66 @@ class Watcher:
                 )
         self.current = new
         self._seen -= {a for _, a, _ in changes}
-        self._start([b for _, _, b in changes], "new in the configuration")
-        return True
+        return self._start([b for _, _, b in changes], "new in the configuration")
 
-    def _start(self, components: Collection[str], why: str) -> None:
-        """Start ``components`` with one roslaunch process."""
+    def _lifecycle(self, old_comp: str, new_comp: str, role: str) -> None:
+        """List the lifecycle transitions swapping managed nodes (ROS 2 ``ros.lifecycle``)."""
+        if self.source.ros_version is not RosVersion.ROS2:
+            return
+        steps: list[str] = []
+        for comp, stop in ((old_comp, True), (new_comp, False)):
+            launch = self.library[comp].launch
+            if launch is not None and launch.lifecycle:
+                steps += lifecycle_steps(node_live_name(self.library[comp]), stop=stop)
+        if steps:
+            self._say(
+                "lifecycle",
+                f"{role}: lifecycle transitions {old_comp} -> {new_comp}: {'; '.join(steps)}",
+                role=role,
+                transitions=steps,
+            )
+
+    def _start(self, components: Collection[str], why: str) -> bool:
+        """Start ``components`` with one launch process (or say what would run); True if run."""
         self._steps += 1
         self._dir().mkdir(parents=True, exist_ok=True)
-        launch = self._dir() / f"step{self._steps}.launch"
+        version = self.source.ros_version
+        suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
+        launch = self._dir() / f"step{self._steps}{suffix}"
         text = launch_file(
             self.library,
             self.schema,
             self.current,
-            RosVersion.ROS1,
+            version,
             only=components,
             stand_ins=self.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
         pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
-        self.launches.append(start_roslaunch(launch, self.env, package_path=pkg))
+        process = self.source.start(launch, self.env, pkg)
         self._launched |= set(components)
+        command = " ".join(self.source.launch_command(launch))
+        if process is None:
+            self._say(
+                "would-launch",
+                f"no launcher here: would run '{command}' to start {', '.join(components)} "
+                f"({why}); wrote {launch}",
+                components=list(components),
+                launch_file=str(launch),
+                command=command,
+            )
+            return False
+        self.launches.append(process)
         how = "stand-ins of " if self.stand_ins else ""
+        launcher = "roslaunch" if version is RosVersion.ROS1 else "ros2 launch"
         self._say(
             "launch",
-            f"roslaunch started {how}{', '.join(components)} ({why})",
+            f"{launcher} started {how}{', '.join(components)} ({why})",
             components=list(components),
             launch_file=str(launch),
             output=str(launch.with_suffix(".log")),
         )
+        return True
 
     def _confirm(self) -> Conformance:
         """Wait until the live graph conforms or ``settle`` passes; log which."""
@@ -354,6 +385,7 @@ class Watcher:
             took = time.monotonic() - start
             if check.ok:
                 self._seen |= set(self.current.components)
+                self._running = True  # "conformant" says it
                 self._say(
                     "conformant",
                     f"the live system conforms to the configuration "
@@ -385,6 +417,7 @@ class Watcher:
                 f"launch files and roslaunch's output are kept in {self.launch_dir}",
                 launch_dir=str(self.launch_dir),
             )
+        self.source.close()
 
     def run(self, interval: float, *, once: bool = False) -> Conformance:
         """Poll every ``interval`` seconds until interrupted; with ``once``, poll once and return.

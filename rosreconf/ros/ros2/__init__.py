@@ -1,0 +1,1 @@
+"""Read a ROS 2 graph from DDS discovery, without ROS 2 installed (extra ``rosreconf[ros2]``)."""

@@ -1,0 +1,69 @@
+"""Turn the DDS names a ROS 2 rmw announces back into ROS names and types.
+
+ROS 2 maps every topic and service onto DDS topics with a prefix, and every message type onto
+a DDS type name in a ``dds_`` namespace (rmw_cyclonedds_cpp ``make_fqtopic`` and
+``MessageTypeSupport``/``ServiceTypeSupport``; rmw_fastrtps ``namespace_prefix.cpp`` uses the
+same names). The inverse, as rmw_cyclonedds_cpp ``demangle.cpp`` does it::
+
+    DDS                                              ROS
+    -----------------------------------------------  ----------------------------------------
+    topic  rt/chatter                                topic /chatter
+    topic  rq/add_two_intsRequest (reader: server)   service /add_two_ints
+    topic  rr/add_two_intsReply   (writer: server)   service /add_two_ints
+    type   std_msgs::msg::dds_::String_              std_msgs/msg/String
+    type   example_interfaces::srv::dds_::AddTwoInts_Request_  example_interfaces/srv/AddTwoInts
+
+A DDS name without these prefixes is not a ROS one (plain DDS applications, or ROS endpoints
+created with ``avoid_ros_namespace_conventions``) and is left out of the ROS graph.
+"""
+
+from __future__ import annotations
+
+import enum
+
+TOPIC_PREFIX = "rt"
+REQUEST_PREFIX = "rq"
+REPLY_PREFIX = "rr"
+DISCOVERY_TOPIC = "ros_discovery_info"
+"""rmw_dds_common's graph topic: its DDS name has no prefix."""
+
+
+class Channel(enum.StrEnum):
+    """What a DDS topic carries for ROS 2."""
+
+    TOPIC = "topic"
+    REQUEST = "request"
+    REPLY = "reply"
+
+
+def ros_name(dds_topic: str) -> tuple[Channel, str] | None:
+    """Return what ``dds_topic`` carries and its ROS name, or None if it is not a ROS name."""
+    for prefix, channel, suffix in (
+        (TOPIC_PREFIX, Channel.TOPIC, ""),
+        (REQUEST_PREFIX, Channel.REQUEST, "Request"),
+        (REPLY_PREFIX, Channel.REPLY, "Reply"),
+    ):
+        if not dds_topic.startswith(prefix + "/"):
+            continue
+        name = dds_topic[len(prefix) :]
+        if suffix:
+            if not name.endswith(suffix) or len(name) == len(suffix) + 1:
+                return None
+            name = name[: -len(suffix)]
+        return (channel, name) if len(name) > 1 else None
+    return None
+
+
+def ros_type(dds_type: str) -> str | None:
+    """Return the ROS type ``pkg/msg/Name`` or ``pkg/srv/Name`` of a DDS type name, else None."""
+    head, sep, tail = dds_type.rpartition("::dds_::")
+    if not sep or not head or not tail.endswith("_"):
+        return None
+    name = tail[:-1]
+    for suffix in ("_Request", "_Response"):
+        if name.endswith(suffix) and head.endswith("::srv"):
+            name = name[: -len(suffix)]
+            break
+    if not name:
+        return None
+    return head.replace("::", "/") + "/" + name

@@ -1,0 +1,180 @@
+"""Start ROS 2 announcers (tests/ros2_announcer.py) on a private loopback DDS domain.
+
+Every participant a test starts, ours and rosreconf's, gets the same CYCLONEDDS_URI: the
+loopback interface only, no multicast, unicast discovery to 127.0.0.1, and a short lease so a
+SIGKILLed announcer is noticed in seconds (rmw_cyclonedds' default is 10 s). The domain id is
+one no real system uses (42 and up), and per test one whose discovery port is free, so
+tests and other runs on the machine never see each other.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from rosreconf.model import Component, InterfaceKind
+
+ANNOUNCER = Path(__file__).with_name("ros2_announcer.py")
+LEASE = 2.0
+"""Seconds a participant's lease lasts in the tests (rmw_cyclonedds' default: 10 s)."""
+START_TIMEOUT = 20.0
+FIRST_DOMAIN = 42
+
+
+def loopback_config(lease: float = LEASE) -> str:
+    """Return the CYCLONEDDS_URI XML: loopback only, no multicast, ``lease`` s leases."""
+    return (
+        '<CycloneDDS><Domain Id="any"><General>'
+        '<Interfaces><NetworkInterface address="127.0.0.1"/></Interfaces>'
+        "<AllowMulticast>false</AllowMulticast></General>"
+        "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
+        "<MaxAutoParticipantIndex>40</MaxAutoParticipantIndex>"
+        '<Peers><Peer address="127.0.0.1"/></Peers>'
+        f"<LeaseDuration>{lease:g}s</LeaseDuration></Discovery>"
+        "</Domain></CycloneDDS>"
+    )
+
+
+def dds_env(lease: float = LEASE) -> dict[str, str]:
+    """Return this process's environment with the loopback DDS configuration."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    env["CYCLONEDDS_URI"] = loopback_config(lease)
+    return env
+
+
+_next = [FIRST_DOMAIN + (os.getpid() * 7) % 150]
+
+
+def free_domain() -> int:
+    """Return a DDS domain id >= 42 whose first unicast discovery port is free on loopback.
+
+    Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
+    a bound port 0 means someone uses the domain here.
+    """
+    for _ in range(190):
+        domain = _next[0]
+        _next[0] = FIRST_DOMAIN + (domain - FIRST_DOMAIN + 1) % 190
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+            try:
+                s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
+            except OSError:
+                continue
+            return domain
+    raise RuntimeError("no free DDS domain id between 42 and 231")
+
+
+def ros2_type(ros1_type: str, kind: str) -> str:
+    """Return the ROS 2 type of a library type (``pkg/Name`` -> ``pkg/msg/Name``)."""
+    parts = ros1_type.split("/")
+    return ros1_type if len(parts) == 3 else f"{parts[0]}/{kind}/{parts[-1]}"
+
+
+def _join(namespace: str, name: str) -> str:
+    parts = [p for p in (*namespace.split("/"), *name.split("/")) if p]
+    return "/" + "/".join(parts)
+
+
+def node_spec(component: Component, qos: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
+    """Return the announcer node of ``component``: what its ROS 2 node would announce.
+
+    Written here from the library, not with rosreconf's own name mapping, so that a bug
+    there shows up as a test failure. ``qos`` maps a live topic name to the rmw profile of
+    this node's endpoint on it.
+    """
+    qos = qos or {}
+    launch = component.launch
+    ns = (launch.namespace if launch else None) or "/"
+
+    def live(label: str) -> str:
+        target = launch.remappings.get(label, label) if launch else label
+        return _join("/", target) if target.startswith("/") else _join(ns, target)
+
+    node: dict[str, Any] = {
+        "namespace": ns,
+        "name": (launch.node if launch else None) or component.name,
+        "publishers": [],
+        "subscriptions": [],
+        "servers": [],
+        "clients": [],
+    }
+    for iface in sorted(component.provides):
+        name = live(iface.label)
+        if iface.kind is InterfaceKind.SERVICE:
+            node["servers"].append({"name": name, "type": ros2_type(iface.type, "srv")})
+        else:
+            typ = ros2_type(iface.type, "msg")
+            node["publishers"].append({"name": name, "type": typ, "qos": qos.get(name, {})})
+    for req in component.requires:
+        for option in req.options:
+            name = live(option.label)
+            if option.kind is InterfaceKind.SERVICE:
+                node["clients"].append({"name": name, "type": ros2_type(option.type, "srv")})
+            else:
+                typ = ros2_type(option.type, "msg")
+                node["subscriptions"].append({"name": name, "type": typ, "qos": qos.get(name, {})})
+    return node
+
+
+@dataclass
+class Announcer:
+    """One announcer process (one ROS 2 context)."""
+
+    process: subprocess.Popen[bytes]
+    spec: dict[str, Any]
+
+    def kill(self) -> None:
+        """SIGKILL it, like a crash: its participant cannot say goodbye."""
+        self.process.send_signal(signal.SIGKILL)
+        self.process.wait(5)
+
+
+def start(
+    tmp: Path, domain: int, nodes: list[dict[str, Any]], *, gid_size: int = 16, **extra: Any
+) -> Announcer:
+    """Start one announcer process for ``nodes`` and wait until it has announced them."""
+    spec = {"domain": domain, "gid_size": gid_size, "nodes": nodes, **extra}
+    path = tmp / f"announcer-{len(list(tmp.glob('announcer-*.json')))}.json"
+    path.write_text(json.dumps(spec), encoding="utf-8")
+    proc = subprocess.Popen(
+        [sys.executable, str(ANNOUNCER), str(path)],
+        stdout=subprocess.PIPE,
+        stderr=(tmp / f"{path.stem}.err").open("wb"),
+        env=dds_env(),
+        start_new_session=True,
+    )
+    assert proc.stdout is not None
+    ready, _, _ = select.select([proc.stdout], [], [], START_TIMEOUT)
+    line = proc.stdout.readline() if ready else b""
+    if line.strip() != b"ready":
+        proc.kill()
+        proc.wait(5)
+        err = (tmp / f"{path.stem}.err").read_text(errors="replace")
+        raise RuntimeError(f"announcer did not start: {line!r} {err[-2000:]}")
+    return Announcer(proc, spec)
+
+
+def stop(announcers: Iterable[Announcer]) -> None:
+    """Stop announcers (SIGTERM, then SIGKILL after 5 s) and reap them."""
+    live = [a for a in announcers if a.process.poll() is None]
+    for a in live:
+        a.process.send_signal(signal.SIGTERM)
+    deadline = time.monotonic() + 5
+    for a in live:
+        try:
+            a.process.wait(max(0.1, deadline - time.monotonic()))
+        except subprocess.TimeoutExpired:
+            a.process.kill()
+            a.process.wait(5)
+    for a in announcers:
+        if a.process.stdout is not None:
+            a.process.stdout.close()

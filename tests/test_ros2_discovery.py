@@ -1,0 +1,108 @@
+"""The ROS 2 graph reader against real DDS participants announcing what rmw announces.
+
+Each announcer (tests/ros2_announcer.py) is a separate process with a real cyclonedds
+participant on loopback, built from the rmw sources independently of the decoder. These
+tests check that ``rosreconf.ros.ros2.discovery`` reads back exactly what was announced, in
+both Gid layouts, and ignores what is not ROS.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+from conftest import Announce
+
+from rosreconf.model.qos import Durability, Liveliness, QosProfile, Reliability
+from rosreconf.ros.livegraph import from_json, to_json, without_plumbing
+from rosreconf.ros.ros2.discovery import read_ros2_graph
+
+TALKER: dict[str, Any] = {
+    "namespace": "/demo",
+    "name": "talker",
+    "publishers": [
+        {
+            "name": "/chatter",
+            "type": "std_msgs/msg/String",
+            "qos": {"reliability": "best_effort", "deadline": 0.5, "depth": 5},
+        },
+        {
+            "name": "/demo/map",
+            "type": "nav_msgs/msg/OccupancyGrid",
+            "qos": {"durability": "transient_local", "depth": 1},
+        },
+    ],
+    "subscriptions": [
+        {
+            "name": "/cmd",
+            "type": "geometry_msgs/msg/Twist",
+            "qos": {"liveliness": "manual_by_topic", "lease_duration": 3},
+        }
+    ],
+    "servers": [{"name": "/demo/reset", "type": "std_srvs/srv/Trigger"}],
+    "clients": [{"name": "/add_two_ints", "type": "example_interfaces/srv/AddTwoInts"}],
+}
+LISTENER: dict[str, Any] = {
+    "namespace": "/",
+    "name": "listener",
+    "subscriptions": [{"name": "/chatter", "type": "std_msgs/msg/String"}],
+}
+
+
+@pytest.mark.parametrize(("distro", "gid_size"), [("humble", 24), ("jazzy", 16)])
+def test_reads_nodes_endpoints_types_and_qos(
+    announce: Announce, ros2_domain: int, distro: str, gid_size: int
+) -> None:
+    announce([TALKER, LISTENER], gid_size=gid_size)
+    announce([{"name": "not_ros", "publishers": [{"name": "/chatter", "type": "a/msg/B"}]}],
+             gid_size=gid_size, ros_participant=False)  # fmt: skip
+
+    for which in (distro, None):  # named distribution, and both layouts tried
+        graph = read_ros2_graph(ros2_domain, distro=which)
+        assert graph.ros_version == 2 and graph.master_uri == f"ros2://domain/{ros2_domain}"
+        assert graph.names == ("/demo/talker", "/listener"), which
+        talker = graph.node("/demo/talker")
+        assert talker.answered
+        assert talker.publishes == ("/chatter", "/demo/map", "/parameter_events", "/rosout")
+        assert talker.subscribes == ("/cmd", "/parameter_events")
+        assert "/demo/reset" in talker.serves and "/demo/talker/get_parameters" in talker.serves
+        assert talker.clients == ("/add_two_ints",)
+        assert graph.topic_types["/chatter"] == "std_msgs/msg/String"
+        assert graph.service_types["/add_two_ints"] == "example_interfaces/srv/AddTwoInts"
+        assert talker.publish_qos["/chatter"] == QosProfile(
+            reliability=Reliability.BEST_EFFORT, deadline=0.5, depth=5
+        )
+        assert talker.publish_qos["/demo/map"].durability is Durability.TRANSIENT_LOCAL
+        cmd = talker.subscribe_qos["/cmd"]
+        assert (cmd.liveliness, cmd.lease_duration) == (Liveliness.MANUAL_BY_TOPIC, 3.0)
+
+        clean = without_plumbing(graph)
+        talker = clean.node("/demo/talker")
+        assert talker.publishes == ("/chatter", "/demo/map")
+        assert talker.serves == ("/demo/reset",)
+        assert set(clean.topic_types) == {"/chatter", "/demo/map", "/cmd"}
+        assert set(clean.service_types) == {"/demo/reset", "/add_two_ints"}
+        assert from_json(to_json(graph)) == graph
+
+
+def test_wrong_distro_sees_no_nodes(announce: Announce, ros2_domain: int) -> None:
+    announce([LISTENER], gid_size=24)
+    assert read_ros2_graph(ros2_domain, distro="jazzy", timeout=2).names == ()
+    assert read_ros2_graph(ros2_domain, distro="humble").names == ("/listener",)
+
+
+def test_killed_participant_leaves_the_graph(announce: Announce, ros2_domain: int) -> None:
+    from rosreconf.ros.ros2.discovery import Ros2Discovery
+
+    talker = announce([TALKER])
+    announce([LISTENER])
+    with Ros2Discovery(ros2_domain) as session:
+        assert session.read().names == ("/demo/talker", "/listener")
+        talker.kill()
+        import time
+
+        deadline = time.monotonic() + 15
+        while "/demo/talker" in session.read().names:
+            assert time.monotonic() < deadline, "the killed participant never left"
+            time.sleep(0.1)
+        assert session.read().names == ("/listener",)
