@@ -27,8 +27,8 @@ from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.solve.counting import CountTooHard, count
-from rosreconf.solve.instance import compile_instance, explain
-from rosreconf.solve.solver import ClingoEngine
+from rosreconf.solve.instance import Instance, compile_instance, explain
+from rosreconf.solve.solver import ClingoEngine, first_configuration
 
 
 def enumerate_command(
@@ -79,7 +79,7 @@ def enumerate_command(
             write_stdout(_heading(s))
         if not count_only:
             with _progress(stderr, s, quiet=as_json) as tick:
-                for n, config in enumerate(ClingoEngine().configurations(inst, limit), start=1):
+                for n, config in enumerate(_configurations(inst, limit), start=1):
                     if n == 1:
                         firsts.append(RosPicture(s, config))
                     if out:
@@ -88,7 +88,7 @@ def enumerate_command(
                         write_stdout(f"  {n:>3}. {', '.join(config.components)}\n")
                     tick()
             total = n if limit is None or n < limit else None
-        elif graph is not None and total and (first := ClingoEngine().first(inst)):
+        elif graph is not None and total and (first := first_configuration(inst)):
             firsts.append(RosPicture(s, first))
         why = explain(inst) if (total == 0) else None
         empty += total == 0
@@ -101,6 +101,15 @@ def enumerate_command(
     if graph is not None:
         write_picture(graph, ros_dot(sel.library, firsts, sel.failed))
     raise typer.Exit(ExitCode.FAILED if empty else ExitCode.OK)
+
+
+def _configurations(inst: Instance, limit: int | None) -> Iterator[Configuration]:
+    """Yield configurations in enumeration order; the first alone comes without clingo."""
+    if limit == 1:
+        found = first_configuration(inst)
+        yield from () if found is None else (found,)
+        return
+    yield from ClingoEngine().configurations(inst, limit)
 
 
 def _heading(s: InteroperabilitySchema) -> str:

@@ -16,7 +16,6 @@ from types import MappingProxyType
 from typing import NamedTuple
 
 
-
 class Span(NamedTuple):
     """Where a value was written: file, 1-based line and column.
 
