@@ -18,6 +18,32 @@ from rosreconf.errors import UsageError
 from rosreconf.formats.loader import Loaded, load_checked
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 
+ObjectiveOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--objective",
+        metavar="METRIC=WEIGHT",
+        help="metric=weight: after the fewest changes, minimise the weighted metric sum "
+        "(repeatable).",
+        show_default=False,
+    ),
+]
+
+
+def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
+    """Parse ``metric=weight`` options (shared by plan, render-pddl and enumerate --best)."""
+    weights: dict[str, float] = {}
+    for item in objective or []:
+        name, sep, value = item.partition("=")
+        try:
+            weights[name.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not name.strip():
+            raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
+    return weights
+
+
 LibraryOption = Annotated[
     list[Path] | None,
     typer.Option(

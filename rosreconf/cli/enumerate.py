@@ -16,19 +16,21 @@ from rosreconf.cli.common import (
     FailOption,
     JsonOption,
     LibraryOption,
+    ObjectiveOption,
     OnlyOption,
     SchemaOption,
     Selection,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import stderr, write_stdout
-from rosreconf.errors import ExitCode
+from rosreconf.errors import ExitCode, UsageError
 from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.solve.counting import CountTooHard, count
 from rosreconf.solve.instance import Instance, compile_instance, explain
-from rosreconf.solve.solver import ClingoEngine, first_configuration
+from rosreconf.solve.solver import ClingoEngine, Objective, first_configuration, optimise
 
 
 def enumerate_command(
@@ -42,6 +44,13 @@ def enumerate_command(
     count_only: Annotated[
         bool, typer.Option("--count", help="Count exactly without listing.")
     ] = False,
+    best: Annotated[
+        bool,
+        typer.Option(
+            "--best", help="Print only the optimal configuration for --objective (proven)."
+        ),
+    ] = False,
+    objective: ObjectiveOption = None,
     as_json: JsonOption = False,
     graph: Annotated[
         Path | None,
@@ -58,6 +67,11 @@ def enumerate_command(
     Exit 0 when every schema has a configuration, 1 when some schema has none.
     """
 
+    if best and (count_only or limit is not None):
+        raise UsageError("--best prints one configuration: leave out --count and --limit")
+    if objective and not best:
+        raise UsageError("--objective says what --best minimises: add --best")
+    goal = Objective(weights=weights_of(objective)) if best else None
     sel = select(library, schema, fail, only)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
@@ -77,7 +91,22 @@ def enumerate_command(
             out.begin_schema(s)
         else:
             write_stdout(_heading(s))
-        if not count_only:
+        optimum: dict[str, object] | None = None
+        if goal is not None:
+            found = optimise(inst, goal)
+            n = 0 if found.configuration is None else 1
+            if found.configuration is not None:
+                firsts.append(RosPicture(s, found.configuration))
+                metric = goal.score(inst, found.configuration)[1]
+                optimum = {"weights": dict(goal.weights), "weighted_sum": metric}
+                optimum["engine"] = found.engine
+                if out:
+                    out.configuration(sel, s, found.configuration, 1)
+                else:
+                    write_stdout(f"    1. {', '.join(found.configuration.components)}\n")
+                    write_stdout(_optimum_line(goal, metric, found.engine))
+            total = None if n else 0
+        elif not count_only:
             with _progress(stderr, s, quiet=as_json) as tick:
                 for n, config in enumerate(_configurations(inst, limit), start=1):
                     if n == 1:
@@ -93,9 +122,13 @@ def enumerate_command(
         why = explain(inst) if (total == 0) else None
         empty += total == 0
         if out:
-            out.end_schema(total, limit_reached=total is None, why=why)
-        else:
+            out.end_schema(
+                total, limit_reached=total is None and goal is None, why=why, optimum=optimum
+            )
+        elif goal is None or why:
             write_stdout(_summary(total, n, why))
+        else:
+            write_stdout("\n")
     if out:
         out.close()
     if graph is not None:
@@ -110,6 +143,12 @@ def _configurations(inst: Instance, limit: int | None) -> Iterator[Configuration
         yield from () if found is None else (found,)
         return
     yield from ClingoEngine().configurations(inst, limit)
+
+
+def _optimum_line(goal: Objective, metric: float, engine: str) -> str:
+    """Say what the printed configuration is optimal for, and who proved it."""
+    weights = ", ".join(f"{m}={w:g}" for m, w in goal.weights.items()) or "no metric"
+    return f"  optimal for {weights}: weighted sum {metric:g} (proven by {engine})\n"
 
 
 def _heading(s: InteroperabilitySchema) -> str:
@@ -166,14 +205,23 @@ class _JsonStream:
         }
         self._w(sep + json.dumps(doc))
 
-    def end_schema(self, total: int | None, *, limit_reached: bool, why: str | None) -> None:
-        tail = {
+    def end_schema(
+        self,
+        total: int | None,
+        *,
+        limit_reached: bool,
+        why: str | None,
+        optimum: dict[str, object] | None = None,
+    ) -> None:
+        tail: dict[str, object] = {
             "count": total,
             "count_text": None if total is None else str(total),
             "limit_reached": limit_reached,
             "why_not": why,
         }
-        self._w("], " + json.dumps(tail)[1:])
+        if optimum is not None:  # --best: what the configuration is optimal for
+            tail["optimum"] = optimum
+        self._w("], " + json.dumps(tail, allow_nan=False)[1:])
 
     def close(self) -> None:
         self._w("]}\n")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -13,10 +12,12 @@ from rosreconf.cli.common import (
     FailOption,
     JsonOption,
     LibraryOption,
+    ObjectiveOption,
     OnlyOption,
     SchemaOption,
     Selection,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, UsageError
@@ -39,30 +40,6 @@ CurrentOption = Annotated[
         show_default=False,
     ),
 ]
-ObjectiveOption = Annotated[
-    list[str] | None,
-    typer.Option(
-        "--objective",
-        metavar="METRIC=WEIGHT",
-        help="metric=weight: after the fewest changes, minimise the weighted metric sum "
-        "(repeatable).",
-        show_default=False,
-    ),
-]
-
-
-def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
-    """Parse ``metric=weight`` options."""
-    weights: dict[str, float] = {}
-    for item in objective or []:
-        name, sep, value = item.partition("=")
-        try:
-            weights[name.strip()] = float(value)
-        except ValueError:
-            sep = ""
-        if not sep or not name.strip():
-            raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
-    return weights
 
 
 def currents(

@@ -10,12 +10,14 @@ import typer
 from rosreconf.cli.common import (
     FailOption,
     LibraryOption,
+    ObjectiveOption,
     OnlyOption,
     SchemaOption,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import write_stdout
-from rosreconf.cli.plan import CurrentOption, ObjectiveOption, currents, weights_of
+from rosreconf.cli.plan import CurrentOption, currents
 from rosreconf.errors import ExitCode
 from rosreconf.planning.pddl import render
 from rosreconf.planning.replan import write_task
