@@ -17,6 +17,7 @@ rosreconf promises:
 
 from __future__ import annotations
 
+import gc
 import math
 import re
 from collections.abc import Iterator, Sequence
@@ -160,15 +161,9 @@ def parse(data: bytes, file: str) -> YNode | None:
     if FAST_LOADER is not None and _fast_path_safe(text):
         # libyaml parses about six times faster. On any problem the pure-Python parser reads the
         # file again, so that messages and positions never depend on which parser is installed.
-        fast = _Builder(file)
-        try:
-            for event in yaml.parse(text, Loader=FAST_LOADER):
-                fast.feed(event)
-            clean = not fast.problems
-        except (_StopParsing, yaml.YAMLError):
-            clean = False
-        if clean:
-            return fast.root
+        fast = _fast_tree(text, file)
+        if fast is not _UNCLEAN:
+            return fast
     builder = _Builder(file)
     try:
         for event in yaml.parse(text, Loader=yaml.SafeLoader):
@@ -214,6 +209,111 @@ def _fast_path_safe(text: str) -> bool:
         and "\t" not in text
         and not yaml.reader.Reader.NON_PRINTABLE.search(text)
     )
+
+
+_UNCLEAN = YScalar(Span("<unclean>", 0, 0), None, "", False)
+"""What ``_fast_tree`` returns when the file needs the full reader (and its messages)."""
+
+
+def _fast_tree(text: str, file: str) -> YNode | None:
+    """Build the tree from libyaml's events in one tight loop, or return ``_UNCLEAN``.
+
+    Valid files are the common case and a thousand-role library has 380,000 events, so this
+    loop does only what a clean file needs: no problem list, no per-event method calls, plain
+    scalars resolved once per distinct text. Anything ``_Builder`` would report (a second
+    document, an anchor or alias, a tag, a duplicate or complex key, too deep a nesting, a
+    syntax error) returns ``_UNCLEAN``, and ``parse`` reads the file again with the full
+    reader. tests/test_fast_paths.py holds both paths to identical trees.
+    """
+    assert FAST_LOADER is not None
+    loader = FAST_LOADER(text)
+    collecting = gc.isenabled()
+    gc.disable()  # the tree only grows here: cycle collections would find nothing to free
+    try:
+        return _fast_events(loader.get_event, file)
+    except yaml.YAMLError:
+        return _UNCLEAN
+    finally:
+        loader.dispose()
+        if collecting:
+            gc.enable()
+
+
+def _fast_events(get: Any, file: str) -> YNode | None:
+    """Consume events from ``get`` into a tree (see ``_fast_tree``); one flat loop for speed."""
+    scalar_event, alias_event = yaml.ScalarEvent, yaml.AliasEvent
+    map_start, seq_start = yaml.MappingStartEvent, yaml.SequenceStartEvent
+    map_end, seq_end = yaml.MappingEndEvent, yaml.SequenceEndEvent
+    doc_start, stream_end = yaml.DocumentStartEvent, yaml.StreamEndEvent
+    new_span = tuple.__new__
+    resolved: dict[str, Scalar] = {}
+    root: YNode | None = None
+    stack: list[YMapping | YSequence] = []
+    keys: list[tuple[str, Span] | None] = []
+    documents = 0
+    while True:
+        event = get()
+        cls = type(event)
+        node: YNode
+        if cls is scalar_event:
+            if event.anchor is not None:
+                return _UNCLEAN
+            mark = event.start_mark
+            span = new_span(Span, (file, mark.line + 1, mark.column + 1))
+            tag, text = event.tag, event.value
+            if tag is None and not event.style and event.implicit[0]:
+                if text in resolved:
+                    value = resolved[text]
+                else:
+                    value = resolved[text] = resolve_plain(text)
+                node = YScalar(span, value, text, True)
+            elif tag is None or tag in _STR_TAGS:
+                node = YScalar(span, text, text, False)
+            else:
+                return _UNCLEAN
+        elif cls is map_start or cls is seq_start:
+            if event.anchor is not None or event.tag is not None or len(stack) >= MAX_DEPTH:
+                return _UNCLEAN
+            mark = event.start_mark
+            span = new_span(Span, (file, mark.line + 1, mark.column + 1))
+            node = YMapping(span) if cls is map_start else YSequence(span)
+        elif cls is map_end or cls is seq_end:
+            stack.pop()
+            keys.pop()
+            continue
+        elif cls is doc_start:
+            documents += 1
+            if documents > 1:
+                return _UNCLEAN
+            continue
+        elif cls is stream_end:
+            return root
+        elif cls is alias_event:
+            return _UNCLEAN
+        else:
+            continue  # stream and document ends
+        if stack:
+            parent = stack[-1]
+            if isinstance(parent, YSequence):
+                parent.items.append(node)
+            else:
+                key = keys[-1]
+                if key is None:
+                    if not isinstance(node, YScalar):
+                        return _UNCLEAN  # a complex key
+                    keys[-1] = (node.raw, node.span)
+                    continue
+                name, where = key
+                if name in parent.items:
+                    return _UNCLEAN  # a duplicate key
+                parent.items[name] = node
+                parent.key_spans[name] = where
+                keys[-1] = None
+        else:
+            root = node
+        if not isinstance(node, YScalar):
+            stack.append(node)
+            keys.append(None)
 
 
 class _StopParsing(Exception):
