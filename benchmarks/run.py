@@ -496,7 +496,13 @@ def main() -> None:
         "--clingo-timeout", type=float, default=30.0, help="per-cell limit of clingo_optimal"
     )
     ap.add_argument("--json", type=Path, default=HERE / "results.json")
+    ap.add_argument(
+        "--markdown", action="store_true", help="print the tables of --json for docs/PERFORMANCE.md"
+    )
     args = ap.parse_args()
+    if args.markdown:
+        print(markdown(json.loads(args.json.read_text(encoding="utf-8"))))
+        return
     if args.child:
         kind, where = args.child
         if kind == "growth":
@@ -589,6 +595,52 @@ def main() -> None:
         f"import rosreconf vs python -c pass (whole-process CPU): {floor['ratio']:.2f}x; "
         f"streaming RSS KiB (in-process): {doc['streaming_rss_kib']}"
     )
+
+
+def markdown(doc: dict[str, Any]) -> str:
+    """Render results.json's whole-process, growth and watch parts as Markdown tables."""
+    out = [
+        "| what (whole process) | ours, CPU s | reference, CPU s | ratio | goal | met | reference"
+        " |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in [*doc["whole_process"], doc["import_floor"]]:
+        if r["status"] != "ok":
+            out.append(f"| {r['what']} | {r['status']} | | | | | |")
+            continue
+        goals = []
+        if r.get("goal_ratio") is not None:
+            goals.append(f"<= {r['goal_ratio']}x")
+        if r.get("goal_seconds") is not None:
+            goals.append(f"< {r['goal_seconds']} s")
+        out.append(
+            f"| `{r['what']}` | {r['cpu_seconds']:.2f} | {r['reference_cpu_seconds']:.2f} "
+            f"| {r['ratio']:.2f}x | {', '.join(goals) or '-'} "
+            f"| {('yes' if r['met'] else 'no') if goals else '-'} | {r['reference']} |"
+        )
+    grown = doc["growth"]
+    out += ["", "| roles (x 10), in-process | count s | first s | optimal s | peak RSS MiB |"]
+    out.append("| --- | --- | --- | --- | --- |")
+    for r in grown["rows"]:
+        if r["status"] != "ok":
+            out.append(f"| {r['roles']} | {r['status']} | | | |")
+            continue
+        out.append(
+            f"| {r['roles']:,} | {r['count']:.3f} | {r['first']:.3f} | {r['optimal']:.3f} "
+            f"| {r['rss_kib'] / 1024:.0f} |"
+        )
+    fits = grown["exponent"]
+    cells = [
+        f"{fits[k]:.2f}" if fits[k] is not None else "n/a" for k in ("count", "first", "optimal")
+    ]
+    out.append(f"| fitted exponent | {' | '.join(cells)} | |")
+    w = doc["watch"]
+    out += [
+        "",
+        f"watch (in-process): replan {w['replan_seconds'] * 1000:.0f} ms, Fast Downward's own "
+        f"time ({w['search']}) {w['fast_downward_seconds']:.2f} s; goal met: {w['met']}",
+    ]
+    return "\n".join(out)
 
 
 def whole_table(rows: list[dict[str, Any]]) -> Any:
