@@ -29,6 +29,7 @@ from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.solve.counting import CountTooHard, count
+from rosreconf.solve.factors import paused_gc
 from rosreconf.solve.instance import Instance, compile_instance, explain
 from rosreconf.solve.solver import ClingoEngine, Objective, first_configuration, optimise
 
@@ -79,7 +80,8 @@ def enumerate_command(
     firsts: list[RosPicture] = []
     out = _JsonStream(sel, write_stdout) if as_json else None
     for s in sel.schemas:
-        inst = compile_instance(sel.library, s, sel.failed)
+        with paused_gc():  # compiling allocates many small tuples; collections would find none
+            inst = compile_instance(sel.library, s, sel.failed)
         total: int | None = None
         if count_only:
             try:
