@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint typecheck pytest system-deps bench clean
+.PHONY: demo test lint typecheck pytest system-deps bench architecture clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
@@ -32,8 +32,8 @@ test: $(STAMP) system-deps lint typecheck pytest
 
 lint: $(STAMP)
 	$(BIN)/lint-imports
-	$(BIN)/ruff check rosreconf tests benchmarks
-	$(BIN)/ruff format --check rosreconf tests benchmarks
+	$(BIN)/ruff check rosreconf tests benchmarks scripts
+	$(BIN)/ruff format --check rosreconf tests benchmarks scripts
 
 typecheck: $(STAMP)
 	$(BIN)/mypy
@@ -44,6 +44,11 @@ pytest: $(STAMP)
 ## Measure count, first, optimal, whatif and clingo alone over the R x K grid.
 bench: $(STAMP)
 	$(PY) benchmarks/run.py
+
+## Redraw docs/img/architecture.svg: the stages and their imports, read from the code.
+architecture: $(STAMP)
+	$(PY) scripts/architecture.py docs/img/architecture.dot
+	dot -Tsvg docs/img/architecture.dot -o docs/img/architecture.svg
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache

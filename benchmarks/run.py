@@ -165,11 +165,10 @@ def watch_child(runs: str) -> dict[str, Any]:
     ``explain_replan``; Fast Downward's own time (``PlanResult.elapsed``) on the same task with
     ``plan``'s default search is the reference.
     """
-    from rosreconf.cli.plan import DEFAULT_SEARCH
     from rosreconf.formats.loader import load_bundled
     from rosreconf.planning.narrative import explain_replan
     from rosreconf.planning.pddl import render
-    from rosreconf.planning.planners import FastDownward, solve
+    from rosreconf.planning.planners import DEFAULT_SEARCH, FastDownward, solve
     from rosreconf.solve.instance import compile_instance
     from rosreconf.solve.solver import Objective, best_configuration
 
@@ -295,8 +294,8 @@ def split_write(roles: int, candidates: int, folder: Path, per: int = 1000) -> N
 
 def whole_process(tmp: Path, quick: bool) -> list[dict[str, Any]]:
     """Measure the user's commands against issue 12's references, in interleaved pairs."""
-    from rosreconf.cli.plan import DEFAULT_SEARCH
     from rosreconf.formats.loader import load_paths
+    from rosreconf.planning.planners import DEFAULT_SEARCH
     from rosreconf.planning.planners.fast_downward import fast_downward_root
     from rosreconf.solve.instance import compile_instance
     from rosreconf.solve.solver import PROGRAM, _facts

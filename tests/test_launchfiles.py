@@ -19,12 +19,12 @@ from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 from rosreconf.cli.common import select
-from rosreconf.cli.target import targets
 from rosreconf.errors import RosreconfError
 from rosreconf.model import ComponentLibrary
 from rosreconf.procs import run_program
 from rosreconf.resources import Bundle, bundled
 from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.solve.running import targets
 
 SCHEMA = "object_repositioning"
 SYSTEM_PYTHON = "/usr/bin/python3"

@@ -16,7 +16,6 @@ from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 from rosreconf.cli.common import Selection, select
-from rosreconf.cli.target import targets
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.model import VertexKind
 from rosreconf.model.validity import ros_graph
@@ -31,6 +30,7 @@ from rosreconf.render.pictures import (
     system_dot,
     write_picture,
 )
+from rosreconf.solve.running import targets
 
 SCHEMA = "object_repositioning"
 

@@ -12,8 +12,9 @@ from rosreconf.cli.app import app
 from rosreconf.formats.configfile import read_configurations
 from rosreconf.formats.loader import load_bundled
 from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
-from rosreconf.planning.replan import current_configuration, unaffected
+from rosreconf.planning.replan import unaffected
 from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.running import running_configuration
 from rosreconf.solve.solver import Objective, optimise
 
 FAKES = Path(__file__).parent / "fakes"
@@ -154,7 +155,9 @@ def test_unaffected_agrees_with_the_proven_fewest_changes() -> None:
     loaded = load_bundled()
     library = loaded.library
     for schema in loaded.schemas:
-        current = current_configuration(library, schema)
+        running = running_configuration(library, schema)
+        assert running is not None
+        current = running.mapping
         for failed in [frozenset({c.name}) for c in library]:
             inst = compile_instance(library, schema, failed)
             best = optimise(inst, Objective(current)).configuration

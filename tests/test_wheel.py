@@ -42,6 +42,10 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
         "rosreconf/templates/problem.pddl.j2",
     ):
         assert expected in names
+    # Every package of the checkout ships: a missing one would still import here through the
+    # editable install's finder, so only this list shows it.
+    for package in REPO.joinpath("rosreconf").rglob("__init__.py"):
+        assert package.relative_to(REPO).as_posix() in names
     return target
 
 

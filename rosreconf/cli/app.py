@@ -1,18 +1,26 @@
 """The command line: parse options, build objects, call the library, map errors to exit codes.
 
-Each verb lives in ``rosreconf/cli/<verb>.py`` as a plain function with typer
-annotations; ``_register`` below registers them. Library code raises ``RosreconfError``;
-``guard`` turns it into one line on stderr and the documented exit code (see
-``rosreconf.errors.ExitCode``), so the user never sees a traceback.
+Each verb lives in ``rosreconf/cli/<verb>.py`` as a plain function with typer annotations.
+``COMMANDS`` names them, with their one-line summaries, and nothing imports a verb's module
+until that verb runs (or shows its own ``--help``): ``rosreconf --help`` and ``validate`` then
+never load clingo, networkx, Jinja, the planners or a ROS client (issue 12; the test
+``tests/test_cli_imports.py`` holds this, and that each summary is its docstring's first line).
+
+Library code raises ``RosreconfError``; ``guard`` turns it into one line on stderr and the
+documented exit code (see ``rosreconf.errors.ExitCode``), so the user never sees a traceback.
 """
 
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
-from typing import ParamSpec, TypeVar
+import importlib
+from collections.abc import Callable, Iterator, MutableMapping
+from typing import Any, NamedTuple, ParamSpec, TypeVar
 
 import typer
+import typer.core
+import typer.main
+from typer._click import Command, Context  # typer vendors click: its types are what it builds
 
 from rosreconf import __version__
 from rosreconf.cli.console import stderr, write_stdout
@@ -21,15 +29,78 @@ from rosreconf.errors import ExitCode, InvalidInputError, RosreconfError
 P = ParamSpec("P")
 R = TypeVar("R")
 
-app = typer.Typer(
-    name="rosreconf",
-    help="Configure and reconfigure ROS systems from a component library "
-    "(Aitken, Veres and Judge, IFAC 2014).",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-    rich_markup_mode=None,
-)
+
+class Verb(NamedTuple):
+    """Where a verb's function lives and what ``rosreconf --help`` says about it.
+
+    Attributes:
+        target: ``module:function``, imported only when the verb runs.
+        summary: the first line of the function's docstring (a test keeps them equal).
+    """
+
+    target: str
+    summary: str
+
+
+COMMANDS: dict[str, Verb] = {
+    "validate": Verb(
+        "rosreconf.cli.validate:validate",
+        "Check component libraries and interoperability schemas; exit 0 valid, 1 invalid, 2 usage.",
+    ),
+    "enumerate": Verb(
+        "rosreconf.cli.enumerate:enumerate_command",
+        "List every valid configuration of each schema (or count them), with why-not reasons.",
+    ),
+    "analyse": Verb(
+        "rosreconf.cli.analyse:analyse_command",
+        "Analyse orthogonality, redundancy, failure points and reliability of each schema.",
+    ),
+    "redundancy": Verb(
+        "rosreconf.cli.redundancy:redundancy_command",
+        "Compute the redundancy r with (1 - p^r)^N >= q (Theorem 10), beside the approximation.",
+    ),
+    "graph": Verb(
+        "rosreconf.cli.graph:graph_command",
+        "Draw the schemas' system graphs, a configuration's ROS-graph, or the library.",
+    ),
+    "launch": Verb(
+        "rosreconf.cli.launch:launch_command",
+        "Write a launch file starting exactly one schema's configuration, wired by remappings.",
+    ),
+    "snapshot": Verb(
+        "rosreconf.cli.live:snapshot_command",
+        "Save what the ROS master lists (nodes, topics, services, types, pids) as JSON.",
+    ),
+    "import": Verb(
+        "rosreconf.cli.live:import_command",
+        "Draft a component library (one component per live node) with TODOs to fill in.",
+    ),
+    "inspect": Verb(
+        "rosreconf.cli.live:inspect_command",
+        "Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1.",
+    ),
+    "watch": Verb(
+        "rosreconf.cli.watch:watch_command",
+        "Watch the live system; when a node fails, replan with the fewest changes (and apply).",
+    ),
+    "render-pddl": Verb(
+        "rosreconf.cli.render_pddl:render_pddl",
+        "Write the PDDL task of each schema (pre-grounded STRIPS with action costs; docs/pddl.md).",
+    ),
+    "plan": Verb(
+        "rosreconf.cli.plan:plan_command",
+        "Re-plan each schema after --fail with a PDDL planner: steps, new configuration, why.",
+    ),
+    "generate": Verb(
+        "rosreconf.cli.generate:generate_command",
+        "Generate a layered library and schema shaped like the paper's Figure 2.",
+    ),
+    "whatif": Verb(
+        "rosreconf.cli.whatif:whatif_command",
+        "Show which schemas survive each set of up to K failures: critical parts and pairs.",
+    ),
+}
+"""Every verb, in the order ``rosreconf --help`` lists them."""
 
 
 def guard(command: Callable[P, R]) -> Callable[P, R]:
@@ -53,6 +124,86 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
     return wrapper
 
 
+def verb_function(name: str) -> Callable[..., object]:
+    """Import and return the function behind verb ``name`` (only now: imports cost time)."""
+    module, _, function = COMMANDS[name].target.partition(":")
+    found: Callable[..., object] = getattr(importlib.import_module(module), function)
+    return found
+
+
+def _load(name: str) -> Command:
+    """Build verb ``name``'s command, as ``app.command(name)`` would have."""
+    one = typer.Typer(add_completion=False, pretty_exceptions_enable=False, rich_markup_mode=None)
+    one.command(name)(guard(verb_function(name)))
+    command = typer.main.get_command(one)
+    command.name = name
+    return command
+
+
+class _Verbs(MutableMapping[str, Command]):
+    """The group's commands: every name of ``COMMANDS``, each built on first lookup.
+
+    typer's group reads its ``commands`` mapping for a command and for its "did you mean"
+    suggestions; this mapping knows every verb name without importing any verb.
+    """
+
+    def __init__(self) -> None:
+        self._built: dict[str, Command] = {}
+
+    def __getitem__(self, name: str) -> Command:
+        if name not in self._built:
+            if name not in COMMANDS:
+                raise KeyError(name)
+            self._built[name] = _load(name)
+        return self._built[name]
+
+    def __setitem__(self, name: str, command: Command) -> None:
+        self._built[name] = command
+
+    def __delitem__(self, name: str) -> None:
+        del self._built[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(dict.fromkeys([*COMMANDS, *self._built]))
+
+    def __len__(self) -> int:
+        return len(set(COMMANDS) | set(self._built))
+
+
+class LazyGroup(typer.core.TyperGroup):
+    """The verbs of ``COMMANDS``, each imported when it is run or asked for its ``--help``."""
+
+    def __init__(self, **attrs: Any) -> None:
+        super().__init__(**attrs)
+        self.commands = _Verbs()
+
+    def list_commands(self, ctx: Context) -> list[str]:
+        """Return every verb name, in ``COMMANDS`` order, without importing any."""
+        return list(self.commands)
+
+    def format_commands(self, ctx: Context, formatter: Any) -> None:
+        """List the verbs with their summaries from ``COMMANDS`` (no verb is imported)."""
+        limit = formatter.width - 6 - max(len(name) for name in COMMANDS)
+        rows = [
+            (name, typer.core.TyperCommand(name, help=verb.summary).get_short_help_str(limit))
+            for name, verb in COMMANDS.items()
+        ]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+app = typer.Typer(
+    name="rosreconf",
+    cls=LazyGroup,
+    help="Configure and reconfigure ROS systems from a component library "
+    "(Aitken, Veres and Judge, IFAC 2014).",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+
 def _version(value: bool) -> None:
     if value:
         write_stdout(f"rosreconf {__version__}\n")
@@ -66,45 +217,6 @@ def _root(
     ),
 ) -> None:
     """Configure and reconfigure ROS systems from a component library."""
-
-
-def _register() -> None:
-    from rosreconf.cli import (
-        analyse,
-        generate,
-        graph,
-        launch,
-        live,
-        plan,
-        redundancy,
-        render_pddl,
-        validate,
-        watch,
-        whatif,
-    )
-    from rosreconf.cli import enumerate as enumerate_
-
-    commands: dict[str, Callable[..., object]] = {
-        "validate": validate.validate,
-        "enumerate": enumerate_.enumerate_command,
-        "analyse": analyse.analyse_command,
-        "redundancy": redundancy.redundancy_command,
-        "graph": graph.graph_command,
-        "launch": launch.launch_command,
-        "snapshot": live.snapshot_command,
-        "import": live.import_command,
-        "inspect": live.inspect_command,
-        "watch": watch.watch_command,
-        "render-pddl": render_pddl.render_pddl,
-        "plan": plan.plan_command,
-        "generate": generate.generate_command,
-        "whatif": whatif.whatif_command,
-    }
-    for name, function in commands.items():
-        app.command(name)(guard(function))
-
-
-_register()
 
 
 def main() -> None:

@@ -1,48 +1,36 @@
-"""Options and input selection shared by the solving commands (enumerate, analyse, plan...).
+"""Options shared by the commands, so that every verb spells and documents them the same way.
 
-Every command picks its files the same way (``loader.load_split``) and checks ``--fail``
-names the same way, so their answers are always about the same library and schemas.
+The input they select is loaded and checked by ``rosreconf.formats.selection.select`` (kept
+importable from here as ``select`` and ``Selection``).
 """
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from rosreconf.errors import UsageError
-from rosreconf.formats.loader import Loaded, load_checked
-from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+from rosreconf.formats.selection import Selection, select
 
-ObjectiveOption = Annotated[
-    list[str] | None,
-    typer.Option(
-        "--objective",
-        metavar="METRIC=WEIGHT",
-        help="metric=weight: after the fewest changes, minimise the weighted metric sum "
-        "(repeatable).",
-        show_default=False,
-    ),
+__all__ = [  # the input the options select, then the options
+    "ConfigurationOption",
+    "CurrentOption",
+    "FailOption",
+    "JsonOption",
+    "LibraryOption",
+    "MasterOption",
+    "ObjectiveOption",
+    "OnlyOption",
+    "OnlySchemaOption",
+    "OutputOption",
+    "SchemaOption",
+    "Selection",
+    "select",
+    "weights_of",
 ]
-
-
-def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
-    """Parse ``metric=weight`` options (shared by plan, render-pddl and enumerate --best)."""
-    weights: dict[str, float] = {}
-    for item in objective or []:
-        name, sep, value = item.partition("=")
-        try:
-            weights[name.strip()] = float(value)
-        except ValueError:
-            sep = ""
-        if not sep or not name.strip():
-            raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
-    return weights
-
 
 LibraryOption = Annotated[
     list[Path] | None,
@@ -92,7 +80,8 @@ ConfigurationOption = Annotated[
         "-c",
         metavar="FILE",
         help="Configuration file (enumerate/plan --json, or format: rosreconf/configuration). "
-        "Default: the schema's nominal configuration (under --fail, the valid one nearest to it).",
+        "Default: the schema's nominal configuration, else its first valid one (under --fail, "
+        "the valid one nearest to it).",
         show_default=False,
     ),
 ]
@@ -103,57 +92,46 @@ MasterOption = Annotated[
     str,
     typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
 ]
+OnlySchemaOption = Annotated[
+    str | None,
+    typer.Option("--only", help="The schema, when the configuration names several."),
+]
+CurrentOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--current",
+        metavar="FILE",
+        help="What runs now (a configuration file, or the JSON of enumerate/plan). Default: "
+        "each schema's declared nominal configuration, else its best by --objective, else its "
+        "first valid one.",
+        show_default=False,
+    ),
+]
+ObjectiveOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--objective",
+        metavar="METRIC=WEIGHT",
+        help="metric=weight: after the fewest changes, minimise the weighted metric sum "
+        "(repeatable).",
+        show_default=False,
+    ),
+]
 
 
-@dataclass(frozen=True)
-class Selection:
-    """The checked input of a solving command.
-
-    Attributes:
-        loaded: what was loaded (files, note).
-        library: L, all library files joined.
-        schemas: the schemas to work on, in file order.
-        failed: the failed components, as given (validated against L).
-    """
-
-    loaded: Loaded
-    library: ComponentLibrary
-    schemas: tuple[InteroperabilitySchema, ...]
-    failed: tuple[str, ...]
-
-
-def select(
-    libraries: Sequence[Path] | None,
-    schemas: Sequence[Path] | None,
-    failed: Sequence[str] | None = None,
-    only: Sequence[str] | None = None,
-) -> Selection:
-    """Load and check the input, and validate ``--fail`` and ``--only`` names.
+def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
+    """Parse ``metric=weight`` options into the weights of an objective.
 
     Raises:
-        InvalidInputError: the files have errors.
-        UsageError: an unknown component or schema name was given.
+        UsageError: an item is not ``metric=weight`` with a number.
     """
-    loaded = load_checked(libraries or [], schemas or [])
-    library = loaded.library
-    if not library.components:
-        raise UsageError("no component library was given or found")
-    if not loaded.schemas:
-        raise UsageError("no interoperability schema was given or found")
-    names = [c.name for c in library]
-    for name in failed or []:
-        if name not in library:
-            raise UsageError(f"--fail {name}: no such component{_did_you_mean(name, names)}")
-    chosen = list(loaded.schemas)
-    if only:
-        known = [s.name for s in chosen]
-        for name in only:
-            if name not in known:
-                raise UsageError(f"--only {name}: no such schema{_did_you_mean(name, known)}")
-        chosen = [s for s in chosen if s.name in only]
-    return Selection(loaded, library, tuple(chosen), tuple(dict.fromkeys(failed or [])))
-
-
-def _did_you_mean(name: str, choices: Sequence[str]) -> str:
-    close = difflib.get_close_matches(name, choices, n=1)
-    return f" (did you mean {close[0]}?)" if close else ""
+    weights: dict[str, float] = {}
+    for item in objective or []:
+        name, sep, value = item.partition("=")
+        try:
+            weights[name.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not name.strip():
+            raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
+    return weights

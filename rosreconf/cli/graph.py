@@ -16,7 +16,6 @@ from rosreconf.cli.common import (
     select,
 )
 from rosreconf.cli.console import stderr
-from rosreconf.cli.target import targets
 from rosreconf.errors import ExitCode
 from rosreconf.render.pictures import (
     RosPicture,
@@ -26,6 +25,7 @@ from rosreconf.render.pictures import (
     system_dot,
     write_picture,
 )
+from rosreconf.solve.running import targets
 
 
 def graph_command(

@@ -16,10 +16,10 @@ from rosreconf.cli.common import (
     select,
 )
 from rosreconf.cli.console import stderr
-from rosreconf.cli.target import targets
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.outfiles import write_atomic
 from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.solve.running import targets
 
 
 def launch_command(

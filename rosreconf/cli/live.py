@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Annotated
 
@@ -13,52 +12,20 @@ from rosreconf.cli.common import (
     JsonOption,
     LibraryOption,
     MasterOption,
+    OnlySchemaOption,
     SchemaOption,
     select,
 )
 from rosreconf.cli.console import stderr, write_stdout
-from rosreconf.cli.target import checked
-from rosreconf.errors import ExitCode, UsageError
-from rosreconf.formats.configfile import read_configurations
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.errors import ExitCode
 from rosreconf.outfiles import write_atomic
+from rosreconf.render.reports import Output
+from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import draft_library
-from rosreconf.ros.livegraph import LiveGraph, from_json, to_json, without_plumbing
-from rosreconf.ros.rosmaster import read_live_graph
-
-OnlySchemaOption = Annotated[
-    str | None,
-    typer.Option("--only", help="The schema, when the configuration names several."),
-]
-
-
-def target(
-    libraries: list[Path] | None,
-    schemas: list[Path] | None,
-    configuration: Path | None,
-    only: str | None,
-) -> tuple[ComponentLibrary, InteroperabilitySchema, Configuration]:
-    """Return the library, the one schema and the (valid) configuration a live command checks.
-
-    Raises:
-        UsageError: no single schema is named, or it has no configuration to use.
-        RosreconfError: the configuration leaves a role empty or is not valid (exit 1).
-        InvalidInputError: the files are invalid.
-    """
-    sel = select(libraries, schemas, None, [only] if only else None)
-    configs = read_configurations(configuration) if configuration else {}
-    names = [s.name for s in sel.schemas if not configs or s.name in configs]
-    if len(names) != 1:
-        choices = ", ".join(names) or "none"
-        raise UsageError(f"name one schema with --only (schemas to choose from: {choices})")
-    schema = next(s for s in sel.schemas if s.name == names[0])
-    mapping = configs.get(schema.name) or dict(schema.nominal)
-    if not mapping:
-        raise UsageError(f"{schema.name} has no nominal configuration: give --configuration")
-    source = configuration if schema.name in configs else Path(f"nominal of {schema.source}")
-    config = checked(sel, schema, mapping, source)
-    return sel.library, schema, config
+from rosreconf.ros.livegraph import to_json, without_plumbing
+from rosreconf.ros.rosmaster import read_live, read_live_graph
+from rosreconf.solve.running import one_target
 
 
 def snapshot_command(
@@ -88,7 +55,7 @@ def import_command(
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
-    graph = _live(master, snapshot)
+    graph = read_live(master, snapshot)
     text = draft_library(graph, name)
     write_atomic(output, text)
     todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
@@ -96,19 +63,6 @@ def import_command(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
-
-
-def _live(master: str | None, snapshot: Path | None) -> LiveGraph:
-    """Read the live graph from exactly one of a master and a snapshot file."""
-    if (master is None) == (snapshot is None):
-        raise UsageError("give exactly one of --master URI and --snapshot FILE")
-    if snapshot is not None:
-        try:
-            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
-        except OSError as exc:
-            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
-    assert master is not None
-    return read_live_graph(master)
 
 
 def inspect_command(
@@ -128,15 +82,8 @@ def inspect_command(
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
 
-    lib, sch, config = target(library, schema, configuration, only)
-    graph = _live(master, snapshot)
-    result = compare(config, lib, sch, graph)
-    if as_json:
-        write_stdout(json.dumps(result.to_dict(), indent=2) + "\n")
-    else:
-        head = "conforms to" if result.ok else "does NOT conform to"
-        where = graph.master_uri
-        write_stdout(f"{where}: the live system {head} the {sch.display_name} configuration\n")
-        for f in result.findings:
-            write_stdout(f"  {f.code}: {f.message}\n")
+    sel = select(library, schema, None, [only] if only else None)
+    target = one_target(sel, configuration)
+    result = compare(target.configuration, sel.library, target.schema, read_live(master, snapshot))
+    write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

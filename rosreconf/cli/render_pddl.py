@@ -8,6 +8,7 @@ from typing import Annotated
 import typer
 
 from rosreconf.cli.common import (
+    CurrentOption,
     FailOption,
     LibraryOption,
     ObjectiveOption,
@@ -17,12 +18,9 @@ from rosreconf.cli.common import (
     weights_of,
 )
 from rosreconf.cli.console import write_stdout
-from rosreconf.cli.plan import CurrentOption, currents
 from rosreconf.errors import ExitCode
-from rosreconf.planning.pddl import render
-from rosreconf.planning.replan import write_task
-from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import Objective
+from rosreconf.planning.replan import write_tasks
+from rosreconf.solve.running import running_mappings
 
 
 def render_pddl(
@@ -46,10 +44,7 @@ def render_pddl(
 
     sel = select(library, schema, fail, only)
     weights = weights_of(objective)
-    running = currents(sel, current, weights)
-    for s in sel.schemas:
-        inst = compile_instance(sel.library, s, sel.failed)
-        task = render(inst, Objective(running[s.name], weights))
-        folder = write_task(task, output)
-        write_stdout(f"{folder / 'domain.pddl'}\n{folder / 'problem.pddl'}\n")
+    running = running_mappings(sel, current, weights)
+    written = write_tasks(sel.library, sel.schemas, sel.failed, running, weights, output)
+    write_stdout("".join(f"{path}\n" for path in written))
     raise typer.Exit(ExitCode.OK)

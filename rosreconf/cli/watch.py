@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
 import os
-import time
 from contextlib import ExitStack
 from pathlib import Path
 from typing import IO, Annotated
@@ -16,13 +14,16 @@ from rosreconf.cli.common import (
     FailOption,
     LibraryOption,
     MasterOption,
+    OnlySchemaOption,
     SchemaOption,
+    select,
 )
 from rosreconf.cli.console import stderr
-from rosreconf.cli.live import OnlySchemaOption, target
-from rosreconf.errors import ExitCode, ExternalToolError, UsageError
+from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
+from rosreconf.render.reports.watch import event_json, event_line
 from rosreconf.ros.watcher import Event, Watcher
+from rosreconf.solve.running import one_target
 
 
 def watch_command(
@@ -54,9 +55,10 @@ def watch_command(
     started. With --once: exit 0 if the system conforms at the end, else 1.
     """
 
-    lib, sch, config = target(library, schema, configuration, only)
+    sel = select(library, schema, None, [only] if only else None)
+    target = one_target(sel, configuration)
     for name in fail or []:
-        if name not in lib:
+        if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env["ROS_MASTER_URI"] = master
@@ -66,32 +68,17 @@ def watch_command(
             log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
 
         def log(event: Event) -> None:
-            stamp = event.time.isoformat(timespec="milliseconds")
-            stderr.print(f"{stamp} watch: {event.message}", markup=False)
+            stderr.print(event_line(event), markup=False)
             if log_file is not None:
-                doc = {
-                    "time": event.time.isoformat(),
-                    "event": event.kind,
-                    "message": event.message,
-                    **event.data,
-                }
-                log_file.write(json.dumps(doc) + "\n")
+                log_file.write(event_json(event))
                 log_file.flush()
 
         work = stack.enter_context(private_workdir())
+        sch, config = target.schema, target.configuration
         watcher = Watcher(
-            master,
-            lib,
-            sch,
-            config,
-            work,
-            env,
-            log,
-            apply=apply,
-            stand_ins=stand_ins,
-            settle=settle,
-            failed=set(fail or []),
-        )
+            master, sel.library, sch, config, work, env, log,
+            apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
+        )  # fmt: skip
         stack.callback(watcher.close)
         what = "and repairing" if apply else "(not repairing: no --apply)"
         log(
@@ -101,25 +88,5 @@ def watch_command(
                 {"configuration": config.mapping},
             )
         )
-        started = False
-        lost_at: float | None = None
-        while True:
-            try:
-                check = watcher.step()
-            except ExternalToolError as exc:
-                # At start a wrong URI should fail fast; later, a restarting master is waited for.
-                if not started or once:
-                    raise
-                if lost_at is None:
-                    lost_at = time.monotonic()
-                    log(Event("master-lost", f"{exc}; retrying every {interval:g} s", {}))
-                time.sleep(interval)
-                continue
-            started = True
-            if lost_at is not None:
-                gone = time.monotonic() - lost_at
-                log(Event("master-back", f"the master answers again after {gone:.1f} s", {}))
-                lost_at = None
-            if once:
-                raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
-            time.sleep(interval)
+        check = watcher.run(interval, once=once)
+        raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)

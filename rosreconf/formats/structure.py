@@ -20,16 +20,17 @@ import enum
 import json
 from collections.abc import Callable, Iterator, Sequence
 from functools import cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import fastjsonschema
-import jsonschema
-import jsonschema.exceptions
 
 from rosreconf.errors import Problem
 from rosreconf.formats import yamlsource as ys
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
+
+if TYPE_CHECKING:  # jsonschema is imported only for a document fastjsonschema rejects
+    import jsonschema.exceptions
 
 
 class DocumentKind(enum.StrEnum):
@@ -110,6 +111,8 @@ def structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
         return
     except fastjsonschema.JsonSchemaException:
         pass  # invalid: let jsonschema find every error, with paths
+    import jsonschema  # here: valid files (the common case) never pay its import time
+
     validator = jsonschema.Draft202012Validator(json_schema(kind))
     for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):
         yield _problem_of(error, tree)
@@ -118,7 +121,9 @@ def structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
 def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) -> Problem:
     if error.validator in ("oneOf", "anyOf") and error.context:
         hint = str(error.schema.get("x-hint", "")) if isinstance(error.schema, dict) else ""
-        best = jsonschema.exceptions.best_match(error.context)
+        from jsonschema.exceptions import best_match
+
+        best = best_match(error.context)
         problem = _problem_of(best, tree)
         return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
     path = list(error.absolute_path)

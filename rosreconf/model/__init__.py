@@ -17,12 +17,14 @@ How the paper's names map onto this module::
     component library L                    ComponentLibrary
     system graph (Def. 5 (2))              SystemGraph (roles labelled from Lambda)
     interoperability schema [G, x, e]      InteroperabilitySchema (graph, skill, environment)
-    configuration library C (Def. 8)       ConfigurationLibrary
+    configuration library C (Def. 8)       ConfigurationLibrary (orthogonality: analysis)
     ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
     configuration                          Configuration (role -> component)
 """
 
 # The model's public names, re-exported so that readers import them from one place.
+from typing import TYPE_CHECKING, Any
+
 from rosreconf.model.library import (
     NOWHERE,
     Component,
@@ -39,12 +41,24 @@ from rosreconf.model.schema import (
     Edge,
     InteroperabilitySchema,
     Role,
-    RosGraph,
     SystemGraph,
     VertexKind,
     interface_vertex,
     node_vertex,
 )
+
+if TYPE_CHECKING:
+    from rosreconf.model.schema import RosGraph
+
+
+def __getattr__(name: str) -> Any:
+    """Return ``RosGraph`` lazily: it is networkx's DiGraph, which is slow to import."""
+    if name == "RosGraph":
+        from rosreconf.model import schema
+
+        return schema.RosGraph
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "NOWHERE",

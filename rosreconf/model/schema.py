@@ -10,10 +10,12 @@ import enum
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-
-import networkx as nx
+from typing import TYPE_CHECKING, Any
 
 from rosreconf.model.library import NOWHERE, Interface, InterfaceKind, Span
+
+if TYPE_CHECKING:  # networkx costs 0.2 s to import: only the commands that build graphs pay it
+    import networkx as nx
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,8 @@ class SystemGraph:
 
     def to_networkx(self) -> nx.DiGraph:
         """Return the graph with edges drawn provider -> consumer (the information flow)."""
+        import networkx as nx
+
         g = nx.DiGraph()
         for r in self.roles:
             g.add_node(r.name, abstraction=r.abstraction)
@@ -131,7 +135,11 @@ class InteroperabilitySchema:
 
 @dataclass(frozen=True)
 class ConfigurationLibrary:
-    """The configuration library C (Def. 8): the list of interoperability schemas."""
+    """The configuration library C: the list of interoperability schemas Def. 8 names.
+
+    Only the list: what Def. 8 defines about it, orthogonality of C to L, is decided per schema
+    by ``rosreconf.analysis.library.analyse`` (docs/architecture.md).
+    """
 
     schemas: tuple[InteroperabilitySchema, ...]
 
@@ -187,16 +195,28 @@ class VertexKind(enum.StrEnum):
     SERVICE = "service"
 
 
-RosGraph = nx.DiGraph
-"""A ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
+# RosGraph: a ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
+#
+# Vertex ids are tuples ``(VertexKind, name)`` so that a node and a topic of the same name can
+# never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
+# (Omega) attributes. Edges run in the direction of information flow: provider node ->
+# topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
+# vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
+# topic vertex's name is its label, because topics are many-to-many.
+#
+# networkx takes about 0.2 s to import, so it is imported when ``RosGraph`` is first looked up
+# (module ``__getattr__``): ``rosreconf --help`` and ``validate`` never need it.
+if TYPE_CHECKING:
+    RosGraph = nx.DiGraph
+else:
 
-Vertex ids are tuples ``(VertexKind, name)`` so that a node and a topic of the same name can
-never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
-(Omega) attributes. Edges run in the direction of information flow: provider node ->
-topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
-vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
-topic vertex's name is its label, because topics are many-to-many.
-"""
+    def __getattr__(name: str) -> Any:
+        """Return ``RosGraph`` (networkx's DiGraph), importing networkx on first use."""
+        if name == "RosGraph":
+            import networkx as nx
+
+            return nx.DiGraph
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def node_vertex(name: str) -> tuple[VertexKind, str]:

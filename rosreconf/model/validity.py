@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from rosreconf.model import (
     Component,
@@ -19,11 +20,13 @@ from rosreconf.model import (
     InterfaceKind,
     InteroperabilitySchema,
     Requirement,
-    RosGraph,
     VertexKind,
     interface_vertex,
     node_vertex,
 )
+
+if TYPE_CHECKING:
+    from rosreconf.model import RosGraph
 
 
 @dataclass(frozen=True)
@@ -195,7 +198,9 @@ def ros_graph(
     realises it becomes a topic or service vertex with edges provider -> vertex -> consumer.
     Provisions nobody uses stay dormant (Section 3) and are not drawn.
     """
-    g = RosGraph()
+    import networkx as nx  # here, not at the top: validating files never builds a ROS-graph
+
+    g: RosGraph = nx.DiGraph()
     mapping = configuration.mapping
     for role in schema.graph.roles:
         comp = library[mapping[role.name]]

@@ -1,4 +1,11 @@
-"""Render one compiled schema as a pre-grounded STRIPS task with action costs.
+"""Render one compiled schema as a pre-grounded STRIPS task with action costs (Def. 11).
+
+How it differs from the paper's Def. 11, on purpose: the paper's domain D = {Req, Ty, Pred, A}
+is lifted (typed objects for ROS nodes and schemas, predicates on nodes and message types,
+actions with node parameters). Here every action is parameter-free, one per (role, candidate)
+choice, with the compatibility joins computed in Python and compiled in as preconditions, and
+the objective (keep the running components, then weighted metrics) is the action costs, so
+the planner minimises the change. docs/architecture.md and docs/pddl.md give the numbers.
 
 Why pre-grounded: lifted joins make Fast Downward's translator build an axiom per component
 pair (50 x 10: 39 s); one parameter-free action per (role, candidate), with the tables of
@@ -38,7 +45,7 @@ from rosreconf.model import Configuration, Requirement
 from rosreconf.planning.pddl_names import PddlNameError, PddlNames, Step, label
 from rosreconf.resources import Bundle, bundled
 from rosreconf.solve.instance import Instance
-from rosreconf.solve.solver import Objective
+from rosreconf.solve.objective import Objective
 
 METRIC_SCALE = 100
 """Metric weights are real numbers; PDDL costs are integers: weights count in hundredths."""

@@ -10,7 +10,7 @@ report can say whether the planner's plan is a minimal change.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -22,7 +22,8 @@ from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
 from rosreconf.solve.instance import compile_instance, explain
-from rosreconf.solve.solver import ClingoEngine, Objective, best_configuration, optimise
+from rosreconf.solve.objective import Objective
+from rosreconf.solve.solver import ClingoEngine, optimise
 
 
 @dataclass(frozen=True)
@@ -60,18 +61,6 @@ class ReplanResult:
     fewest_changes: int | None = None
     planner: PlanResult | None = field(default=None, repr=False)
     unaffected: str = ""
-
-
-def current_configuration(
-    library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    weights: Mapping[str, float] | None = None,
-) -> dict[str, str]:
-    """Return what runs before the failure: the declared nominal, else the best by objective."""
-    if schema.nominal:
-        return dict(schema.nominal)
-    best = best_configuration(library, schema, Objective(weights=dict(weights or {})))
-    return best.mapping if best else {}
 
 
 def plan(
@@ -235,3 +224,50 @@ def write_task(task: PddlTask, folder: Path) -> Path:
     for name, text in (("domain.pddl", task.domain), ("problem.pddl", task.problem)):
         write_atomic(target / name, text)
     return target
+
+
+def replan_all(
+    library: ComponentLibrary,
+    schemas: Sequence[InteroperabilitySchema],
+    failed: Collection[str],
+    running: Mapping[str, Mapping[str, str]],
+    planner: Planner,
+    *,
+    weights: Mapping[str, float] | None = None,
+    timeout: float = 60.0,
+    keep_pddl: Path | None = None,
+) -> list[ReplanResult]:
+    """Plan every schema after ``failed`` from what runs (``rosreconf.solve.running``).
+
+    One schema's failure (no configuration, a planner timeout) does not stop the others.
+    """
+    return [
+        plan(
+            library,
+            s,
+            failed,
+            running[s.name],
+            planner,
+            weights=weights,
+            timeout=timeout,
+            keep_pddl=keep_pddl,
+        )
+        for s in schemas
+    ]
+
+
+def write_tasks(
+    library: ComponentLibrary,
+    schemas: Sequence[InteroperabilitySchema],
+    failed: Collection[str],
+    running: Mapping[str, Mapping[str, str]],
+    weights: Mapping[str, float],
+    folder: Path,
+) -> list[Path]:
+    """Write every schema's PDDL task under ``folder``; return the files written, in order."""
+    written: list[Path] = []
+    for s in schemas:
+        task = render(compile_instance(library, s, failed), Objective(running[s.name], weights))
+        where = write_task(task, folder)
+        written += [where / "domain.pddl", where / "problem.pddl"]
+    return written

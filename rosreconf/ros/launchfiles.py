@@ -40,7 +40,7 @@ from rosreconf.errors import RosreconfError
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
-from rosreconf.ros.standins import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
+from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
 
 
 class RosVersion(enum.StrEnum):

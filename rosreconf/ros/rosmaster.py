@@ -21,12 +21,13 @@ import xmlrpc.client
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 from xml.parsers.expat import ExpatError
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.ros.livegraph import LiveGraph, LiveNode
+from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
 
 __all__ = [
     "LiveGraph",
@@ -257,3 +258,21 @@ def shutdown_node(
     except (ExternalToolError, UsageError):
         return False
     return True
+
+
+def read_live(master: str | None, snapshot: Path | None) -> LiveGraph:
+    """Read the live graph from exactly one of a master's URI and a saved snapshot file.
+
+    Raises:
+        UsageError: both or neither are given, or the snapshot cannot be read.
+        ExternalToolError: the master does not answer.
+    """
+    if (master is None) == (snapshot is None):
+        raise UsageError("give exactly one of --master URI and --snapshot FILE")
+    if snapshot is not None:
+        try:
+            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
+        except OSError as exc:
+            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
+    assert master is not None
+    return read_live_graph(master)

@@ -21,14 +21,18 @@ import os
 import shutil
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
-from rosreconf.model import Component, InterfaceKind
 from rosreconf.procs import Background, start_program
-from rosreconf.ros.conformance import interface_live_name
+from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
 
-STANDIN_PACKAGE = "rosreconf_standin"
-STANDIN_EXECUTABLE = "standin_node"
+__all__ = [  # the names and specs live in standin_spec (launchfiles needs only them)
+    "STANDIN_EXECUTABLE",
+    "STANDIN_PACKAGE",
+    "standin_spec",
+    "start_roslaunch",
+    "write_standin_package",
+]
+
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2">
   <name>rosreconf_standin</name>
@@ -49,23 +53,6 @@ def write_standin_package(parent: Path) -> Path:
     shutil.copyfile(Path(__file__).with_name("standin_node.py"), script)
     script.chmod(0o755)
     return parent
-
-
-def standin_spec(component: Component) -> dict[str, Any]:
-    """Return the stand-in JSON spec acting out ``component``'s provisions and requirements."""
-    publish, serve, subscribe = [], [], []
-    for iface in sorted(component.provides):
-        name = interface_live_name(component, iface.label)
-        if iface.kind is InterfaceKind.SERVICE:
-            serve.append({"service": name, "type": iface.type})
-        else:
-            publish.append({"topic": name, "type": iface.type})
-    for req in component.requires:
-        for option in req.options:  # services called are invisible at the master
-            if option.kind is InterfaceKind.TOPIC:
-                topic = interface_live_name(component, option.label)
-                subscribe.append({"topic": topic, "type": option.type})
-    return {"name": component.name, "publish": publish, "serve": serve, "subscribe": subscribe}
 
 
 def start_roslaunch(

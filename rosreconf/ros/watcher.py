@@ -2,7 +2,7 @@
 
 "An operating autonomous system needs to self-reconfigure due to changes in own hardware":
 each ``Watcher.step`` reads the master, decides which components have failed, replans with
-the fewest changes (``rosreconf.solve.solver.best_configuration``, current configuration first),
+the fewest changes (``rosreconf.solve.running.nearest_valid``, current configuration first),
 and with ``apply`` stops the components that must go (their node API's ``shutdown``, as
 ``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.standins``), then
 confirms with ``rosreconf.ros.conformance.compare``.
@@ -25,6 +25,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
+from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.planning.narrative import explain_replan
 from rosreconf.procs import Background, stop_all
@@ -32,7 +33,8 @@ from rosreconf.ros.conformance import Conformance, compare, node_live_name
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.rosmaster import purge_dead, read_live_graph, shutdown_node
 from rosreconf.ros.standins import start_roslaunch, write_standin_package
-from rosreconf.solve.solver import Objective, best_configuration, why_not
+from rosreconf.solve.running import nearest_valid
+from rosreconf.solve.solver import why_not
 
 
 @dataclass(frozen=True)
@@ -41,7 +43,8 @@ class Event:
 
     Attributes:
         kind: ``started``, ``stopped``, ``failed``, ``purged``, ``replanned``, ``no-configuration``,
-            ``stop``, ``launch``, ``conformant``, ``not-conformant``, ``missing``.
+            ``stop``, ``launch``, ``conformant``, ``not-conformant``, ``missing``,
+            ``master-lost``, ``master-back``.
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).
@@ -145,8 +148,7 @@ class Watcher:
         failed = frozenset(self.failed)
         if failed == self._hopeless:
             return False
-        objective = Objective(current=self.current.mapping)
-        new = best_configuration(self.library, self.schema, objective, failed)
+        new = nearest_valid(self.library, self.schema, failed, self.current)
         if new is None:
             why = why_not(self.library, self.schema, failed)
             self._say(
@@ -247,3 +249,36 @@ class Watcher:
             stop_all(self.launches)
             self._say("stopped", f"stopped the {len(self.launches)} roslaunch process(es) started")
         self.launches.clear()
+
+    def run(self, interval: float, *, once: bool = False) -> Conformance:
+        """Poll every ``interval`` seconds until interrupted; with ``once``, poll once and return.
+
+        At the start a master that does not answer is an error (a wrong URI should fail
+        fast); later, a restarting master is waited for, with one event when it goes and
+        one when it is back.
+
+        Raises:
+            ExternalToolError: the master does not answer the first poll (or, with ``once``,
+                any poll).
+        """
+        started = False
+        lost_at: float | None = None
+        while True:
+            try:
+                check = self.step()
+            except ExternalToolError as exc:
+                if not started or once:
+                    raise
+                if lost_at is None:
+                    lost_at = time.monotonic()
+                    self._say("master-lost", f"{exc}; retrying every {interval:g} s")
+                time.sleep(interval)
+                continue
+            started = True
+            if lost_at is not None:
+                gone = time.monotonic() - lost_at
+                self._say("master-back", f"the master answers again after {gone:.1f} s")
+                lost_at = None
+            if once:
+                return check
+            time.sleep(interval)

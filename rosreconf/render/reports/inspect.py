@@ -1,0 +1,44 @@
+"""Report ``rosreconf inspect``: whether the live system conforms, and every difference."""
+
+from __future__ import annotations
+
+import json
+from typing import Protocol
+
+from rosreconf.model import InteroperabilitySchema
+from rosreconf.render.reports import Output
+from rosreconf.ros.conformance import Conformance
+
+
+class InspectReporter(Protocol):
+    """Render one comparison of a live graph with a schema's configuration."""
+
+    def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
+        """Return the whole report."""
+        ...
+
+
+class TextReporter:
+    """A verdict line naming the master and the schema, then one line per finding."""
+
+    def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
+        """Return the verdict and the findings."""
+        head = "conforms to" if result.ok else "does NOT conform to"
+        where = result.live.master_uri
+        lines = [f"{where}: the live system {head} the {schema.display_name} configuration\n"]
+        lines += [f"  {f.code}: {f.message}\n" for f in result.findings]
+        return "".join(lines)
+
+
+class JsonReporter:
+    """``Conformance.to_dict`` as one JSON document (output-inspect.schema.json)."""
+
+    def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
+        """Return the JSON document."""
+        return json.dumps(result.to_dict(), indent=2) + "\n"
+
+
+REPORTERS: dict[Output, InspectReporter] = {
+    Output.TEXT: TextReporter(),
+    Output.JSON: JsonReporter(),
+}

@@ -1,0 +1,111 @@
+"""Report ``rosreconf plan``: each schema's plan, new configuration and why, as text or JSON."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from typing import Any, Protocol
+
+from rosreconf.formats.selection import Selection
+from rosreconf.model import Configuration
+from rosreconf.planning.planners import Planner, PlanStatus
+from rosreconf.planning.replan import ReplanResult
+from rosreconf.render.pictures import RosPicture
+from rosreconf.render.reports import Output
+
+
+class PlanReporter(Protocol):
+    """Render the re-planning of the selected schemas."""
+
+    def render(self, sel: Selection, planner: Planner, results: Sequence[ReplanResult]) -> str:
+        """Return the whole report."""
+        ...
+
+
+class TextReporter:
+    """Per schema: the plan's steps, the new configuration, the changes and why (Figure 8)."""
+
+    def render(self, sel: Selection, planner: Planner, results: Sequence[ReplanResult]) -> str:
+        """Return one block per schema."""
+        return "".join(_text(r) for r in results)
+
+
+class JsonReporter:
+    """One JSON document (output-plan.schema.json); a schema's first configuration is new."""
+
+    def render(self, sel: Selection, planner: Planner, results: Sequence[ReplanResult]) -> str:
+        """Return the JSON document."""
+        doc = {
+            "library": {"name": sel.library.name, "components": len(sel.library)},
+            "files": sel.loaded.files,
+            "failed": list(sel.failed),
+            "planner": planner.label,
+            "schemas": [_schema_doc(r) for r in results],
+        }
+        return json.dumps(doc, indent=2) + "\n"
+
+
+REPORTERS: dict[Output, PlanReporter] = {Output.TEXT: TextReporter(), Output.JSON: JsonReporter()}
+
+
+def _text(r: ReplanResult) -> str:
+    out = [f"{r.schema.display_name} ({r.schema.name}):"]
+    if r.status is PlanStatus.UNSOLVABLE_PROVEN:
+        out.append("  no configuration is possible")
+    elif r.configuration is None:
+        out.append(f"  planner failed ({r.status}): {r.message}")
+    else:
+        run = r.planner
+        if r.unaffected:
+            out.append(f"  unaffected, keeps running: {r.unaffected}")
+        if run is not None:
+            out.append(f"  plan ({run.planner}, {run.elapsed:.2f} s, cost {run.cost}):")
+        out += [f"  {n:>4}. {step}" for n, step in enumerate(r.steps, start=1)]
+        out.append("  new configuration:")
+        out += [f"    {role:<20} {comp}" for role, comp in r.configuration.assignment]
+        out.append("  change:")
+        out += [f"    {c}" for c in r.changes]
+    if r.explanation:
+        out.append("  why:")
+        out += [f"    {line}" for line in r.explanation]
+    return "\n".join(out) + "\n\n"
+
+
+def _schema_doc(r: ReplanResult) -> dict[str, Any]:
+    run = r.planner
+    configs = [] if r.configuration is None else [{"assignment": r.configuration.mapping}]
+    return {
+        "name": r.schema.name,
+        "title": r.schema.display_name,
+        "status": str(r.status),
+        "configurations": configs,
+        "current": dict(r.current),
+        "steps": list(r.steps),
+        "actions": list(r.actions),
+        "changes": [
+            {"role": c.role, "before": c.before, "after": c.after, "kind": c.kind}
+            for c in r.changes
+        ],
+        "fewest_changes": r.fewest_changes,
+        "explanation": list(r.explanation),
+        "why_not": r.why_not or None,
+        "message": r.message,
+        "cost": run.cost if run else None,
+        "elapsed": round(run.elapsed, 3) if run else None,
+        "unaffected": r.unaffected or None,
+    }
+
+
+def pictures(results: Sequence[ReplanResult]) -> list[RosPicture]:
+    """Return each new configuration's ROS-graph against the running one (none: left out)."""
+    return [
+        RosPicture(
+            r.schema,
+            r.configuration,
+            before=Configuration.of(r.schema.name, dict(r.current), r.schema.graph.roles)
+            if set(r.current) == {role.name for role in r.schema.graph.roles}
+            else None,
+        )
+        for r in results
+        if r.configuration is not None
+    ]

@@ -1,0 +1,76 @@
+"""What "best" means when choosing a configuration: the objective every engine minimises.
+
+Its own small module, free of clingo, so that the PDDL renderer (``rosreconf.planning.pddl``)
+and the choice of the running configuration can name an objective without loading a solver:
+clingo, the elimination optimum and the planner's action costs all read the same integers
+from ``unary_costs``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+from rosreconf.model import Component, Configuration
+from rosreconf.solve.instance import Instance
+
+METRIC_SCALE = 1000
+"""Metrics are real numbers; clingo optimises integers, so weights are scaled and rounded."""
+
+
+@dataclass(frozen=True)
+class Objective:
+    """What "best" means: keep the running components first, then a weighted metric sum.
+
+    Attributes:
+        current: role -> component of the running configuration (changes cost 1 each, and
+            are minimised before anything else: the paper's minimal reconfiguration).
+        weights: metric name -> weight; a component's score is the weighted sum of its
+            metrics (missing metrics count 0); lower is better.
+    """
+
+    current: Mapping[str, str] = field(default_factory=dict)
+    weights: Mapping[str, float] = field(default_factory=dict)
+
+    def score(self, inst: Instance, config: Configuration) -> tuple[int, float]:
+        """Return (changes against current, weighted metric sum) of ``config``."""
+        changes = sum(1 for r, c in config.assignment if r in self.current and self.current[r] != c)
+        metric = sum(
+            w * inst.library[c].metrics.get(m, 0.0)
+            for _, c in config.assignment
+            for m, w in self.weights.items()
+        )
+        return changes, metric
+
+    def cost(self, inst: Instance, config: Configuration) -> tuple[int, int]:
+        """Return the exact (changes, scaled metric sum) that every engine minimises."""
+        costs = unary_costs(inst, self)
+        index = inst.role_index
+        changes = metric = 0
+        for role, comp in config.assignment:
+            c, m = costs[index[role]][comp]
+            changes, metric = changes + c, metric + m
+        return changes, metric
+
+
+def scaled_metric(objective: Objective, component: Component) -> int:
+    """Return the component's weighted metric sum as the integer clingo optimises."""
+    w = sum(wt * component.metrics.get(m, 0.0) for m, wt in objective.weights.items())
+    return round(w * METRIC_SCALE)
+
+
+def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[int, int]]]:
+    """Return per role, candidate -> (change against current, scaled metric): the objective.
+
+    A change counts when ``current`` names, for that role, another component of the
+    library; exactly the ``current``/``weight`` facts clingo receives.
+    """
+    known = {c.name for c in inst.library.components}
+    out = []
+    for role, dom in zip(inst.roles, inst.domains, strict=True):
+        now = objective.current.get(role.name)
+        watch = now is not None and now in known
+        out.append(
+            {c.name: (int(watch and c.name != now), scaled_metric(objective, c)) for c in dom}
+        )
+    return out

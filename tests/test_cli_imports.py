@@ -1,0 +1,90 @@
+"""The CLI imports only what the command runs (issue 12): ``--help`` and ``validate`` stay light.
+
+Each check runs ``python -X importtime -m rosreconf ...`` in a fresh process and reads the
+modules it imported from ``-X importtime``'s report, so a module-level import of clingo,
+networkx or a ROS client anywhere on the way fails here by name.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from rosreconf.cli.app import COMMANDS, app, verb_function
+
+HEAVY = (
+    "clingo",  # the solver
+    "networkx",  # ROS-graphs and system graphs as graphs
+    "jinja2",  # the PDDL templates
+    "jsonschema",  # only for files fastjsonschema rejects
+    "rosreconf.solve",
+    "rosreconf.planning",  # PDDL and the planners
+    "rosreconf.ros",  # the ROS client: xmlrpc, http, ssl
+    "xmlrpc",
+    "http.client",
+    "urllib.request",
+    "ssl",
+)
+"""Modules that ``rosreconf --help`` and ``rosreconf validate`` must never import."""
+
+
+def imported(args: list[str], cwd: Path) -> tuple[set[str], subprocess.CompletedProcess[str]]:
+    """Run ``python -X importtime -m rosreconf ARGS`` and return the modules it imported."""
+    done = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "rosreconf", *args],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    names = set(re.findall(r"^import time:\s+\d+ \|\s+\d+ \|\s+(\S+)$", done.stderr, re.M))
+    assert "rosreconf.cli.app" in names, done.stderr[-2000:]  # the report was read at all
+    return names, done
+
+
+def heavy_in(names: set[str]) -> list[str]:
+    """Return the HEAVY modules (or their submodules) among ``names``."""
+    return sorted(n for n in names for h in HEAVY if n == h or n.startswith(h + "."))
+
+
+def test_help_imports_no_heavy_module(tmp_path: Path) -> None:
+    names, done = imported(["--help"], tmp_path)
+    assert done.returncode == 0
+    assert heavy_in(names) == []
+    verbs = {n for n in names if n.startswith("rosreconf.cli.")}
+    assert verbs <= {"rosreconf.cli.app", "rosreconf.cli.console"}  # no verb module loaded
+    for verb in COMMANDS:
+        assert verb in done.stdout
+
+
+def test_validate_imports_no_heavy_module(tmp_path: Path) -> None:
+    names, done = imported(["validate"], tmp_path)  # the bundled example: valid
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rosreconf.formats.loader" in names
+    assert heavy_in(names) == []
+
+
+def test_the_check_sees_a_heavy_import(tmp_path: Path) -> None:
+    """Enumerating needs clingo: the same reading of the report must find it."""
+    names, done = imported(["enumerate", "--limit", "1", "--only", "disc_loading"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "clingo" in heavy_in(names)
+
+
+@pytest.mark.parametrize("verb", list(COMMANDS))
+def test_summary_is_the_first_docstring_line(verb: str) -> None:
+    doc = inspect.getdoc(verb_function(verb)) or ""
+    assert COMMANDS[verb].summary == doc.splitlines()[0]
+
+
+def test_a_typo_is_answered_with_the_nearest_verb() -> None:
+    result = CliRunner().invoke(app, ["valdate"])
+    assert result.exit_code == 2
+    assert "Did you mean 'validate'?" in result.output
