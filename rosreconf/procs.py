@@ -208,12 +208,36 @@ class Background:
         argv: the argument list that was run.
         process: the running program (leader of its own session and group).
         pids: every descendant seen so far.
+        log: the file its stdout and stderr go to, if known.
     """
 
-    def __init__(self, argv: tuple[str, ...], process: subprocess.Popen[bytes]) -> None:
+    def __init__(
+        self, argv: tuple[str, ...], process: subprocess.Popen[bytes], log: Path | None = None
+    ) -> None:
         self.argv = argv
         self.process = process
         self.pids: set[int] = set()
+        self.log = log
+        self._read_to = 0
+
+    def new_output(self, limit: int = 64 << 10) -> str:
+        """Return what the program wrote to its log since the last call (its last ``limit`` bytes).
+
+        For reporting a program's own error messages while it runs: the log may grow
+        without bound, so only its tail is read, decoded with replacements (the caller
+        must still escape it before showing it).
+        """
+        if self.log is None:
+            return ""
+        try:
+            with self.log.open("rb") as f:
+                size = f.seek(0, os.SEEK_END)
+                f.seek(max(self._read_to, size - limit))
+                data = f.read(limit)
+                self._read_to = f.tell()
+        except OSError:
+            return ""
+        return data.decode("utf-8", errors="replace")
 
     def remember(self) -> None:
         """Record the program's living descendants, which ``stop`` will also kill."""
@@ -273,7 +297,7 @@ def start_program(
             raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None
         except OSError as exc:
             raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
-    return Background(args, proc)
+    return Background(args, proc, log)
 
 
 def descendants(root: int) -> set[int]:

@@ -16,6 +16,12 @@ import ros_harness
 from typer.testing import CliRunner
 
 FAKES = Path(__file__).parent / "fakes"
+FAKE_START_SECONDS = 5.0
+"""Time limit for a fake that reports, then hangs: long enough for Python to start it and write
+its report on a loaded machine (0.5 s was not), so the kill is tested after the report."""
+LOADED_MACHINE_SLACK = 20.0
+"""Seconds a time bound allows beyond the limit under test: the fakes hang forever, so any bound
+proves the limit worked, and 2 cores shared with other jobs must never make a test flip."""
 DATA = Path(__file__).parent / "data"
 
 

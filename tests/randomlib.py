@@ -25,19 +25,20 @@ IFACES = [
     Interface(InterfaceKind.TOPIC, "a", "m/A"),
     Interface(InterfaceKind.TOPIC, "b", "m/B"),
     Interface(InterfaceKind.SERVICE, "c", "m/C"),
+    Interface(InterfaceKind.TOPIC, "a", "m/A2"),  # one label, two types (rule one-type-per-label)
 ]
 
 
 @st.composite
 def problems(draw: st.DrawFn) -> tuple[ComponentLibrary, InteroperabilitySchema]:
-    """Draw a library of up to ~9 components and a schema of 2-4 roles over it."""
+    """Draw a library of up to ~9 components and a schema of 2-4 roles (some edges optional)."""
     n_roles = draw(st.integers(2, 4))
     labels = [f"l{i}" for i in range(n_roles)]
     roles = tuple(Role(f"r{i}", labels[i]) for i in range(n_roles))
     edges = []
     for u, v in itertools.permutations(range(n_roles), 2):
         if draw(st.booleans()) and draw(st.booleans()):
-            edges.append(Edge(f"r{u}", f"r{v}"))
+            edges.append(Edge(f"r{u}", f"r{v}", optional=draw(st.booleans())))
     comps: list[Component] = []
     for i in range(n_roles):
         for k in range(draw(st.integers(1, 3))):

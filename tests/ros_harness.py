@@ -178,37 +178,59 @@ def stop(*processes: subprocess.Popen[bytes], grace: float = STOP_TIMEOUT) -> No
         kill_group(process.pid)  # anything it left in its group
 
 
+def _start_roscore(master: Master) -> None:
+    """Start ``roscore -p PORT`` for ``master`` and wait until it answers."""
+    log = (master.home / "roscore.out").open("ab")
+    proc = subprocess.Popen(
+        ["roscore", "-p", str(master.port)], env=master.env(), stdout=log,
+        stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+    )  # fmt: skip
+    log.close()
+    master.process = proc
+
+    def up() -> bool:
+        if proc.poll() is not None:
+            out = (master.home / "roscore.out").read_text(errors="replace")[-2000:]
+            raise RuntimeError(f"roscore exited with {proc.returncode}:\n{out}")
+        return system_state(master.uri, timeout=0.5) is not None
+
+    wait_until(up, MASTER_START_TIMEOUT, f"ROS master answering at {master.uri}")
+    master.remember_children()
+
+
+def _kill_roscore(master: Master) -> None:
+    """Kill roscore and every process it started (rosmaster, rosout), and wait for them."""
+    master.remember_children()
+    for pid in {master.process.pid, *master.pids}:
+        kill_group(pid)
+    with suppress(subprocess.TimeoutExpired):
+        master.process.wait(STOP_TIMEOUT)
+    wait_until(lambda: not any(running(p) for p in master.pids), STOP_TIMEOUT, "roscore exit")
+
+
+def restart_master(master: Master) -> None:
+    """Kill the master (SIGKILL, like a crash) and start a new one on the same port.
+
+    Nodes registered with the old master keep running; ROS 1 nodes do not register again,
+    so the new master lists none of them.
+    """
+    _kill_roscore(master)
+    _start_roscore(master)
+
+
 @contextmanager
 def running_master(home: Path) -> Iterator[Master]:
     """Run ``roscore -p <free port>`` with a private ROS_HOME; kill all of it on exit."""
     home.mkdir(parents=True, exist_ok=True)
     port = free_port()
     uri = f"http://127.0.0.1:{port}/"
-    log = (home / "roscore.out").open("wb")
-    proc = subprocess.Popen(
-        ["roscore", "-p", str(port)], env=ros_env(uri, home), stdout=log,
-        stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
-    )  # fmt: skip
-    master = Master(uri, port, home, proc)
+    master = Master(uri, port, home, None)  # type: ignore[arg-type]  # set by _start_roscore
     try:
-
-        def up() -> bool:
-            if proc.poll() is not None:
-                out = (home / "roscore.out").read_text(errors="replace")[-2000:]
-                raise RuntimeError(f"roscore exited with {proc.returncode}:\n{out}")
-            return system_state(uri, timeout=0.5) is not None
-
-        wait_until(up, MASTER_START_TIMEOUT, f"ROS master answering at {uri}")
-        master.remember_children()
+        _start_roscore(master)
         yield master
     finally:
-        master.remember_children()
-        for pid in {proc.pid, *master.pids}:
-            kill_group(pid)
-        with suppress(subprocess.TimeoutExpired):
-            proc.wait(STOP_TIMEOUT)
-        log.close()
-        wait_until(lambda: not any(running(p) for p in master.pids), STOP_TIMEOUT, "roscore exit")
+        if master.process is not None:
+            _kill_roscore(master)
         left = processes_using(home)
         for pid in left:
             kill_group(pid)

@@ -109,7 +109,9 @@ def test_import_inspect_and_self_repair(
 
         watch.send_signal(signal.SIGTERM)
         assert watch.wait(15) == 143
-        assert _events(log)[-1]["event"] == "stopped"
+        stopped, kept = _events(log)[-2:]
+        assert (stopped["event"], kept["event"]) == ("stopped", "kept")
+        assert {p.name for p in Path(kept["launch_dir"]).iterdir()} == {"step1.launch", "step1.log"}
     finally:
         if watch.poll() is None:
             ros_harness.kill_group(watch.pid)

@@ -8,7 +8,14 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import DATA, FAKES, read_report, wait_until_gone
+from conftest import (
+    DATA,
+    FAKE_START_SECONDS,
+    FAKES,
+    LOADED_MACHINE_SLACK,
+    read_report,
+    wait_until_gone,
+)
 
 from rosreconf.planning.planners import (
     FF,
@@ -146,15 +153,18 @@ def test_a_malformed_search_string_is_a_planner_error(parent: Path) -> None:
 def test_a_tiny_timeout_stops_fast_downward(parent: Path) -> None:
     result = run(FastDownward(), parent, timeout=0.05)
     assert result.status is PlanStatus.TIMEOUT and result.actions == ()
-    assert result.elapsed < 2 and "time limit" in result.message
+    assert result.elapsed < 0.05 + LOADED_MACHINE_SLACK and "time limit" in result.message
 
 
 @pytest.mark.planner
-def test_a_one_second_budget_is_enough_for_a_tiny_task(parent: Path) -> None:
+def test_a_one_second_budget_does_not_starve_the_translator(parent: Path) -> None:
     # The driver rounds each component's remaining CPU time down to whole seconds: given
     # --overall-time-limit 1 its translator gets 0 s and dies of SIGXCPU (exit code 232).
+    # On a quiet machine the tiny task is solved; on a loaded one our own 1 s wall clock may
+    # stop it first, which is a timeout, never the translator's death.
     result = run(FastDownward(), parent, timeout=1.0)
-    assert result.status is PlanStatus.SOLVED, result.message
+    assert result.status in {PlanStatus.SOLVED, PlanStatus.TIMEOUT}, result.message
+    assert result.returncode != 232, result.message
     assert result.command[result.command.index("--overall-time-limit") + 1] == "2"
 
 
@@ -251,13 +261,14 @@ def test_a_plan_is_complete_only_if_it_ends_with_the_cost_line(text: str, expect
 
 
 def test_a_hanging_planner_times_out_and_its_group_is_gone(parent: Path, report: Path) -> None:
-    result = run(FakeFastDownward("hang.py"), parent, timeout=0.5)
-    assert result.status is PlanStatus.TIMEOUT and result.elapsed < 3
+    result = run(FakeFastDownward("hang.py"), parent, timeout=FAKE_START_SECONDS)
+    assert result.status is PlanStatus.TIMEOUT
+    assert result.elapsed < FAKE_START_SECONDS + LOADED_MACHINE_SLACK
     assert wait_until_gone(read_report(report)["pgid"]) == []
 
 
 def test_a_child_ignoring_sigterm_does_not_survive_the_timeout(parent: Path, report: Path) -> None:
-    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=0.5)
+    result = run(FakeFastDownward("fork_ignore_term.py"), parent, timeout=FAKE_START_SECONDS)
     assert result.status is PlanStatus.TIMEOUT
     facts = read_report(report)
     assert len(facts["pids"]) == 2 and wait_until_gone(facts["pgid"]) == []
@@ -266,7 +277,7 @@ def test_a_child_ignoring_sigterm_does_not_survive_the_timeout(parent: Path, rep
 def test_an_anytime_planner_stopped_by_the_timeout_keeps_its_best_complete_plan(
     parent: Path,
 ) -> None:
-    result = run(FakeFastDownward("anytime.py"), parent, timeout=1.0)
+    result = run(FakeFastDownward("anytime.py"), parent, timeout=FAKE_START_SECONDS)
     assert (result.status, result.cost) == (PlanStatus.SOLVED, 1)
     assert result.actions == (("pick", ("sensor", "cam_b", "power", "image")),)
     assert "time limit" in result.message

@@ -10,13 +10,17 @@ import time
 import xmlrpc.client
 import xmlrpc.server
 from collections.abc import Iterator
+from contextlib import suppress
 from pathlib import Path
 from typing import Any
 
 import pytest
 import ros_harness
 from conftest import StartStandIn
+from misbehaving_masters import DripMaster, EndlessMaster
+from typer.testing import CliRunner
 
+from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveNode, from_json, to_json, without_plumbing
 from rosreconf.ros.rosmaster import alive, purge_dead, read_live_graph
@@ -199,3 +203,100 @@ def test_alive_wants_the_same_pid(fake_master: xmlrpc.server.SimpleXMLRPCServer)
     uri = f"http://127.0.0.1:{fake_master.server_address[1]}/"
     assert alive(uri) and alive(LiveNode("/n", uri, 4242)) and alive(LiveNode("/n", uri))
     assert not alive(LiveNode("/n", uri, 17)) and not alive(LiveNode("/n", None, 4242))
+
+
+def test_a_dripping_master_is_given_up_on_at_the_total_deadline() -> None:
+    # Each byte arrives 0.05 s after the last, far within any per-read timeout; the whole
+    # answer would take about 30 s. The deadline is for the whole call.
+    with DripMaster(interval=0.05, lifetime=20.0) as fake:
+        start = time.monotonic()
+        with pytest.raises(ExternalToolError, match=f"{fake.uri} did not answer getSystemState"):
+            read_live_graph(fake.uri, timeout=0.5)
+        took = time.monotonic() - start
+    assert 0.4 < took < 15.0, took  # the whole answer needs 30 s; slack for a loaded machine
+    assert fake.sent < 300
+
+
+def test_an_endless_answer_is_cut_at_the_byte_cap() -> None:
+    with EndlessMaster(lifetime=20.0) as fake:
+        start = time.monotonic()
+        with pytest.raises(ExternalToolError, match="more than 1 MiB") as err:
+            read_live_graph(fake.uri, timeout=10.0, max_bytes=1 << 20)
+        took = time.monotonic() - start
+    assert took < 15.0, took  # the fake would stream for 20 s
+    assert fake.sent < 64 << 20  # stopped reading soon after the cap, not at the deadline
+    assert "xxxx" not in str(err.value)
+
+
+def _answer_raw(head: bytes, body: bytes) -> Iterator[str]:
+    """Serve one connection with ``head`` + ``body`` as the whole HTTP answer; yield the URI."""
+    server = socket.create_server(("127.0.0.1", 0))
+    server.settimeout(5.0)
+
+    def serve() -> None:
+        with suppress(OSError):
+            conn, _ = server.accept()
+            with conn:
+                conn.settimeout(5.0)
+                conn.recv(65536)
+                conn.sendall(head + body)
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    yield f"http://127.0.0.1:{server.getsockname()[1]}/"
+    thread.join(10)
+    server.close()
+
+
+TERMINAL_TRICKS = "\x1b]2;owned\x07\x1b[2J\u009b31m\u202e"
+
+
+@pytest.mark.parametrize(
+    ("head", "body"),
+    [
+        (f"HTTP/1.0 500 {TERMINAL_TRICKS}\r\n\r\n".encode("latin-1", "replace"), b""),
+        (f"{TERMINAL_TRICKS}\r\n\r\n".encode(), b""),
+        (
+            b"HTTP/1.0 200 OK\r\nContent-Type: text/xml\r\n\r\n",
+            xmlrpc.client.dumps(
+                ([-1, f"sad {TERMINAL_TRICKS[-6:]}", 0],), methodresponse=True
+            ).encode(),
+        ),
+        (
+            b"HTTP/1.0 200 OK\r\nContent-Type: text/xml\r\n\r\n",
+            xmlrpc.client.dumps(
+                ([1, "", [[[f"/t{TERMINAL_TRICKS[-6:]}", ["/n"]]], [], []]],), methodresponse=True
+            ).encode(),
+        ),
+        (
+            b"HTTP/1.0 200 OK\r\nContent-Type: text/xml\r\n\r\n",
+            xmlrpc.client.dumps(
+                xmlrpc.client.Fault(1, f"boom {TERMINAL_TRICKS[-6:]}"), methodresponse=True
+            ).encode(),
+        ),
+    ],
+    ids=["reason-phrase", "status-line", "status-text", "topic-name", "fault"],
+)
+def test_no_raw_bytes_from_the_wire_reach_the_message(head: bytes, body: bytes) -> None:
+    for uri in _answer_raw(head, body):
+        with pytest.raises(ExternalToolError) as err:
+            read_live_graph(uri, timeout=2.0)
+        text = str(err.value)
+        assert uri in text
+        assert text.isprintable(), repr(text)
+
+
+def test_inspect_gives_up_on_a_dripping_master_with_exit_3(runner: CliRunner) -> None:
+    with DripMaster(interval=0.05, lifetime=20.0) as fake:
+        args = ["inspect", "--master", fake.uri, "--only", "object_repositioning"]
+        result = runner.invoke(app, [*args, "--master-timeout", "0.5"])
+    assert result.exit_code == 3, result.output
+    assert f"{fake.uri} did not answer getSystemState within 0.5 s" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_snapshot_cuts_an_endless_answer_at_the_given_cap(runner: CliRunner) -> None:
+    with EndlessMaster(lifetime=20.0) as fake:
+        result = runner.invoke(app, ["snapshot", "--master", fake.uri, "--max-answer-mb", "1"])
+    assert result.exit_code == 3, result.output
+    assert "with more than 1 MiB" in result.stderr and result.stdout == ""

@@ -31,7 +31,7 @@ def _run(runner: CliRunner, where: Path, *args: str) -> tuple[int, str, str]:
 def test_bundled_files_are_valid(runner: CliRunner, tmp_path: Path) -> None:
     code, out, _ = _run(runner, tmp_path)  # empty folder: falls back to the bundled example
     assert code == 0, out
-    assert "5 file(s) valid: 0 error(s), 0 warning(s)" in out
+    assert "7 file(s) valid: 0 error(s), 0 warning(s)" in out  # + nav_robot, map_navigation
     assert "bundled example" in out
 
 

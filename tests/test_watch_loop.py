@@ -7,6 +7,7 @@ the command's loop; tests/test_live_ros.py runs watch against a real roscore.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -52,3 +53,15 @@ def test_an_unreachable_master_at_start_is_an_error(
     result = runner.invoke(app, ARGS)
     assert result.exit_code == 3
     assert "connection refused" in result.stderr
+
+
+def test_apply_leaves_no_launch_directory_when_nothing_was_launched(
+    runner: CliRunner, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path / "log"))
+    _script(monkeypatch, [ExternalToolError("http://127.0.0.1:9/: connection refused")])
+    result = runner.invoke(app, [*ARGS, "--apply"])
+    assert result.exit_code == 3
+    made = str(tmp_path / "log" / "rosreconf-watch-")
+    assert made in result.stderr  # said at the start
+    assert list((tmp_path / "log").iterdir()) == []

@@ -209,6 +209,11 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
             for ex in sorted(c.excludes):
                 if ex in holders:
                     out.setdefault(_key(c.name, ex), f"{c.name} excludes {ex}")
+            for clashing in sorted(inst.clashes.get(c.name, ())):
+                out.setdefault(
+                    _key(c.name, clashing),
+                    f"{c.name} and {clashing} provide one label with two message types",
+                )
     return [IncompatiblePair(a, b, why) for (a, b), why in sorted(out.items())]
 
 

@@ -92,6 +92,24 @@ MasterOption = Annotated[
     str,
     typer.Option("--master", help="The ROS master's URI, e.g. http://127.0.0.1:11311/."),
 ]
+MasterTimeoutOption = Annotated[
+    float,
+    typer.Option(
+        "--master-timeout",
+        min=0.1,
+        metavar="SECONDS",
+        help="Total seconds one call to the master or a node may take, whole answer included.",
+    ),
+]
+MaxAnswerOption = Annotated[
+    int,
+    typer.Option(
+        "--max-answer-mb",
+        min=1,
+        metavar="MIB",
+        help="The largest answer accepted from the master; a longer one is cut off (exit 3).",
+    ),
+]
 OnlySchemaOption = Annotated[
     str | None,
     typer.Option("--only", help="The schema, when the configuration names several."),

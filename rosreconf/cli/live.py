@@ -12,6 +12,8 @@ from rosreconf.cli.common import (
     JsonOption,
     LibraryOption,
     MasterOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
     OnlySchemaOption,
     SchemaOption,
     select,
@@ -22,9 +24,9 @@ from rosreconf.outfiles import write_atomic
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.importer import draft_library
+from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import to_json, without_plumbing
-from rosreconf.ros.rosmaster import read_live, read_live_graph
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_live, read_live_graph
 from rosreconf.solve.running import one_target
 
 
@@ -33,10 +35,12 @@ def snapshot_command(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
     ] = None,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
 
-    text = to_json(read_live_graph(master))
+    text = to_json(read_live_graph(master, timeout=master_timeout, max_bytes=max_answer_mb << 20))
     if output is None:
         write_stdout(text)
     else:
@@ -52,17 +56,29 @@ def import_command(
         Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
     ] = None,
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
-    graph = read_live(master, snapshot)
+    graph = read_live(master, snapshot, timeout=master_timeout, max_bytes=max_answer_mb << 20)
     text = draft_library(graph, name)
     write_atomic(output, text)
-    todo, nodes = text.count("# TODO"), len(without_plumbing(graph).nodes)
+    live = without_plumbing(graph).nodes
+    todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
         f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
+    anonymous = [n.name for n in live if is_anonymous(n.name)]
+    if anonymous:
+        stderr.print(
+            f"rosreconf: warning: {', '.join(anonymous)} "
+            f"{'has an anonymous name' if len(anonymous) == 1 else 'have anonymous names'}"
+            " that change on every restart; inspect and watch will not find them again"
+            " (start them under fixed names and set ros.node)",
+            markup=False,
+        )
 
 
 def inspect_command(
@@ -79,11 +95,14 @@ def inspect_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     as_json: JsonOption = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
-    result = compare(target.configuration, sel.library, target.schema, read_live(master, snapshot))
+    graph = read_live(master, snapshot, timeout=master_timeout, max_bytes=max_answer_mb << 20)
+    result = compare(target.configuration, sel.library, target.schema, graph)
     write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

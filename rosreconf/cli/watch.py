@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 from contextlib import ExitStack
 from pathlib import Path
@@ -14,6 +15,8 @@ from rosreconf.cli.common import (
     FailOption,
     LibraryOption,
     MasterOption,
+    MasterTimeoutOption,
+    MaxAnswerOption,
     OnlySchemaOption,
     SchemaOption,
     select,
@@ -22,7 +25,8 @@ from rosreconf.cli.console import stderr
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
-from rosreconf.ros.watcher import Event, Watcher
+from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.watcher import Event, Watcher, launch_log_dir
 from rosreconf.solve.running import one_target
 
 
@@ -48,11 +52,15 @@ def watch_command(
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")
     ] = None,
     once: Annotated[bool, typer.Option("--once", help="Poll once, act, confirm, exit.")] = False,
+    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
+    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
-    started. With --once: exit 0 if the system conforms at the end, else 1.
+    started. With --apply, launch files and roslaunch's output are kept in a new directory
+    rosreconf-watch-* under ROS's log directory (said at the start). With --once: exit 0 if
+    the system conforms at the end, else 1.
     """
 
     sel = select(library, schema, None, [only] if only else None)
@@ -62,7 +70,17 @@ def watch_command(
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
     env["ROS_MASTER_URI"] = master
+    keep: Path | None = None
+    if apply:
+        try:
+            keep = launch_log_dir(env)
+        except OSError as exc:
+            where = exc.filename or "ROS's log directory"
+            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
+            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
+        if keep is not None:
+            stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
         if json_log is not None:
             log_file = stack.enter_context(json_log.open("a", encoding="utf-8"))
@@ -78,9 +96,14 @@ def watch_command(
         watcher = Watcher(
             master, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
+            timeout=master_timeout, max_bytes=max_answer_mb << 20, launch_dir=keep,
         )  # fmt: skip
         stack.callback(watcher.close)
-        what = "and repairing" if apply else "(not repairing: no --apply)"
+        what = (
+            f"and repairing (launch files kept in {keep})"
+            if apply
+            else "(not repairing: no --apply)"
+        )
         log(
             Event(
                 "started",
@@ -90,3 +113,9 @@ def watch_command(
         )
         check = watcher.run(interval, once=once)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _remove_if_empty(path: Path) -> None:
+    """Remove the launch directory watch made if nothing was launched (rmdir refuses else)."""
+    with contextlib.suppress(OSError):
+        path.rmdir()

@@ -44,6 +44,7 @@ def check(
         problems.extend(_couplings(library))
         problems.extend(_interfaces(components))
         problems.extend(_requirements(components))
+        problems.extend(_launch_args(components))
     problems.extend(_schema_names(schemas))
     known = components if library_complete else []
     for schema in schemas:
@@ -124,12 +125,17 @@ def _interfaces(components: Sequence[Component]) -> Iterator[Problem]:
             if first is None:
                 types[key] = (iface.type, c.name, span)
             elif first[0] != iface.type:
+                same = first[1] == c.name
                 yield Problem(
                     span,
                     f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
                     f"{first[0]} in {first[1]} ({first[2]})",
-                    "one label must carry one message class; rename one of them",
+                    "one component cannot use one label with two message classes; rename one"
+                    if same
+                    else "allowed for alternatives (raw and compressed images): no "
+                    "configuration chooses providers of both; rename one if they are one thing",
                     code="type-conflict",
+                    severity=Severity.ERROR if same else Severity.WARNING,
                 )
             other = kinds.get(iface.label)
             if other is None:
@@ -157,6 +163,25 @@ def _requirements(components: Sequence[Component]) -> Iterator[Problem]:
                 "add a component that provides it, or fix the label or type",
                 code="unmet-requirement",
             )
+
+
+def _launch_args(components: Sequence[Component]) -> Iterator[Problem]:
+    """Refuse ``ros.args`` holding a roslaunch substitution (``$(find pkg)``, ``$(env X)``).
+
+    rosreconf writes args into launch files verbatim, where roslaunch would evaluate the
+    substitution: a library value must mean what it says, not run a lookup at launch time.
+    """
+    for c in components:
+        if c.launch is None:
+            continue
+        for i, arg in enumerate(c.launch.args):
+            if "$(" in arg:
+                yield Problem(
+                    c.at(f"ros.args.{i}"),
+                    f"ros.args of {c.name} holds the roslaunch substitution {arg!r}",
+                    "write the value itself; rosreconf does not evaluate $(...)",
+                    code="launch-substitution",
+                )
 
 
 def _schema_names(schemas: Sequence[InteroperabilitySchema]) -> Iterator[Problem]:

@@ -105,6 +105,11 @@ class RosLaunch:
         parameters: private parameters, name -> scalar value.
         remappings: interface label -> the real ROS name the executable uses for it.
         namespace: optional namespace to start the node in.
+        node: the ROS node base name when it differs from the component's library name
+            (two live nodes ``/robot/scan_listener`` and ``/scan_listener`` are two
+            components but both run as ``scan_listener``); None = the component's name.
+        args: command-line arguments given to the executable, in order
+            (``rostopic pub -r 1 ...`` cannot be described without them).
     """
 
     package: str
@@ -114,6 +119,8 @@ class RosLaunch:
     )
     remappings: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     namespace: str | None = None
+    node: str | None = None
+    args: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -136,7 +143,7 @@ class Component:
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``.
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``.
     """
 
     name: str
@@ -156,6 +163,22 @@ class Component:
     def at(self, key: str) -> Span:
         """Return where the value ``key`` (see ``where``) is written, else the component."""
         return self.where.get(key, self.span)
+
+    @property
+    def node_name(self) -> str:
+        """Return the ROS node base name this component runs as (``ros.node``, else its name).
+
+        Library names must be unique and node names need not be (nodes in different
+        namespaces), so live checks, launch files and imports use this, never ``name``.
+        """
+        if self.launch is not None and self.launch.node:
+            return self.launch.node
+        return self.name
+
+    @property
+    def namespace(self) -> str | None:
+        """Return the namespace this component's node is started in, if any."""
+        return self.launch.namespace if self.launch is not None else None
 
     def may_serve_in(self, schema_name: str) -> bool:
         """Tell whether Table 1's "In Schema" column lets this component serve ``schema_name``."""

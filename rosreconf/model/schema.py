@@ -44,17 +44,24 @@ class Edge:
     configuration when some requirement option of the consumer's component is provided by the
     provider's component; ``interfaces`` optionally restricts which labels may realise it.
 
+    An edge is *required* by default (Def. 5: every edge of the system graph must be realised
+    by the chosen pair). An *optional* edge only says the consumer may use what the provider
+    provides: requirements may be met across it, but a pair that shares nothing is still
+    valid (a TEB local planner does not read the laser that a DWB planner reads).
+
     Attributes:
         consumer: the role that requires (calls a service, subscribes to a topic).
         provider: the role that provides (serves, publishes).
         interfaces: labels allowed to realise this edge; empty = any matching interface.
         span: where it was written.
+        optional: True when the chosen pair need not realise the edge.
     """
 
     consumer: str
     provider: str
     interfaces: frozenset[str] = frozenset()
     span: Span = field(default=NOWHERE, compare=False)
+    optional: bool = False
 
     def allows(self, interface: Interface) -> bool:
         """Tell whether ``interface`` may realise this edge."""
@@ -92,7 +99,7 @@ class SystemGraph:
         for r in self.roles:
             g.add_node(r.name, abstraction=r.abstraction)
         for e in self.edges:
-            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces))
+            g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces), optional=e.optional)
         return g
 
 

@@ -3,6 +3,12 @@
 This is the one definition of "valid" in rosreconf (docs/formats.md, "What a configuration
 is"). The solver, the planner cross-check and the live checks all defer to it, so a plan or
 a solver answer is only trusted after ``violations`` comes back empty.
+
+The definition is also *encoded* four more times, for speed: as a clingo program, as the
+counting tables, as the elimination tables and as a PDDL task. ``RULES``
+(``rosreconf.model.rules``) lists every rule of validity once, with the places each encoding
+implements it, so that a rule added to one is found in all (tests/test_rules.py demands that
+all five agree rule by rule).
 """
 
 from __future__ import annotations
@@ -24,6 +30,21 @@ from rosreconf.model import (
     interface_vertex,
     node_vertex,
 )
+from rosreconf.model.rules import RULES, Encoding, Rule
+
+__all__ = [
+    "RULES",
+    "Encoding",
+    "Rule",
+    "Violation",
+    "edge_interfaces",
+    "graph_dict",
+    "is_valid",
+    "requirement_met",
+    "ros_graph",
+    "type_clash",
+    "violations",
+]
 
 if TYPE_CHECKING:
     from rosreconf.model import RosGraph
@@ -36,7 +57,7 @@ class Violation:
     Attributes:
         code: stable identifier (``failed``, ``wrong-abstraction``, ``not-in-schema``,
             ``reused``, ``edge-unrealised``, ``requirement-unmet``, ``needs``, ``excludes``,
-            ``unknown-component``, ``missing-role``).
+            ``unknown-component``, ``missing-role``, ``type-clash``).
         message: the reason in plain words.
         components: the components involved (for reports and pictures).
     """
@@ -47,6 +68,20 @@ class Violation:
 
     def __str__(self) -> str:
         return self.message
+
+
+def type_clash(a: Component, b: Component) -> tuple[Interface, Interface] | None:
+    """Return a provision of ``a`` and one of ``b`` with one label but two types, if any.
+
+    A ROS name carries one message type, so two such components cannot run together even
+    when the library allows both (rule ``one-type-per-label``).
+    """
+    theirs = {(i.kind, i.label): i for i in b.provides}
+    for mine in sorted(a.provides):
+        other = theirs.get((mine.kind, mine.label))
+        if other is not None and other.type != mine.type:
+            return mine, other
+    return None
 
 
 def edge_interfaces(consumer: Component, provider: Component, edge: Edge) -> tuple[Interface, ...]:
@@ -146,7 +181,7 @@ def _violations(
         seen[comp.name] = role_name
     for edge in schema.graph.edges:
         consumer, provider = chosen.get(edge.consumer), chosen.get(edge.provider)
-        if consumer is None or provider is None:
+        if consumer is None or provider is None or edge.optional:
             continue
         if not edge_interfaces(consumer, provider, edge):
             yield Violation(
@@ -164,6 +199,17 @@ def _violations(
                     f"{comp.name} ({role_name}) requires {req}, which no provider along its "
                     "edges offers",
                     (comp.name,),
+                )
+    distinct = sorted({c.name: c for c in chosen.values()}.values(), key=lambda c: c.name)
+    for i, a in enumerate(distinct):
+        for b in distinct[i + 1 :]:
+            clash = type_clash(a, b)
+            if clash is not None:
+                yield Violation(
+                    "type-clash",
+                    f"{a.name} provides {clash[0]} and {b.name} provides {clash[1]}: one ROS "
+                    "name cannot carry two types",
+                    (a.name, b.name),
                 )
     names = {c.name for c in chosen.values()}
     for comp in chosen.values():
@@ -194,8 +240,9 @@ def ros_graph(
 ) -> RosGraph:
     """Build the concrete ROS-graph (Def. 1) of a valid configuration.
 
-    Nodes are the chosen components; along every system-graph edge, each interface that
-    realises it becomes a topic or service vertex with edges provider -> vertex -> consumer.
+    Nodes are the chosen components; along every system-graph edge (optional ones too, where
+    the pair shares something), each interface that realises it becomes a topic or service
+    vertex with edges provider -> vertex -> consumer.
     Provisions nobody uses stay dormant (Section 3) and are not drawn.
     """
     import networkx as nx  # here, not at the top: validating files never builds a ROS-graph

@@ -14,7 +14,8 @@ then checked, in schema order; a token (``choosing r``, ``checking r``, ``finish
 along it. The task, for roles ``r_0 .. r_n`` and a candidate ``c`` of ``r_i``::
 
     choose-r-c     (choosing r_i), not (uses v d) for every EARLIER role v holding a d that
-                   cannot share an edge with c, that c excludes or that excludes c, or that is
+                   cannot share an edge with c, that c excludes or that excludes c (or whose
+                   provisions clash with c's: one label, two types), or that is
                    c itself -> (uses r c), (serves r u q) for every requirement q of a
                    consumer role u that c meets, (chosen c) if some candidate needs c,
                    token to the next role; cost: the objective's price
@@ -177,7 +178,8 @@ class _Tables:
         reqs: requirement -> PDDL name.
         holders: component name -> the roles whose domain holds it, ascending.
         needed: the components some candidate needs.
-        foes: component name -> the components it excludes or that exclude it.
+        foes: component name -> the components it excludes, that exclude it, or that
+            provide one of its labels with another type (``Instance.clashes``).
         incident: per role, the indices of its edges.
         served: (requirement's role, requirement) -> its provider roles, ascending.
         serves: (provider role, provider) -> the (role, requirement) pairs it meets.
@@ -199,7 +201,7 @@ class _Tables:
         self.foes: dict[str, set[str]] = {}
         for dom in inst.domains:
             for c in dom:
-                for x in c.excludes:
+                for x in c.excludes | inst.clashes.get(c.name, set()):
                     self.foes.setdefault(c.name, set()).add(x)
                     self.foes.setdefault(x, set()).add(c.name)
         self.incident: list[list[int]] = [[] for _ in roles]

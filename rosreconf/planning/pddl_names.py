@@ -85,6 +85,8 @@ class PddlNames:
         """
         parts = [label(o.label) + (f"-{label(o.type)}" if qualified else "") for o in req.options]
         pddl = "-or-".join(parts)
+        if pddl not in self.requirements and pddl in self.objects:
+            pddl = f"req_{pddl}"  # a role or component has the label's name (role map, topic map)
         known = self.requirements.get(pddl)
         if (known is not None and known.options != req.options) or (
             known is None and pddl in self.objects

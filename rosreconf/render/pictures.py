@@ -118,6 +118,8 @@ def system_dot(schemas: Sequence[InteroperabilitySchema]) -> str:
             g.node(f"{s.name}:role:{role}", label=label, shape="box", style="rounded")
         for provider, consumer, data in nx_graph.edges(data=True):
             extra = {"label": ", ".join(data["interfaces"])} if data["interfaces"] else {}
+            if data["optional"]:
+                extra["style"] = "dashed"  # may be used, need not be (docs/formats.md)
             g.edge(f"{s.name}:role:{provider}", f"{s.name}:role:{consumer}", **extra)
         g.end_cluster()
     return g.text()
@@ -204,7 +206,8 @@ def library_dot(
                 label=Html(table + "".join(rows) + "</TABLE>"),
             )
         for e in s.graph.edges:
-            g.edge(f"{s.name}:role:{e.provider}", f"{s.name}:role:{e.consumer}")
+            style = {"style": "dashed"} if e.optional else {}
+            g.edge(f"{s.name}:role:{e.provider}", f"{s.name}:role:{e.consumer}", **style)
         g.end_cluster()
     legend = (
         '<TABLE BORDER="0" CELLBORDER="1" CELLSPACING="0" CELLPADDING="4">'

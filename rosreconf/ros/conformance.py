@@ -7,7 +7,7 @@ pair of functions maps model names to live names, and everything here goes throu
 
     model                                   live (global ROS name)
     --------------------------------------  ------------------------------------------------
-    component C                             <ros.namespace or />/<C>         node_live_name
+    component C                             <ros.namespace or />/<ros.node or C>  node_live_name
     interface label X of component C        ros.remappings[X] if given, else X;  interface_live_name
                                             a relative name is resolved in C's namespace
 
@@ -47,9 +47,13 @@ def _join(namespace: str, name: str) -> str:
 
 
 def node_live_name(component: Component) -> str:
-    """Return the global name the node of ``component`` has on the master."""
-    namespace = component.launch.namespace if component.launch else None
-    return _join(namespace or "/", component.name)
+    """Return the global name the node of ``component`` has on the master.
+
+    The node's own name (``ros.node``) in its namespace, never the library name: ``import``
+    names two live ``scan_listener`` nodes ``scan_listener`` and ``robot_scan_listener``, and
+    only the second has a namespace to tell them apart.
+    """
+    return _join(component.namespace or "/", component.node_name)
 
 
 def interface_live_name(component: Component, label: str) -> str:

@@ -6,7 +6,9 @@ placeholder that still validates, marked with a ``# TODO`` comment::
     master                               draft
     -----------------------------------  ----------------------------------------------------
     node /ns/name                        component ``name`` with ``ros.namespace: /ns``
-                                         (``ns_name`` if two nodes share a base name)
+                                         (``ns_name`` if two nodes share a base name, then
+                                         with ``ros.node: name``, the name it really runs as)
+    anonymous node /rostopic_4711_17...  the same, with a TODO: the name changes on restart
     published topic /t (type T)          provides {topic: /t, type: T}
     served service /s (no type known)    provides {service: /s, type: TODO_srvs/<Name>}
     subscribed topic /t                  requires {topic: /t, type: T} when something live
@@ -24,10 +26,30 @@ from __future__ import annotations
 
 import json
 import re
+from pathlib import Path
 
+from rosreconf.resources import Bundle, bundled
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 
-HEADER = "# yaml-language-server: $schema=../rosreconf/data/component-library.schema.json"
+ANONYMOUS = re.compile(r"_\d+_\d{10,}$")
+"""The suffix ROS 1 gives an anonymous node (``rostopic_4711_1700000000000``): pid, time."""
+
+
+def header() -> str:
+    """Return the editor line pointing at the installed JSON Schema, by absolute URI.
+
+    A draft is written wherever the user asks, not beside a checkout, so a relative path
+    would point nowhere.
+    """
+    path = Path(str(bundled(Bundle.DATA, "component-library.schema.json"))).resolve()
+    return f"# yaml-language-server: $schema={path.as_uri()}"
+
+
+def is_anonymous(node: str) -> bool:
+    """Tell whether ``node`` is an anonymous name, which changes every time it starts."""
+    return bool(ANONYMOUS.search(node.rsplit("/", 1)[-1]))
+
+
 UNKNOWN_TOPIC_TYPE = "TODO_msgs/Unknown"
 """The type written for a topic the master has no type for (it always has, in practice)."""
 
@@ -72,7 +94,7 @@ def draft_library(graph: LiveGraph, name: str = "imported") -> str:
     live = without_plumbing(graph)
     published = {t for n in live.nodes for t in n.publishes}
     lines = [
-        HEADER,
+        header(),
         "#",
         f"# Drafted by 'rosreconf import' from the ROS master at {live.master_uri}",
         f"# on {live.taken_at.isoformat()}. Fill in every TODO before using it for planning:",
@@ -98,12 +120,18 @@ def draft_library(graph: LiveGraph, name: str = "imported") -> str:
 
 def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) -> list[str]:
     """Return the YAML lines of one component drafted from ``node``."""
-    namespace = node.name.rsplit("/", 1)[0]
+    namespace, _, base = node.name.rpartition("/")
     lines = [
         f"  - name: {comp}",
         f"    abstraction: TODO_{comp}  # TODO: the role class {comp} can play",
         f"    description: {_q('Live node ' + node.name)}",
     ]
+    if is_anonymous(node.name):
+        lines.append(
+            f"    # TODO: {node.name} is an anonymous name (pid and start time): it changes on"
+            " every restart, so inspect and watch will not find it again; start the node"
+            " under a fixed name and put that in ros.node"
+        )
     if not node.answered:
         lines.append("    # TODO: this node did not answer (dead?) when the master was read")
     provides = [
@@ -128,4 +156,9 @@ def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) 
     ]
     if namespace:
         lines.append(f"      namespace: {_q(namespace)}")
+    if base != comp:
+        if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", base):
+            lines.append(f"      node: {_q(base)}")
+        else:
+            lines.append(f"      # TODO: runs as {_q(base)}, which no ros.node can name")
     return lines

@@ -1,9 +1,9 @@
 """Write launch files that start exactly one configuration, wired along its ROS-graph.
 
 Each chosen component becomes one ``<node>`` from its library ``ros:`` entry (package,
-executable, parameters, namespace). Wiring follows the ROS-graph (Def. 1): for every edge
-topic/service -> consumer, the consumer is remapped from the name *it* uses for the label to
-the name the *provider* really uses, when the two differ::
+executable, node name, namespace, args, parameters). Wiring follows the ROS-graph (Def. 1):
+for every edge topic/service -> consumer, the consumer is remapped from the name *it* uses
+for the label to the name the *provider* really uses, when the two differ::
 
     library                                   launch file
     ----------------------------------------  -----------------------------------------------
@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import enum
 import json
+import shlex
 import xml.etree.ElementTree as ET
 from collections.abc import Collection
 from dataclasses import dataclass
@@ -40,6 +41,7 @@ from rosreconf.errors import RosreconfError
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
+from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
 
 
@@ -93,6 +95,7 @@ def launch_file(
             f"{', '.join(bare)} {'has' if len(bare) == 1 else 'have'} no 'ros:' entry "
             "(package, executable) in the library"
         )
+    _refuse_shared_node_names(schema, chosen)
     remaps, notes = _wiring(library, schema, configuration)
     root = ET.Element("launch")
     root.append(
@@ -112,6 +115,20 @@ def launch_file(
     return LaunchFile(text + "\n", tuple(c.name for c in chosen), flat)
 
 
+def _refuse_shared_node_names(schema: InteroperabilitySchema, chosen: list[Component]) -> None:
+    """Refuse two components that would run as one ROS node (the second kills the first)."""
+    seen: dict[str, str] = {}
+    for c in chosen:
+        live = node_live_name(c)
+        if live in seen:
+            raise RosreconfError(
+                f"cannot write a launch file for {schema.display_name}: {seen[live]} and "
+                f"{c.name} would both run as the ROS node {live} (give one another "
+                "'ros.node' or 'ros.namespace')"
+            )
+        seen[live] = c.name
+
+
 def _stand_in_file(
     schema: InteroperabilitySchema, configuration: Configuration, chosen: list[Component]
 ) -> LaunchFile:
@@ -125,7 +142,7 @@ def _stand_in_file(
         )
     )
     for c in chosen:
-        attrs = {"pkg": STANDIN_PACKAGE, "type": STANDIN_EXECUTABLE, "name": c.name}
+        attrs = {"pkg": STANDIN_PACKAGE, "type": STANDIN_EXECUTABLE, "name": c.node_name}
         if c.launch is not None and c.launch.namespace:
             attrs["ns"] = c.launch.namespace
         # roslaunch splits args like a shell: one single-quoted word, so no ' inside.
@@ -178,9 +195,15 @@ def _node(
     launch = c.launch
     assert launch is not None  # checked by launch_file
     ros1 = version is RosVersion.ROS1
-    attrs = {"pkg": launch.package, "type" if ros1 else "exec": launch.executable, "name": c.name}
+    attrs = {
+        "pkg": launch.package,
+        "type" if ros1 else "exec": launch.executable,
+        "name": c.node_name,
+    }
     if launch.namespace:
         attrs["ns" if ros1 else "namespace"] = launch.namespace
+    if launch.args:
+        attrs["args"] = shlex.join(launch.args)  # both dialects split args like a shell
     node = ET.Element("node", attrs)
     for note in notes:
         node.append(ET.Comment(_comment(f" {note} ")))

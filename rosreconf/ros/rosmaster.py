@@ -17,6 +17,8 @@ for its pid to tell the difference, and ``purge_dead`` unregisters the dead ones
 from __future__ import annotations
 
 import http.client
+import socket
+import time
 import xmlrpc.client
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
@@ -30,10 +32,14 @@ from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
 
 __all__ = [
+    "DEFAULT_MAX_BYTES",
+    "DEFAULT_TIMEOUT",
     "LiveGraph",
     "LiveNode",
     "alive",
+    "master_identity",
     "node_pid",
+    "printable",
     "purge_dead",
     "read_live_graph",
     "shutdown_node",
@@ -42,18 +48,137 @@ __all__ = [
 _PID_WORKERS = 8
 """How many nodes are asked for their pid at once, so hung nodes cost one timeout, not many."""
 
+DEFAULT_TIMEOUT = 3.0
+"""Seconds one XML-RPC call may take in all: connecting, sending, and the whole answer."""
 
-class _TimeoutTransport(xmlrpc.client.Transport):
-    """An XML-RPC transport whose connections give up after ``timeout`` seconds."""
+DEFAULT_MAX_BYTES = 32 << 20
+"""How many bytes one answer may have (headers included); a large real master sends a few MiB."""
 
-    def __init__(self, timeout: float) -> None:
+_NODE_MAX_BYTES = 64 << 10
+"""The cap for a node's answers (getPid, shutdown), which are a few hundred bytes."""
+
+_SHOWN_CHARS = 200
+"""How much of a text from the wire an error message quotes."""
+
+
+def printable(text: str, limit: int = _SHOWN_CHARS) -> str:
+    """Return ``text`` fit for a terminal: control and other unprintable characters escaped.
+
+    Anything that came over the wire (a status text, an HTTP reason phrase, a name) may carry
+    escape sequences that retitle or clear a terminal, or reorder what it shows; messages
+    quote it only through this function, cut to ``limit`` characters.
+    """
+    shown = "".join(
+        c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in text
+    )
+    return shown if len(shown) <= limit else shown[: limit - 3] + "..."
+
+
+class _Late(TimeoutError):
+    """The call's total deadline passed while connecting, sending or reading."""
+
+
+class _TooLarge(OSError):
+    """The answer grew past the byte cap."""
+
+
+class _BoundedSocket(socket.socket):
+    """A socket that gives each operation only what is left of one total deadline.
+
+    ``http.client`` reads through a buffered file that loops over ``recv_into`` until it
+    has what it asked for, so a per-read timeout lets a peer that sends one byte at a time
+    keep a call going for as long as it likes. Here every ``recv_into``/``recv``/``sendall``
+    first sets the timeout to the time left, and counts the bytes received against the cap.
+    """
+
+    deadline: float = 0.0
+    max_bytes: int = DEFAULT_MAX_BYTES
+    received: int = 0
+
+    def _arm(self) -> None:
+        left = self.deadline - time.monotonic()
+        if left <= 0:
+            raise _Late
+        self.settimeout(left)
+
+    def _count(self, n: int) -> int:
+        self.received += n
+        if self.received > self.max_bytes:
+            raise _TooLarge
+        return n
+
+    def recv_into(self, buffer: Any, nbytes: int = 0, flags: int = 0) -> int:
+        self._arm()
+        return self._count(super().recv_into(buffer, nbytes, flags))
+
+    def recv(self, bufsize: int, flags: int = 0) -> bytes:
+        self._arm()
+        data = super().recv(bufsize, flags)
+        self._count(len(data))
+        return data
+
+    def sendall(self, data: Any, flags: int = 0) -> None:
+        self._arm()
+        super().sendall(data, flags)
+
+
+class _BoundedConnection(http.client.HTTPConnection):
+    """An HTTP connection over a ``_BoundedSocket`` with the transport's deadline and cap."""
+
+    def __init__(self, host: str, deadline: float, max_bytes: int) -> None:
+        super().__init__(host)
+        self._deadline = deadline
+        self._max_bytes = max_bytes
+
+    def connect(self) -> None:
+        left = self._deadline - time.monotonic()
+        if left <= 0:
+            raise _Late
+        plain = socket.create_connection((self.host, self.port), timeout=left)
+        sock = _BoundedSocket(plain.family, plain.type, plain.proto, fileno=plain.detach())
+        sock.deadline, sock.max_bytes = self._deadline, self._max_bytes
+        self.sock = sock
+
+
+class _BoundedTransport(xmlrpc.client.Transport):
+    """An XML-RPC transport with a total deadline and a byte cap for each call.
+
+    The deadline starts when the request starts and covers connecting, sending and reading
+    the whole answer; the cap counts every byte received. Compressed answers are neither
+    asked for nor accepted: a small gzip body can unpack to any size.
+    """
+
+    accept_gzip_encoding = False
+
+    def __init__(self, timeout: float, max_bytes: int) -> None:
         super().__init__()
         self._timeout = timeout
+        self._max_bytes = max_bytes
+        self._deadline = 0.0
+
+    def request(self, host: Any, handler: str, request_body: Any, verbose: bool = False) -> Any:
+        self._deadline = time.monotonic() + self._timeout
+        return super().request(host, handler, request_body, verbose)
 
     def make_connection(self, host: Any) -> http.client.HTTPConnection:
-        conn = super().make_connection(host)
-        conn.timeout = self._timeout
+        if self._connection[1] is not None and host == self._connection[0]:
+            return self._connection[1]
+        chost, self._extra_headers, _ = self.get_host_info(host)
+        conn = _BoundedConnection(chost, self._deadline, self._max_bytes)
+        self._connection = host, conn
         return conn
+
+    def parse_response(self, response: http.client.HTTPResponse) -> Any:
+        encoding = response.getheader("Content-Encoding", "") or "identity"
+        if encoding.lower() != "identity":
+            raise xmlrpc.client.ResponseError(
+                f"answered with Content-Encoding {printable(encoding, 40)}, which was not asked for"
+            )
+        parser, unmarshaller = self.getparser()
+        while chunk := response.read(1 << 16):
+            parser.feed(chunk)
+        parser.close()
+        return unmarshaller.close()
 
 
 def _check_uri(uri: str, what: str) -> None:
@@ -67,33 +192,73 @@ def _check_uri(uri: str, what: str) -> None:
         raise UsageError(f"{what} URI {uri!r} is not of the form http://HOST:PORT/")
 
 
-def _call(uri: str, who: str, timeout: float, method: str, *args: object) -> Any:
-    """Call ``method`` at ``uri`` and return the value of a code-1 answer, or raise."""
-    proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout))
+def _ask(uri: str, who: str, timeout: float, max_bytes: int, method: str, *args: object) -> Any:
+    """Call ``method`` at ``uri`` within ``timeout`` and ``max_bytes``; return the raw answer."""
+    proxy = xmlrpc.client.ServerProxy(uri, transport=_BoundedTransport(timeout, max_bytes))
     try:
-        answer = getattr(proxy, method)(*args)
+        return getattr(proxy, method)(*args)
     except TimeoutError:
-        msg = f"{who} at {uri} did not answer {method} within {timeout:g} s"
+        msg = (
+            f"{who} at {uri} did not answer {method} within {timeout:g} s "
+            "(the whole answer must arrive in that time; a slow master needs a longer timeout)"
+        )
+        raise ExternalToolError(msg) from None
+    except _TooLarge:
+        msg = (
+            f"{who} at {uri} answered {method} with more than {_mib(max_bytes)} "
+            "(a runaway answer: it was cut off; a really that large system needs a larger cap)"
+        )
         raise ExternalToolError(msg) from None
     except ConnectionRefusedError:
         msg = f"{who} at {uri} refused the connection (is it running on that port?)"
         raise ExternalToolError(msg) from None
+    except xmlrpc.client.ProtocolError as e:
+        reason = printable(str(e.errmsg), 80)
+        msg = f"{who} at {uri}: {method} failed: HTTP status {e.errcode} {reason}"
+        raise ExternalToolError(msg) from None
+    except xmlrpc.client.Fault as e:
+        msg = f"{who} at {uri}: {method} failed: XML-RPC fault {printable(str(e.faultString))}"
+        raise ExternalToolError(msg) from None
     except (OSError, xmlrpc.client.Error, http.client.HTTPException, ExpatError) as e:
-        msg = f"{who} at {uri}: {method} failed: {e or type(e).__name__}"
+        why = printable(str(e)) or type(e).__name__
+        msg = f"{who} at {uri}: {method} failed: {type(e).__name__}: {why}"
         raise ExternalToolError(msg) from None
     finally:
         proxy("close")()
+
+
+def _mib(n: int) -> str:
+    """Say a byte count in MiB (or bytes below one MiB)."""
+    return f"{n / (1 << 20):g} MiB" if n >= 1 << 20 else f"{n} bytes"
+
+
+def _call(
+    uri: str,
+    who: str,
+    timeout: float,
+    method: str,
+    *args: object,
+    max_bytes: int = DEFAULT_MAX_BYTES,
+) -> Any:
+    """Call ``method`` at ``uri`` and return the value of a code-1 answer, or raise."""
+    answer = _ask(uri, who, timeout, max_bytes, method, *args)
     if not (isinstance(answer, list) and len(answer) == 3 and isinstance(answer[0], int)):
         msg = f"{who} at {uri}: {method} gave {answer!r:.200}, not [code, status, value]"
-        raise ExternalToolError(msg)
+        raise ExternalToolError(printable(msg, 400))
     if answer[0] != 1:
-        raise ExternalToolError(f"{who} at {uri}: {method} failed: {answer[1]}")
+        raise ExternalToolError(f"{who} at {uri}: {method} failed: {printable(str(answer[1]))}")
     return answer[2]
 
 
 def _bad(uri: str, method: str, value: object) -> ExternalToolError:
     """Build the error for a code-1 answer whose value has the wrong shape."""
-    return ExternalToolError(f"ROS master at {uri}: {method} gave an unexpected {value!r:.200}")
+    msg = f"ROS master at {uri}: {method} gave an unexpected {value!r:.200}"
+    return ExternalToolError(printable(msg, 400))
+
+
+def _name(value: object) -> bool:
+    """Tell whether ``value`` can be a ROS name or type: a string with nothing unprintable."""
+    return isinstance(value, str) and value.isprintable()
 
 
 def _registrations(uri: str, value: object) -> tuple[dict[str, set[str]], ...]:
@@ -106,11 +271,11 @@ def _registrations(uri: str, value: object) -> tuple[dict[str, set[str]], ...]:
         if not isinstance(section, list):
             raise _bad(uri, "getSystemState", value)
         for entry in section:
-            ok = isinstance(entry, list) and len(entry) == 2 and isinstance(entry[0], str)
+            ok = isinstance(entry, list) and len(entry) == 2 and _name(entry[0])
             if not (ok and isinstance(entry[1], list)):
                 raise _bad(uri, "getSystemState", entry)
             for node in entry[1]:
-                if not isinstance(node, str):
+                if not _name(node):
                     raise _bad(uri, "getSystemState", entry)
                 by_node.setdefault(node, set()).add(entry[0])
         maps.append(by_node)
@@ -123,24 +288,20 @@ def _topic_types(uri: str, value: object) -> dict[str, str]:
         raise _bad(uri, "getTopicTypes", value)
     types: dict[str, str] = {}
     for entry in value:
-        if not (isinstance(entry, list) and [type(x) for x in entry] == [str, str]):
+        if not (isinstance(entry, list) and len(entry) == 2 and all(map(_name, entry))):
             raise _bad(uri, "getTopicTypes", entry)
         types[entry[0]] = entry[1]
     return types
 
 
-def _lookup_node(master_uri: str, name: str, timeout: float, caller_id: str) -> str | None:
+def _lookup_node(
+    master_uri: str, name: str, timeout: float, max_bytes: int, caller_id: str
+) -> str | None:
     """Return the API URI of node ``name``, or None if the master does not know it now."""
-    proxy = xmlrpc.client.ServerProxy(master_uri, transport=_TimeoutTransport(timeout))
-    try:
-        answer = proxy.lookupNode(caller_id, name)
-    except (OSError, xmlrpc.client.Error, http.client.HTTPException, ExpatError) as e:
-        msg = f"ROS master at {master_uri}: lookupNode({name}) failed: {e or type(e).__name__}"
-        raise ExternalToolError(msg) from None
-    finally:
-        proxy("close")()
+    answer = _ask(master_uri, "ROS master", timeout, max_bytes, "lookupNode", caller_id, name)
     if isinstance(answer, list) and len(answer) == 3 and answer[0] == 1:
-        return answer[2] if isinstance(answer[2], str) else None
+        uri = answer[2]
+        return uri if isinstance(uri, str) and uri.isprintable() else None
     return None
 
 
@@ -148,7 +309,7 @@ def node_pid(node_uri: str, *, timeout: float = 1.0, caller_id: str = "/rosrecon
     """Return the pid a node's own API reports, or None when it does not answer properly."""
     try:
         _check_uri(node_uri, "node")
-        pid = _call(node_uri, "node", timeout, "getPid", caller_id)
+        pid = _call(node_uri, "node", timeout, "getPid", caller_id, max_bytes=_NODE_MAX_BYTES)
     except (ExternalToolError, UsageError):
         return None
     return pid if isinstance(pid, int) and not isinstance(pid, bool) else None
@@ -169,22 +330,32 @@ def alive(node: LiveNode | str, *, timeout: float = 1.0, caller_id: str = "/rosr
 
 
 def read_live_graph(
-    master_uri: str, *, timeout: float = 3.0, caller_id: str = "/rosreconf"
+    master_uri: str,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
+    caller_id: str = "/rosreconf",
 ) -> LiveGraph:
     """Return what the master at ``master_uri`` lists, with each node's API URI and pid.
 
-    ``timeout`` bounds each XML-RPC call (two to the master, one ``lookupNode`` per node,
-    then ``getPid`` to every node, eight at a time so hung nodes do not add up). A node
-    that does not answer ``getPid`` gets ``pid=None``; only master failures raise.
+    ``timeout`` is each XML-RPC call's total deadline and ``max_bytes`` the cap on each
+    answer (two calls to the master, one ``lookupNode`` per node, then ``getPid`` to every
+    node, eight at a time so hung nodes do not add up). A node that does not answer
+    ``getPid`` gets ``pid=None``; only master failures raise. Names and types with
+    unprintable characters are refused: no ROS client library makes them, and they would
+    reach the terminal.
     """
     _check_uri(master_uri, "ROS master")
     who = "ROS master"
     taken_at = datetime.now(UTC)
-    state = _call(master_uri, who, timeout, "getSystemState", caller_id)
-    pubs, subs, srvs = _registrations(master_uri, state)
-    types = _topic_types(master_uri, _call(master_uri, who, timeout, "getTopicTypes", caller_id))
+
+    def ask(method: str) -> Any:
+        return _call(master_uri, who, timeout, method, caller_id, max_bytes=max_bytes)
+
+    pubs, subs, srvs = _registrations(master_uri, ask("getSystemState"))
+    types = _topic_types(master_uri, ask("getTopicTypes"))
     names = sorted({*pubs, *subs, *srvs})
-    uris = [_lookup_node(master_uri, n, timeout, caller_id) for n in names]
+    uris = [_lookup_node(master_uri, n, timeout, max_bytes, caller_id) for n in names]
 
     def pid_of(uri: str | None) -> int | None:
         return None if uri is None else node_pid(uri, timeout=timeout, caller_id=caller_id)
@@ -210,7 +381,8 @@ def purge_dead(
     graph: LiveGraph,
     *,
     only: Iterable[str] | None = None,
-    timeout: float = 3.0,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
     caller_id: str = "/rosreconf",
 ) -> tuple[str, ...]:
     """Unregister, like ``rosnode cleanup``, every node of ``graph`` that no longer answers.
@@ -223,7 +395,7 @@ def purge_dead(
     purged: list[str] = []
 
     def ask(method: str, *args: object) -> Any:
-        return _call(master_uri, "ROS master", timeout, method, *args)
+        return _call(master_uri, "ROS master", timeout, method, *args, max_bytes=max_bytes)
 
     for node in graph.nodes:
         if (wanted is not None and node.name not in wanted) or node.uri is None:
@@ -254,14 +426,46 @@ def shutdown_node(
     """
     try:
         _check_uri(node_uri, "node")
-        _call(node_uri, "node", timeout, "shutdown", caller_id, reason)
+        _call(node_uri, "node", timeout, "shutdown", caller_id, reason, max_bytes=_NODE_MAX_BYTES)
     except (ExternalToolError, UsageError):
         return False
     return True
 
 
-def read_live(master: str | None, snapshot: Path | None) -> LiveGraph:
+def master_identity(
+    master_uri: str,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
+    caller_id: str = "/rosreconf",
+) -> tuple[int | None, str | None]:
+    """Return what tells one run of the master from the next: its pid and ``/run_id``.
+
+    A restarted master lists none of the nodes registered with the one before (ROS 1 nodes
+    do not register again), so a watcher must know that it restarted rather than conclude
+    that every node failed. roscore sets the parameter ``/run_id`` to a fresh UUID; a bare
+    ``rosmaster`` does not (``None``), and then the pid alone tells.
+    """
+    _check_uri(master_uri, "ROS master")
+    who = "ROS master"
+    pid = _call(master_uri, who, timeout, "getPid", caller_id, max_bytes=max_bytes)
+    answer = _ask(master_uri, who, timeout, max_bytes, "getParam", caller_id, "/run_id")
+    found = isinstance(answer, list) and len(answer) == 3 and answer[0] == 1
+    run_id = answer[2] if found else None  # -1: no such parameter (a bare rosmaster)
+    pid_ok = isinstance(pid, int) and not isinstance(pid, bool)
+    return (pid if pid_ok else None), (printable(run_id, 80) if isinstance(run_id, str) else None)
+
+
+def read_live(
+    master: str | None,
+    snapshot: Path | None,
+    *,
+    timeout: float = DEFAULT_TIMEOUT,
+    max_bytes: int = DEFAULT_MAX_BYTES,
+) -> LiveGraph:
     """Read the live graph from exactly one of a master's URI and a saved snapshot file.
+
+    ``timeout`` and ``max_bytes`` bound each call to the master (see ``read_live_graph``).
 
     Raises:
         UsageError: both or neither are given, or the snapshot cannot be read.
@@ -275,4 +479,4 @@ def read_live(master: str | None, snapshot: Path | None) -> LiveGraph:
         except OSError as exc:
             raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
     assert master is not None
-    return read_live_graph(master)
+    return read_live_graph(master, timeout=timeout, max_bytes=max_bytes)

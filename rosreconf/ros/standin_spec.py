@@ -31,4 +31,4 @@ def standin_spec(component: Component) -> dict[str, Any]:
             if option.kind is InterfaceKind.TOPIC:
                 topic = interface_live_name(component, option.label)
                 subscribe.append({"topic": topic, "type": option.type})
-    return {"name": component.name, "publish": publish, "serve": serve, "subscribe": subscribe}
+    return {"name": component.node_name, "publish": publish, "serve": serve, "subscribe": subscribe}

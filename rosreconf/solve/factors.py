@@ -11,7 +11,7 @@ rows (candidate combinations) it allows:
 * edge u -> v realised:                 scope {u, v}
 * requirements of u's component met:    scope {u} + the providers that can meet them
 * "C needs D":                          scope {u} + the roles D can fill
-* "C excludes D", one component per role (injectivity): scope {u, w}
+* "C excludes D", one type per label, one component per role (injectivity): scope {u, w}
 
 Generated system graphs have small treewidth, so eliminating the role with the fewest
 neighbours first keeps every intermediate table to a few candidates^3 rows.
@@ -48,11 +48,14 @@ class Factor:
         rows: candidate names (one per scope role) -> value (a count, or an encoded cost).
         unit: every value is the neutral one (1 to count, 0 for costs), so joining with this
             table only filters rows and never needs to combine values.
+        rule: the rule of ``rosreconf.model.validity.RULES`` a constraint table encodes
+            (empty for tables made while eliminating and for cost tables).
     """
 
     scope: tuple[int, ...]
     rows: dict[tuple[str, ...], int]
     unit: bool = False
+    rule: str = ""
 
 
 Times = Callable[[int, int], int]
@@ -74,7 +77,7 @@ def constraint_factors(
     lib = inst.library
     out: list[Factor] = []
     for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
-        out.append(table((u, v), keep=ok.__contains__))
+        out.append(table((u, v), keep=ok.__contains__, rule="edge-realised"))
     for u in range(len(inst.roles)):
         out.extend(_requirement_factors(inst, u, alive, one, max_rows))
     holders: dict[str, list[int]] = defaultdict(list)
@@ -86,14 +89,20 @@ def constraint_factors(
             comp = lib[cu]
             for need in sorted(comp.needs):
                 where = tuple(w for w in holders.get(need, []) if w != u)
-                out.append(table((u, *where), keep=functools.partial(_needs_met, cu=cu, need=need)))
+                keep = functools.partial(_needs_met, cu=cu, need=need)
+                out.append(table((u, *where), keep=keep, rule="needs"))
             for ex in sorted(comp.excludes):
                 for w in holders.get(ex, []):
                     if w != u:
-                        out.append(table((u, w), keep=(cu, ex).__ne__))
+                        out.append(table((u, w), keep=(cu, ex).__ne__, rule="excludes"))
+            for other in sorted(inst.clashes.get(cu, ())):
+                for w in holders.get(other, []):
+                    if w > u:  # clashes are symmetric: one table per pair of roles
+                        pair = (cu, other).__ne__
+                        out.append(table((u, w), keep=pair, rule="one-type-per-label"))
     for shared in holders.values():
         for u, w in itertools.combinations(shared, 2):
-            out.append(table((u, w), keep=_distinct))
+            out.append(table((u, w), keep=_distinct, rule="one-role-each"))
     return out
 
 
@@ -103,6 +112,7 @@ def _table(
     keep: Callable[[tuple[str, ...]], bool],
     one: int,
     max_rows: int,
+    rule: str,
 ) -> Factor:
     size = 1
     for v in scope:
@@ -113,7 +123,7 @@ def _table(
             "the system graph is too densely connected"
         )
     rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
-    return Factor(scope, rows, unit=True)
+    return Factor(scope, rows, unit=True, rule=rule)
 
 
 def _distinct(s: tuple[str, ...]) -> bool:
@@ -151,7 +161,7 @@ def _requirement_factors(
                 for cv in alive[v]:
                     if not reqs or all((v, cv) in r for r in reqs):
                         rows[(cu, cv)] = one
-            out.append(Factor(scope, rows, unit=True))
+            out.append(Factor(scope, rows, unit=True, rule="requirement-met"))
             continue
 
         def met(
@@ -165,7 +175,7 @@ def _requirement_factors(
             have = set(zip(scope[1:], s[1:], strict=True))
             return all(not have.isdisjoint(r) for r in reqs)
 
-        out.append(_table(scope, alive, met, one, max_rows))
+        out.append(_table(scope, alive, met, one, max_rows, "requirement-met"))
     return out
 
 

@@ -36,9 +36,16 @@ class Instance:
         domains: per role, the candidate components (available, label and schema match),
             in library order.
         excluded: per role, candidate name -> why it was ruled out before solving.
-        edge_ok: per edge index, the allowed (consumer candidate, provider candidate) pairs.
+        edges: the (consumer, provider) role indices of the schema's *required* edges, the
+            ones every configuration must realise; optional edges are left out (rule
+            ``optional-edge`` of ``rosreconf.model.validity.RULES``) and only feed ``meets``.
+        edge_ok: per required edge index, the allowed (consumer candidate, provider
+            candidate) pairs.
         meets: per (role index, candidate, requirement index), the (provider role index,
-            provider candidate) pairs meeting that requirement along the role's edges.
+            provider candidate) pairs meeting that requirement along the role's edges
+            (required and optional).
+        clashes: candidate -> the candidates providing one of its labels with another type
+            (symmetric; rule ``one-type-per-label``: never chosen together).
     """
 
     schema: InteroperabilitySchema
@@ -50,6 +57,7 @@ class Instance:
     edges: list[tuple[int, int]] = field(default_factory=list)
     edge_ok: list[set[tuple[str, str]]] = field(default_factory=list)
     meets: dict[tuple[int, str, int], list[tuple[int, str]]] = field(default_factory=dict)
+    clashes: dict[str, set[str]] = field(default_factory=dict)
 
     @property
     def role_index(self) -> dict[str, int]:
@@ -97,11 +105,14 @@ def compile_instance(
                 options[c.name] = [
                     tuple(ids.setdefault(o, len(ids)) for o in r.options) for r in c.requires
                 ]
+    _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
         out_edges.setdefault(u, []).append((e, v))
+        if e.optional:
+            continue  # requirements may be met across it (meets, below); it need not be realised
         inst.edges.append((u, v))
         ok: set[tuple[str, str]] = set()
         for cu in domains[u]:
@@ -119,6 +130,22 @@ def compile_instance(
                     pairs.extend((v, cv.name) for cv in domains[v] if provides[cv.name] & allowed)
                 inst.meets[(u, cu.name, i)] = pairs
     return inst
+
+
+def _clashes(inst: Instance) -> None:
+    """Fill ``inst.clashes``: candidates providing one label with different types."""
+    typed: dict[tuple[str, str], dict[str, set[str]]] = {}
+    for dom in inst.domains:
+        for c in dom:
+            for i in c.provides:
+                typed.setdefault((i.kind, i.label), {}).setdefault(i.type, set()).add(c.name)
+    for by_type in typed.values():
+        if len(by_type) < 2:
+            continue
+        for t, names in by_type.items():
+            others = {n for t2, ns in by_type.items() if t2 != t for n in ns}
+            for n in names:
+                inst.clashes.setdefault(n, set()).update(others - {n})
 
 
 def _allows(edge: Edge, label: str) -> bool:

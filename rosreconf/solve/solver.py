@@ -46,16 +46,18 @@ __all__ = [
 ]
 
 PROGRAM = """
-1 { x(R,C) : cand(R,C) } 1 :- role(R).
-:- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).
-sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).
-:- x(U,CU), req(U,CU,I), not sat(U,I).
-chosen(C) :- x(_,C).
-:- x(_,C), needs(C,D), not chosen(D).
-:- x(_,C), excludes(C,D), chosen(D).
-:- x(R1,C), x(R2,C), R1 < R2.
+1 { x(R,C) : cand(R,C) } 1 :- role(R).                      % rule: complete
+:- edge(E,U,V), x(U,CU), x(V,CV), not ok(E,CU,CV).          % rule: edge-realised
+sat(U,I) :- x(U,CU), meets(U,CU,I,V,CV), x(V,CV).           % rule: requirement-met any-of
+:- x(U,CU), req(U,CU,I), not sat(U,I).                      % rule: requirement-met
+chosen(C) :- x(_,C).                           % rule: needs excludes one-type-per-label
+:- x(_,C), needs(C,D), not chosen(D).                       % rule: needs
+:- x(_,C), excludes(C,D), chosen(D).                        % rule: excludes
+:- x(_,C), clash(C,D), chosen(D).                           % rule: one-type-per-label
+:- x(R1,C), x(R2,C), R1 < R2.                               % rule: one-role-each
 #show x/2.
 """
+"""The fixed ASP program; each line names the rules of ``validity.RULES`` it encodes."""
 
 OPTIMISE = """
 #minimize { 1@2,R : x(R,C), current(R,D), C != D }.
@@ -84,6 +86,8 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
     for c in inst.library.components:
         out.extend(f"needs({ids[c.name]},{ids[d]})." for d in c.needs if d in ids)
         out.extend(f"excludes({ids[c.name]},{ids[d]})." for d in c.excludes if d in ids)
+    for name, others in sorted(inst.clashes.items()):
+        out.extend(f"clash({ids[name]},{ids[d]})." for d in sorted(others))
     if objective is not None:
         index = inst.role_index
         for role, comp in objective.current.items():

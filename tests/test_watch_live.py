@@ -1,0 +1,124 @@
+"""``Watcher`` on a real ROS 1 master: a master that restarts, and a roslaunch that fails.
+
+A restarted master lists none of the nodes registered with the old one (ROS 1 nodes do not
+register again), which is not the same as every node failing. And when roslaunch cannot start
+a node (here: the robot's real packages are not installed), its own error must be shown and
+its launch file and output kept. Everything started is stopped; the master fixture asserts
+that no process is left.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+import ros_harness
+from conftest import StartStandIn
+from typer.testing import CliRunner
+
+from rosreconf.cli.app import app
+from rosreconf.errors import ExternalToolError
+from rosreconf.formats.loader import load_bundled
+from rosreconf.model import Configuration
+from rosreconf.ros.standins import standin_spec
+from rosreconf.ros.watcher import Event, Watcher
+
+pytestmark = pytest.mark.ros
+
+SCHEMA = "object_repositioning"
+
+
+def _watcher(
+    master: ros_harness.Master, tmp_path: Path, events: list[Event], **kw: object
+) -> Watcher:
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == SCHEMA)
+    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    work = tmp_path / "work"
+    work.mkdir()
+    return Watcher(
+        master.uri, bundle.library, schema, nominal, work, master.env(), events.append,
+        apply=True, **kw,  # type: ignore[arg-type]
+    )  # fmt: skip
+
+
+def test_a_restarted_master_is_said_and_the_configuration_brought_back(
+    ros_master: ros_harness.Master, tmp_path: Path
+) -> None:
+    events: list[Event] = []
+    watcher = _watcher(ros_master, tmp_path, events, stand_ins=True, settle=30.0)
+    try:
+        assert watcher.step().ok, [e.message for e in events]
+        ros_harness.restart_master(ros_master)
+        deadline = time.monotonic() + 60
+        check = None
+        while time.monotonic() < deadline:
+            try:
+                check = watcher.step()
+            except ExternalToolError:
+                time.sleep(0.2)
+                continue
+            if check.ok:
+                break
+        kinds = [e.kind for e in events]
+        assert "master-restarted" in kinds, kinds
+        assert "failed" not in kinds and "no-configuration" not in kinds, kinds
+        assert check is not None and check.ok, [e.message for e in events[-3:]]
+        assert watcher.current.mapping == dict(watcher.schema.nominal)
+    finally:
+        watcher.close()
+
+
+def test_roslaunchs_error_is_shown_and_its_files_kept(
+    ros_master: ros_harness.Master, tmp_path: Path
+) -> None:
+    events: list[Event] = []
+    keep = tmp_path / "kept"
+    watcher = _watcher(ros_master, tmp_path, events, settle=10.0, launch_dir=keep)
+    try:
+        check = watcher.step()
+        again = watcher.step()  # what did not start is not launched again and again
+    finally:
+        watcher.close()
+    assert not check.ok and not again.ok
+    kinds = [e.kind for e in events]
+    assert kinds.count("launch") == 1, kinds
+    errors = [e for e in events if e.kind == "launch-error"]
+    assert errors and "cannot launch node of type" in errors[0].message, kinds
+    assert all(e.message.isprintable() for e in events)
+    launch_file, log = Path(errors[0].data["launch_file"]), Path(errors[0].data["output"])
+    assert launch_file.parent == keep and launch_file.read_text().startswith("<")
+    assert "cannot launch node of type" in log.read_text()
+    assert str(launch_file) in errors[0].message and str(log) in errors[0].message
+
+
+def test_watch_apply_says_roslaunchs_error_and_where_its_files_are(
+    ros_master: ros_harness.Master, runner: CliRunner, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    for key, value in ros_master.env().items():
+        monkeypatch.setenv(key, value)
+    argv = ["watch", "--master", ros_master.uri, "--only", SCHEMA, "--apply", "--once"]
+    result = runner.invoke(app, [*argv, "--settle", "5"])
+    assert result.exit_code == 1, result.stderr
+    assert "cannot launch node of type" in result.stderr
+    kept = sorted((ros_master.home / "log").glob("rosreconf-watch-*"))
+    assert len(kept) == 1 and str(kept[0]) in result.stderr
+    assert sorted(p.name for p in kept[0].iterdir()) == ["step1.launch", "step1.log"]
+
+
+def test_without_apply_a_restart_leaves_components_missing_not_failed(
+    ros_master: ros_harness.Master, standin: StartStandIn, tmp_path: Path
+) -> None:
+    events: list[Event] = []
+    watcher = _watcher(ros_master, tmp_path, events)
+    watcher.apply = False
+    for comp in watcher.current.components:
+        standin(standin_spec(watcher.library[comp]))
+    assert watcher.step().ok
+    ros_harness.restart_master(ros_master)
+    check = watcher.step()
+    kinds = [e.kind for e in events]
+    assert kinds == ["master-restarted", "missing"], kinds
+    assert not check.ok and "failed" not in kinds
+    assert events[1].data["components"] == list(watcher.current.components)
