@@ -158,6 +158,19 @@ def growth_child(folder: str) -> dict[str, Any]:
     return out
 
 
+def facts_child(folder: str) -> dict[str, Any]:
+    """Write ``folder/first.lp``: clingo's program and the facts of the folder's schema."""
+    from rosreconf.formats.loader import load_paths
+    from rosreconf.solve.instance import compile_instance
+    from rosreconf.solve.solver import PROGRAM, _facts
+
+    d = Path(folder)
+    loaded = load_paths([d / "libraries", d / "schemas"])
+    text = PROGRAM + _facts(compile_instance(loaded.library, loaded.schemas[0]))
+    (d / "first.lp").write_text(text, encoding="utf-8")
+    return {"bytes": len(text)}
+
+
 def watch_child(runs: str) -> dict[str, Any]:
     """Time the watcher's step from a detected failure to the new configuration (in-process).
 
@@ -274,6 +287,12 @@ def pair(
     }
 
 
+def write_in_child(roles: int, candidates: int, folder: Path) -> None:
+    """Run ``split_write`` in a child, so that the parent's peak RSS stays small."""
+    cmd = [sys.executable, str(Path(__file__)), "--child", f"split-{roles}x{candidates}"]
+    subprocess.run([*cmd, str(folder)], check=True, capture_output=True)
+
+
 def split_write(roles: int, candidates: int, folder: Path, per: int = 1000) -> None:
     """Write a generated library in files of ``per`` components (each under the 4 MiB limit)."""
     from rosreconf.formats.generate import generate
@@ -294,11 +313,8 @@ def split_write(roles: int, candidates: int, folder: Path, per: int = 1000) -> N
 
 def whole_process(tmp: Path, quick: bool) -> list[dict[str, Any]]:
     """Measure the user's commands against issue 12's references, in interleaved pairs."""
-    from rosreconf.formats.loader import load_paths
     from rosreconf.planning.planners import DEFAULT_SEARCH
     from rosreconf.planning.planners.fast_downward import fast_downward_root
-    from rosreconf.solve.instance import compile_instance
-    from rosreconf.solve.solver import PROGRAM, _facts
 
     script = Path(sys.executable).parent / "rosreconf"
     cli = [str(script)] if script.exists() else [sys.executable, "-m", "rosreconf"]
@@ -352,10 +368,12 @@ def whole_process(tmp: Path, quick: bool) -> list[dict[str, Any]]:
     ]
     size = (12, 3) if quick else (1000, 10)
     big = tmp / f"whole{size[0]}x{size[1]}"
-    split_write(*size, big)
-    loaded = load_paths([big / "libraries", big / "schemas"])
+    write_in_child(*size, big)
     program = big / "first.lp"
-    program.write_text(PROGRAM + _facts(compile_instance(loaded.library, loaded.schemas[0])))
+    # In a child: a child's peak RSS starts from its parent's (Linux keeps the high-water
+    # mark across fork), so the parent never loads a large library itself.
+    cmd = [sys.executable, str(Path(__file__)), "--child", "facts", str(big)]
+    subprocess.run(cmd, check=True, capture_output=True)
     clingo = [
         sys.executable,
         "-m",
@@ -410,7 +428,7 @@ def growth(tmp: Path, quick: bool, timeout: float) -> dict[str, Any]:
     rows = []
     for roles in QUICK_GROWTH if quick else GROWTH:
         folder = tmp / f"growth{roles}"
-        split_write(roles, 10, folder)
+        write_in_child(roles, 10, folder)
         cmd = [sys.executable, str(Path(__file__)), "--child", "growth", str(folder)]
         try:
             out = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, check=True)
@@ -488,13 +506,17 @@ def main() -> None:
             print(json.dumps(growth_child(where)))
         elif kind == "watch":
             print(json.dumps(watch_child(where)))
+        elif kind == "facts":
+            print(json.dumps(facts_child(where)))
+        elif kind.startswith("split-"):  # split-RxK: write the generated files, in a child
+            roles, candidates = (int(v) for v in kind[6:].split("x"))
+            split_write(roles, candidates, Path(where))
+            print("{}")
         else:
             print(json.dumps(child(kind, where)))
         return
     from rich.console import Console
     from rich.table import Table
-
-    from rosreconf.formats.generate import generate, write
 
     grid = QUICK if args.quick else FULL
     rows = []
@@ -515,7 +537,7 @@ def main() -> None:
         watched["scope"] = "in-process"
         for r, k in grid:
             folder = Path(tmp) / f"{r}x{k}"
-            write(generate(r, k, 0.2, seed=1), folder)
+            write_in_child(r, k, folder)
             runs = 1 if args.quick or r * k >= 2000 else 3
             row: dict[str, Any] = {"roles": r, "candidates": k}
             for kind in kinds:

@@ -201,12 +201,15 @@ def _fast_path_safe(text: str) -> bool:
     """Tell whether libyaml is known to read ``text`` exactly as PyYAML's pure parser does.
 
     The two differ on tabs (libyaml accepts a tab inside a plain scalar, PyYAML's scanner
-    does not) and on characters PyYAML's reader refuses; such text takes the pure path.
+    does not), on ``?`` (libyaml accepts ``e?lbow`` as a plain key inside ``{...}``, PyYAML
+    stops there with a syntax error) and on characters PyYAML's reader refuses; such text
+    takes the pure path (slower, same answer).
     tests/test_fast_paths.py searches for other differences.
     """
     return (
         FAST_LOADER is not None
         and "\t" not in text
+        and "?" not in text
         and not yaml.reader.Reader.NON_PRINTABLE.search(text)
     )
 
