@@ -496,6 +496,11 @@ def main() -> None:
     ap.add_argument(
         "--markdown", action="store_true", help="print the tables of --json for docs/PERFORMANCE.md"
     )
+    ap.add_argument(
+        "--simulate-only",
+        action="store_true",
+        help="measure only the simulate sweep and update its entry in the JSON",
+    )
     args = ap.parse_args()
     if args.markdown:
         print(markdown(json.loads(args.json.read_text(encoding="utf-8"))))
@@ -514,6 +519,9 @@ def main() -> None:
             print("{}")
         else:
             print(json.dumps(child(kind, where)))
+        return
+    if args.simulate_only:
+        update_simulate(args.json, args.timeout)
         return
     from rich.console import Console
     from rich.table import Table
@@ -560,6 +568,13 @@ def main() -> None:
         stream = Path(tmp) / f"{where[0]}x{where[1]}"
         counts = (10, 1000) if args.quick else (1000, 100_000)
         flat = {n: measure(f"list{n}", stream, 1, args.timeout) for n in counts}
+        r, k = (8, 2) if args.quick else SIMULATE_SIZE
+        sim_folder = Path(tmp) / f"sim{r}x{k}"
+        from rosreconf.formats.generate import generate, write
+
+        write(generate(r, k, 0.2, seed=1, dynamics=True), sim_folder)
+        simulate = simulate_sweep(sim_folder, 1 if args.quick else 3, args.timeout)
+        simulate["instance"] = f"{r}x{k}"
     floor = import_floor(3 if args.quick else 5)
     doc = {
         "machine": machine(),
@@ -571,6 +586,7 @@ def main() -> None:
         "streaming_rss_kib": {str(n): v.get("rss_kib") for n, v in flat.items()},
         "streaming_instance": f"{where[0]}x{where[1]}",
         "import_floor": floor,
+        "simulate": simulate,
     }
     args.json.write_text(json.dumps(doc, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     console = Console(width=200)  # a file or pipe gets the whole table, not 80 columns
@@ -596,6 +612,16 @@ def main() -> None:
         f"import rosreconf vs python -c pass (whole-process CPU): {floor['ratio']:.2f}x; "
         f"streaming RSS KiB (in-process): {doc['streaming_rss_kib']}"
     )
+
+    if simulate["status"] == "ok":
+        console.print(
+            f"simulate {simulate['instance']} (whole process): {simulate['configurations']} "
+            f"configurations, {simulate['loops_simulated']} distinct loops simulated; "
+            f"1 worker {simulate['seconds_1_worker']:.1f} s, 2 workers "
+            f"{simulate['seconds_2_workers']:.1f} s ({simulate['speedup_2_workers']:.2f}x)"
+        )
+    else:
+        console.print(f"simulate: {simulate['status']}")
 
 
 def markdown(doc: dict[str, Any]) -> str:
@@ -702,6 +728,61 @@ def fd_cell(m: dict[str, Any], first: dict[str, Any]) -> str:
         return f"{m['planned']} {m['seconds']:.1f} s"
     ratio = f", {m['seconds'] / first['seconds']:.0f}x" if first.get("status") == "ok" else ""
     return f"{m['seconds']:.2f} ({'valid' if m['valid'] else 'INVALID'}{ratio})"
+
+
+SIMULATE_SIZE = (8, 4)
+"""The simulate benchmark's generated instance (seed 1): 14,096 valid configurations."""
+
+
+def simulate_sweep(folder: Path, runs: int, timeout: float) -> dict[str, Any]:
+    """Time ``rosreconf simulate --json`` whole-process with 1 and 2 workers, interleaved.
+
+    Each run is a fresh ``python -m rosreconf`` (imports, loading, enumeration, simulation,
+    ranking, JSON), alternating 1 and 2 workers so that load on the machine hits both alike.
+    """
+    times: dict[int, list[float]] = {1: [], 2: []}
+    doc: dict[str, Any] = {}
+    for _ in range(runs):
+        for workers in (1, 2):
+            argv = [sys.executable, "-m", "rosreconf", "simulate", "--workers", str(workers)]
+            start = time.perf_counter()
+            done = subprocess.run(
+                [*argv, "--json"], cwd=folder, capture_output=True, text=True, timeout=timeout
+            )
+            times[workers].append(time.perf_counter() - start)
+            if done.returncode not in (0, 1):
+                return {"status": f"exit {done.returncode}: {done.stderr.strip()[-200:]}"}
+            doc = json.loads(done.stdout)["schemas"][0]
+    one, two = statistics.median(times[1]), statistics.median(times[2])
+    return {
+        "status": "ok",
+        "configurations": doc["configurations_simulated"],
+        "distinct_loops": doc["distinct_loops"],
+        "loops_simulated": doc["loops_simulated"],
+        "meeting_requirements": sum(c["meets_requirements"] for c in doc["configurations"]),
+        "unstable": sum(not c["stable"] for c in doc["configurations"]),
+        "seconds_1_worker": one,
+        "seconds_2_workers": two,
+        "speedup_2_workers": one / two,
+        "runs": runs,
+    }
+
+
+def update_simulate(path: Path, timeout: float) -> None:
+    """Measure only the simulate sweep and replace its entry in the results at ``path``."""
+    from rosreconf.formats.generate import generate, write
+
+    r, k = SIMULATE_SIZE
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / f"sim{r}x{k}"
+        write(generate(r, k, 0.2, seed=1, dynamics=True), folder)
+        result = simulate_sweep(folder, 3, timeout)
+    result["instance"] = f"{r}x{k}"
+    result["machine"] = machine()
+    doc = json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
+    doc["simulate"] = result
+    path.write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
+    print(json.dumps(result, indent=2))
 
 
 def machine() -> dict[str, Any]:

@@ -10,8 +10,14 @@ One function owns the subprocess so that each rule below holds for all of them:
   also ends children that ignore SIGTERM; a KeyboardInterrupt or SIGTERM that reaches
   rosreconf while it waits stops the group the same way and is then re-raised;
 - after every run, whatever is left of the group (a daemon the program forked) is killed;
-- optional address-space and CPU-time limits, set with ``setrlimit`` in the child; that is the
-  only thing the ``preexec_fn`` does, and it is used only when a limit is asked for;
+- the group dies with rosreconf, even when rosreconf is killed with SIGKILL and no cleanup
+  code can run (Linux): the program gets ``PR_SET_PDEATHSIG`` (SIGKILL), and because that
+  signal reaches only the program and not the workers it forks (Fast Downward's driver runs
+  its translator and search as children), a watchdog forked into the group before ``exec``
+  waits on a pipe whose only writer is rosreconf; when the pipe closes without a word, the
+  watchdog kills the whole group;
+- optional address-space and CPU-time limits, set with ``setrlimit`` in the child; those, the
+  parent-death signal and the watchdog are all the ``preexec_fn`` does;
 - stdout and stderr go to anonymous temporary files (no pipe can fill up and block the
   program) and only their last ``max_output_bytes`` are kept;
 - an executable that does not exist is a result (``missing``), not an exception, so that a
@@ -22,11 +28,13 @@ One function owns the subprocess so that each rule below holds for all of them:
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import os
 import resource
 import shutil
 import signal
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -156,6 +164,7 @@ def run_program(
             inp.write(stdin)
             inp.seek(0)
         start = time.monotonic()
+        alive_read, alive_write = os.pipe() if _LINUX else (-1, -1)
         try:
             proc = subprocess.Popen(
                 args,
@@ -165,12 +174,17 @@ def run_program(
                 cwd=cwd,
                 env=None if env is None else dict(env),
                 start_new_session=True,
-                preexec_fn=_limits(memory_limit_mb, cpu_limit_s),
+                pass_fds=(alive_read,) if _LINUX else (),
+                preexec_fn=_preexec(memory_limit_mb, cpu_limit_s, alive_read),
             )
         except FileNotFoundError:
             return ProgramResult(args, MISSING_RETURNCODE, "", "", 0.0, missing=True)
         except OSError as exc:
             raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
+        finally:
+            if _LINUX:
+                os.close(alive_read)  # the write end closes when rosreconf ends, however
+                _ALIVE_PIPES.append(alive_write)
         timed_out = False
         try:
             proc.wait(timeout=timeout)
@@ -182,6 +196,8 @@ def run_program(
             raise
         finally:
             _signal_group(proc.pid, signal.SIGKILL)  # leftovers, e.g. a forked daemon
+            if _LINUX:
+                _release(alive_write)  # after the kill: the watchdog died with its group
         elapsed = time.monotonic() - start
         stdout, cut_out = _tail(out, max_output_bytes)
         stderr, cut_err = _tail(err, max_output_bytes)
@@ -316,6 +332,57 @@ def descendants(root: int) -> set[int]:
     return found
 
 
+WORKDIR_PREFIX = "rosreconf-"
+"""Every temp dir of ours is named ``rosreconf-<pid>-<random>``: recognisable, with its owner."""
+
+_CLEANED: set[str] = set()
+
+
+def clean_stale_workdirs(parent: Path | None = None) -> list[Path]:
+    """Remove temp dirs of ours whose owning process is dead; return what was removed.
+
+    Only directories named ``rosreconf-<pid>-...``, owned by this user, whose ``<pid>`` is
+    no living process are removed: a run killed with SIGKILL leaves its Fast Downward files
+    behind (megabytes each), and nothing else can ever remove them. Each parent folder is
+    scanned once per process.
+    """
+    where = Path(parent) if parent is not None else Path(tempfile.gettempdir())
+    if str(where) in _CLEANED:
+        return []
+    _CLEANED.add(str(where))
+    removed: list[Path] = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(where):
+            owner = _owner_pid(entry.name)
+            if owner is None or owner == os.getpid() or _alive(owner):
+                continue
+            with contextlib.suppress(OSError):
+                info = entry.stat(follow_symlinks=False)
+                if entry.is_dir(follow_symlinks=False) and info.st_uid == os.getuid():
+                    shutil.rmtree(entry.path)
+                    removed.append(Path(entry.path))
+    return removed
+
+
+def _owner_pid(name: str) -> int | None:
+    """Return the pid in a ``rosreconf-<pid>-<random>`` name, or None for any other name."""
+    if not name.startswith(WORKDIR_PREFIX):
+        return None
+    pid, sep, rest = name[len(WORKDIR_PREFIX) :].partition("-")
+    return int(pid) if sep and rest and pid.isdigit() and pid[0] != "0" else None
+
+
+def _alive(pid: int) -> bool:
+    """Tell whether a process ``pid`` exists (one of another user's counts as alive)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
 @contextlib.contextmanager
 def private_workdir(parent: Path | None = None) -> Iterator[Path]:
     """Give a run its own temp dir (mode 0700), removed on every way out of the block.
@@ -323,17 +390,90 @@ def private_workdir(parent: Path | None = None) -> Iterator[Path]:
     The directory is removed on normal exit, on exceptions, on KeyboardInterrupt and on SIGTERM
     (turned into ``Terminated`` while the block runs in the main thread). ``parent`` chooses
     where it is made (default: the system temp dir); tests use it to check nothing is left.
+    Its name carries this process's pid, so that a later run can remove it with
+    ``clean_stale_workdirs`` if rosreconf is killed (SIGKILL) and no cleanup code runs.
     """
     with _sigterm_raises():
-        path = Path(tempfile.mkdtemp(prefix="rosreconf-", dir=parent))
+        clean_stale_workdirs(parent)
+        path = Path(tempfile.mkdtemp(prefix=f"{WORKDIR_PREFIX}{os.getpid()}-", dir=parent))
         try:
             yield path
         finally:
             shutil.rmtree(path, ignore_errors=True)
 
 
+_LINUX = sys.platform.startswith("linux")
+PR_SET_PDEATHSIG = 1
+"""``prctl`` option: the signal a process gets when the thread that started it ends."""
+
+_ALIVE_PIPES: list[int] = []
+"""Write ends of the pipes the watchdogs wait on, held until their program's group is dead."""
+
+
+def _release(fd: int) -> None:
+    """Close a watchdog pipe's write end once its group is dead (EOF then means nothing)."""
+    with contextlib.suppress(ValueError):
+        _ALIVE_PIPES.remove(fd)
+    with contextlib.suppress(OSError):
+        os.close(fd)
+
+
+def _preexec(
+    memory_limit_mb: int | None, cpu_limit_s: int | None, alive_read: int
+) -> Callable[[], None] | None:
+    """Return the child's setup: parent-death signal, group watchdog, rlimits (see module doc).
+
+    Everything that needs Python objects is computed here in the parent; the returned
+    function only calls ``prctl``, ``fork`` and ``setrlimit``.
+    """
+    set_limits = _limits(memory_limit_mb, cpu_limit_s)
+    if not _LINUX:
+        return set_limits
+    prctl = ctypes.CDLL(None, use_errno=True).prctl
+    parent = os.getpid()
+    max_fd = os.sysconf("SC_OPEN_MAX") if hasattr(os, "sysconf") else 1024
+
+    def setup() -> None:
+        prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+        if os.getppid() != parent:  # rosreconf died before prctl took effect
+            os.kill(os.getpid(), signal.SIGKILL)
+        middle = os.fork()
+        if middle == 0:  # fork twice, so that the watchdog is no child of the program
+            if os.fork() == 0:
+                _watchdog(alive_read, max_fd)
+            os._exit(0)
+        os.waitpid(middle, 0)
+        os.close(alive_read)
+        if set_limits is not None:
+            set_limits()
+
+    return setup
+
+
+def _watchdog(alive_read: int, max_fd: int) -> None:
+    """Wait until rosreconf's end of the pipe closes, then kill this process group; never return.
+
+    Runs in a process forked (twice, so that no program waiting for all of its children waits
+    for it) from the child before ``exec``, so it is in the program's group.
+    It closes every other descriptor first: it must not hold the program's output files or
+    subprocess's exec-status pipe open. When rosreconf ends the program normally it kills the
+    group (and this watchdog) before closing its end; an EOF read here therefore means
+    rosreconf died without cleaning up.
+    """
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        os.closerange(0, alive_read)
+        os.closerange(alive_read + 1, max_fd)
+        while os.read(alive_read, 64):
+            pass
+        os.killpg(0, signal.SIGKILL)
+    finally:
+        os._exit(0)
+
+
 def _limits(memory_limit_mb: int | None, cpu_limit_s: int | None) -> Callable[[], None] | None:
-    """Compute the rlimits in the parent; return a preexec_fn that only calls setrlimit."""
+    """Compute the rlimits in the parent; return a function that only calls setrlimit."""
     wanted: list[tuple[int, tuple[int, int]]] = []
     if memory_limit_mb is not None:
         size = memory_limit_mb << 20

@@ -58,3 +58,24 @@ def test_count_equals_enumeration(
     listed = list(ClingoEngine().configurations(inst))
     assert count(inst) == len(listed) >= 1
     assert all(is_valid(c, library, schema) for c in listed)  # type: ignore[arg-type]
+
+
+def test_dynamics_add_models_and_a_simulation_block_and_change_nothing_else(
+    tmp_path: Path,
+) -> None:
+    plain = generate(8, 3, seed=2)
+    modelled = generate(8, 3, seed=2, dynamics=True)
+    # The models come from their own random stream: removing them gives the plain files.
+    assert [ln for ln in plain.library.splitlines()] == [
+        ln
+        for ln in modelled.library.splitlines()
+        if not ln.startswith(("    dynamics:", "      transfer_function:", "      delay:"))
+    ]
+    assert modelled.schema.startswith(plain.schema)
+    write(modelled, tmp_path)
+    loaded = load_paths([tmp_path / "libraries", tmp_path / "schemas"])
+    assert not loaded.problems
+    [schema] = loaded.schemas
+    assert schema.simulation is not None
+    assert len(schema.simulation.loops) == 2  # one per actuator role (8 roles: 2 per layer)
+    assert all(c.dynamics is not None for c in loaded.library)

@@ -35,6 +35,21 @@ RUNS = [
     ("analyse", ["analyse", "--json"], None),
     ("redundancy", ["redundancy", "--p", "0.1", "--n", "20", "--q", "0.99", "--json"], None),
     ("whatif", ["whatif", "--only", "object_repositioning", "--workers", "1", "--json"], None),
+    ("simulate", ["simulate", "--workers", "1", "--json"], None),
+    (
+        "simulate",
+        [
+            "simulate",
+            "--workers",
+            "1",
+            "--json",
+            "--fail",
+            "NCA1",
+            "--pareto",
+            "settling_time,cost",
+        ],
+        None,
+    ),
     (
         "inspect",
         [

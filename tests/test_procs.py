@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import signal
 import stat
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -19,6 +20,7 @@ from rosreconf.procs import (
     MISSING_RETURNCODE,
     Background,
     Terminated,
+    clean_stale_workdirs,
     private_workdir,
     run_program,
     start_program,
@@ -161,6 +163,52 @@ def test_bad_arguments_are_programming_errors() -> None:
         run_program([], timeout=1)
     with pytest.raises(ValueError):
         run_program([PY, "-c", "pass"], timeout=0)
+
+
+def _killed_rosreconf(report: Path, workdir_parent: Path) -> dict[str, Any]:
+    """Start a Python running rosreconf's run_program in a private workdir; SIGKILL it.
+
+    Returns what the fake program (which forks a child ignoring SIGTERM, like Fast
+    Downward's driver forks its search) reported about its group.
+    """
+    code = (
+        "import sys; from pathlib import Path;"
+        "from rosreconf.procs import private_workdir, run_program;"
+        "cm = private_workdir(Path(sys.argv[2])); w = cm.__enter__();"
+        "(w / 'output.sas').write_bytes(b'x' * 4096);"
+        "run_program([sys.argv[1]], timeout=60, cwd=w)"
+    )
+    argv = [PY, "-c", code, str(FAKES / "fork_ignore_term.py"), str(workdir_parent)]
+    parent = subprocess.Popen(argv)
+    deadline = time.monotonic() + 20
+    while not report.exists() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    facts = read_report(report)
+    parent.kill()  # SIGKILL: no finally block, no signal handler runs
+    parent.wait()
+    return facts
+
+
+def test_the_group_dies_with_rosreconf_even_under_sigkill(report: Path, tmp_path: Path) -> None:
+    facts = _killed_rosreconf(report, tmp_path)
+    assert len(facts["pids"]) == 2  # the program and the child it forked
+    assert wait_until_gone(facts["pgid"], seconds=5) == []
+
+
+def test_a_killed_runs_temp_dir_is_removed_by_the_next_run(report: Path, tmp_path: Path) -> None:
+    foreign = [
+        tmp_path / "rosreconf-notapid-x",
+        tmp_path / "other-1-x",
+        tmp_path / f"rosreconf-{os.getpid()}-live",
+    ]
+    for path in foreign:
+        path.mkdir()
+    _killed_rosreconf(report, tmp_path)
+    stale = [p for p in tmp_path.iterdir() if p.is_dir() and p not in foreign]
+    assert len(stale) == 1 and (stale[0] / "output.sas").exists()
+    removed = clean_stale_workdirs(tmp_path)
+    assert removed == stale and not stale[0].exists()
+    assert all(p.is_dir() for p in foreign)  # not ours, or its owner is alive
 
 
 def test_new_output_gives_each_part_of_the_log_once_and_only_its_tail(tmp_path: Path) -> None:

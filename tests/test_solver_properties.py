@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
+from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis.library import analyse, exact_probability
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
@@ -70,3 +71,44 @@ def test_probability_equals_brute_force_over_failure_states(
     if configs:
         assert result.reliability is not None
         assert math.isclose(result.reliability.probability, total, abs_tol=1e-12)
+
+
+@PROPS
+@given(problem=problems())
+def test_orthogonality_counterexamples_are_sound_and_complete_when_they_say_so(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema],
+) -> None:
+    """Every listed counterexample is one; when called complete, they explain every failure."""
+    library, schema = problem
+    result = analyse(library, schema)
+    pairs = {frozenset((p.first, p.second)) for p in result.incompatible}
+    alone = {u.component for u in result.unusable}
+    valid = {frozenset(c.components) for c in brute_force(library, schema)}
+    for config in valid:
+        assert not alone & config
+        assert not any(pair <= config for pair in pairs)
+    roles = schema.graph.roles
+    doms = [[c.name for c in library.candidates(r.abstraction)] for r in roles]
+    for combo in itertools.product(*doms):
+        chosen = frozenset(combo)
+        explained = bool(alone & chosen) or any(pair <= chosen for pair in pairs)
+        if result.counterexamples_complete:
+            assert explained == (chosen not in valid), combo
+
+
+@PROPS
+@given(problem=problems(), listed=st.booleans())
+def test_single_points_of_failure_are_exactly_the_parts_of_every_configuration(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema], listed: bool
+) -> None:
+    """Both paths: configurations listed, or (EXACT_LIMIT 0, as for a huge library) counted."""
+    library, schema = problem
+    valid = [frozenset(c.components) for c in brute_force(library, schema)]
+    limit = library_analysis.EXACT_LIMIT
+    try:
+        library_analysis.EXACT_LIMIT = limit if listed else 0
+        result = analyse(library, schema, samples=200)
+    finally:
+        library_analysis.EXACT_LIMIT = limit
+    expected = sorted(frozenset.intersection(*valid)) if valid else []
+    assert result.single_points_of_failure == expected

@@ -43,6 +43,14 @@ class IncompatiblePair:
 
 
 @dataclass(frozen=True)
+class Unusable:
+    """A candidate that no configuration can hold at all, and why (a counterexample of one)."""
+
+    component: str
+    reason: str
+
+
+@dataclass(frozen=True)
 class RoleRedundancy:
     """How many components can play a role.
 
@@ -89,6 +97,8 @@ class SchemaAnalysis:
     valid: int
     orthogonal: bool
     incompatible: list[IncompatiblePair] = field(default_factory=list)
+    unusable: list[Unusable] = field(default_factory=list)
+    counterexamples_complete: bool = True
     redundancy: list[RoleRedundancy] = field(default_factory=list)
     single_points_of_failure: list[str] = field(default_factory=list)
     critical_pairs: list[tuple[str, str]] | None = None
@@ -115,6 +125,15 @@ def analyse(
         orthogonal=valid == substitutions and valid > 0,
         incompatible=incompatible_pairs(inst),
     )
+    unusable, extra, complete = requirement_counterexamples(inst)
+    if extra:
+        known = {(p.first, p.second) for p in result.incompatible}
+        result.incompatible = sorted(
+            [*result.incompatible, *(p for p in extra if (p.first, p.second) not in known)],
+            key=lambda p: (p.first, p.second),
+        )
+    result.unusable = unusable
+    result.counterexamples_complete = complete
     listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
     configs = [frozenset(c.components) for c in listed]
     used: list[set[str]] = [set() for _ in inst.roles]
@@ -137,7 +156,10 @@ def analyse(
         return count(compile_instance(library, schema, dead | failures)) == 0
 
     relevant = sorted(set().union(*configs)) if configs else _relevant(inst)
-    result.single_points_of_failure = [c for c in relevant if kills(frozenset({c}))]
+    # A single point of failure is in every configuration, so in any one of them: only the
+    # components of one witness need the check (R counts, not one per candidate).
+    first = configs[0] if configs else _first(inst)
+    result.single_points_of_failure = [c for c in relevant if c in first and kills(frozenset({c}))]
     survivors = [c for c in relevant if c not in result.single_points_of_failure]
     if len(survivors) <= PAIR_LIMIT:
         result.critical_pairs = [
@@ -165,6 +187,12 @@ def _substitutions(inst: Instance) -> int:
         return math.prod(len(d) for d in inst.domains)
     names = [[c.name for c in d] for d in inst.domains]
     return sum(1 for combo in itertools.product(*names) if len(set(combo)) == len(combo))
+
+
+def _first(inst: Instance) -> frozenset[str]:
+    """Return the components of one valid configuration (the instance has one)."""
+    found = ClingoEngine().first(inst)
+    return frozenset(found.components) if found is not None else frozenset()
 
 
 def _relevant(inst: Instance) -> list[str]:
@@ -215,6 +243,58 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
                     f"{c.name} and {clashing} provide one label with two message types",
                 )
     return [IncompatiblePair(a, b, why) for (a, b), why in sorted(out.items())]
+
+
+def requirement_counterexamples(
+    inst: Instance,
+) -> tuple[list[Unusable], list[IncompatiblePair], bool]:
+    """Return the counterexamples that unmet requirements give, and whether all are listed.
+
+    ``incompatible_pairs`` covers the edge, needs and excludes rules, each a pair. A
+    requirement left unmet is a pair only when every candidate that could meet it sits in one
+    role: then each other candidate of that role is incompatible with the consumer. When no
+    candidate can meet it, the consumer alone is a counterexample (``Unusable``). When the
+    candidates that meet it sit in two or more roles, a failing substitution needs all of
+    them to miss: a counterexample of three or more components, which no pair list shows,
+    so the third value is false and the list must be called a sample.
+    """
+    unusable: dict[str, str] = {}
+    pairs: dict[tuple[str, str], str] = {}
+    complete = True
+    holders = {c.name: u for u, dom in enumerate(inst.domains) for c in dom}
+    for u, dom in enumerate(inst.domains):
+        for c in dom:
+            for need in sorted(c.needs):
+                if holders.get(need, u) == u:  # nowhere to be, or only in c's own role
+                    unusable.setdefault(
+                        c.name, f"{c.name} needs {need}, which can fill no other role"
+                    )
+    for (u, name, i), meeting in sorted(inst.meets.items()):
+        if name in unusable:
+            continue
+        component = next(c for c in inst.domains[u] if c.name == name)
+        wanted = " or ".join(o.label for o in component.requires[i].options)
+        roles = {v for v, _ in meeting}
+        if not roles:
+            unusable[name] = (
+                f"{name} requires {wanted}, which no candidate of a connected role provides"
+            )
+        elif len(roles) == 1:
+            (v,) = roles
+            good = {cv for _, cv in meeting}
+            for cv in inst.domains[v]:
+                if cv.name not in good:
+                    pairs.setdefault(
+                        _key(name, cv.name),
+                        f"{name} requires {wanted}; {cv.name} does not provide it",
+                    )
+        else:
+            complete = False
+    return (
+        [Unusable(c, why) for c, why in sorted(unusable.items())],
+        [IncompatiblePair(a, b, why) for (a, b), why in sorted(pairs.items())],
+        complete,
+    )
 
 
 def _key(a: str, b: str) -> tuple[str, str]:
@@ -272,10 +352,19 @@ def monte_carlo(
     engine = ClingoEngine()
     hits = 0
     seen: dict[frozenset[str], bool] = {}
+    witnesses: list[frozenset[str]] = []  # configurations found so far
     for _ in range(samples):
         failed = frozenset(n for n in names if rng.random() < p[n]) | dead
         if failed not in seen:
-            seen[failed] = engine.first(compile_instance(library, schema, failed)) is not None
+            # A state that misses every component of a known configuration survives with it:
+            # no compile, no solver call (most samples of a large library are such states).
+            if any(not (w & failed) for w in witnesses):
+                seen[failed] = True
+            else:
+                found = engine.first(compile_instance(library, schema, failed))
+                if found is not None:
+                    witnesses.append(frozenset(found.components))
+                seen[failed] = found is not None
         hits += seen[failed]
     est = hits / samples
     low, high = wilson(hits, samples)

@@ -22,7 +22,7 @@ import typer.core
 import typer.main
 from typer._click import Command, Context  # typer vendors click: its types are what it builds
 
-from rosreconf import __version__
+from rosreconf import __version__, jsonout
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, InvalidInputError, RosreconfError
 
@@ -98,6 +98,10 @@ COMMANDS: dict[str, Verb] = {
     "whatif": Verb(
         "rosreconf.cli.whatif:whatif_command",
         "Show which schemas survive each set of up to K failures: critical parts and pairs.",
+    ),
+    "simulate": Verb(
+        "rosreconf.cli.simulate:simulate_command",
+        "Simulate every valid configuration's control loops; rank by settling time and error.",
     ),
 }
 """Every verb, in the order ``rosreconf --help`` lists them."""
@@ -217,6 +221,7 @@ def _root(
     ),
 ) -> None:
     """Configure and reconfigure ROS systems from a component library."""
+    jsonout.allow_big_ints()  # counts of any size print in full, in text and JSON
 
 
 def main() -> None:

@@ -6,6 +6,7 @@ importable from here as ``select`` and ``Selection``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated
@@ -28,6 +29,7 @@ __all__ = [  # the input the options select, then the options
     "OutputOption",
     "SchemaOption",
     "Selection",
+    "finite",
     "select",
     "weights_of",
 ]
@@ -86,7 +88,15 @@ ConfigurationOption = Annotated[
     ),
 ]
 OutputOption = Annotated[
-    Path, typer.Option("--output", "-o", metavar="FILE", help="File to write.", show_default=False)
+    str,
+    typer.Option(
+        "--output",
+        "-o",
+        metavar="FILE",
+        help="File to write, or - for stdout. A symlink is written through; devices, FIFOs "
+        "and folders are refused.",
+        show_default=False,
+    ),
 ]
 MasterOption = Annotated[
     str,
@@ -153,3 +163,10 @@ def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
         if not sep or not name.strip():
             raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
     return weights
+
+
+def finite(value: float | None) -> float | None:
+    """Refuse NaN and infinity for a float option (typer's ``min``/``max`` let NaN through)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"{value} is not a finite number")
+    return value

@@ -10,6 +10,8 @@ import sys
 
 from rich.console import Console
 
+from rosreconf.outfiles import OutputTarget, write_atomic
+
 stdout = Console(highlight=False, soft_wrap=True)
 stderr = Console(stderr=True, highlight=False, soft_wrap=True)
 
@@ -18,3 +20,14 @@ def write_stdout(text: str) -> None:
     """Write ``text`` to stdout exactly (JSON documents must not be re-wrapped by rich)."""
     sys.stdout.write(text)
     sys.stdout.flush()
+
+
+def write_output(target: OutputTarget, data: bytes | str) -> str:
+    """Write ``data`` to an ``-o`` target (a file, atomically, or stdout); name where it went."""
+    if not target.is_stdout:
+        write_atomic(target.shown, data)
+        return target.shown
+    sys.stdout.flush()
+    sys.stdout.buffer.write(data.encode("utf-8") if isinstance(data, str) else data)
+    sys.stdout.buffer.flush()
+    return "stdout"

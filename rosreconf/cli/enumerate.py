@@ -24,6 +24,7 @@ from rosreconf.cli.common import (
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.model import InteroperabilitySchema
+from rosreconf.outfiles import output_target
 from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.enumerate import REPORTERS
@@ -70,6 +71,8 @@ def enumerate_command(
     if objective and not best:
         raise UsageError("--objective says what --best minimises: add --best")
     goal = Objective(weights=weights_of(objective)) if best else None
+    if graph is not None:
+        output_target(graph, stdout_ok=False)  # refuse a bad --graph before the work
     sel = select(library, schema, fail, only)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
@@ -86,6 +89,12 @@ def enumerate_command(
             for n, config in enumerate(found.configurations(), start=1):
                 report.configuration(sel, s, config, n)
                 tick()
+        if found.counted_by_listing:
+            stderr.print(
+                f"rosreconf: note: {s.name}: exact counting would need too large a table here; "
+                "counted by listing every configuration instead",
+                markup=False,
+            )
         if found.first is not None:
             firsts.append(RosPicture(s, found.first))
         empty += found.total == 0

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated
 
 import typer
 
+from rosreconf.cli.common import finite
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.formats.generate import generate, write
+from rosreconf.outfiles import output_folder
 
 
 def generate_command(
@@ -18,13 +19,26 @@ def generate_command(
         int, typer.Option("--candidates", "-k", min=1, help="Candidates per role K.")
     ],
     output: Annotated[
-        Path, typer.Option("--output", "-o", help="Folder to write libraries/ and schemas/ into.")
+        str, typer.Option("--output", "-o", help="Folder to write libraries/ and schemas/ into.")
     ],
     coupling: Annotated[
         float,
-        typer.Option(min=0.0, max=1.0, help="Share of edges carrying a needs/excludes coupling."),
+        typer.Option(
+            min=0.0,
+            max=1.0,
+            callback=finite,
+            help="Share of edges carrying a needs/excludes coupling.",
+        ),
     ] = 0.2,
     seed: Annotated[int, typer.Option(help="Random seed; the same seed gives the same files.")] = 0,
+    dynamics: Annotated[
+        bool,
+        typer.Option(
+            "--dynamics",
+            help="Also give every component a transfer function and the schema a simulation "
+            "block (one loop per actuator), for rosreconf simulate.",
+        ),
+    ] = False,
 ) -> None:
     """Generate a layered library and schema shaped like the paper's Figure 2.
 
@@ -33,10 +47,11 @@ def generate_command(
     gives the same bytes.
     """
 
+    folder = output_folder(output)
     try:
-        generated = generate(roles, candidates, coupling, seed)
+        generated = generate(roles, candidates, coupling, seed, dynamics=dynamics)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    lib, schema = write(generated, output)
+    lib, schema = write(generated, folder)
     write_stdout(f"wrote {lib} and {schema}\n")
     raise typer.Exit(ExitCode.OK)

@@ -15,15 +15,16 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr
+from rosreconf.cli.console import stderr, write_output
 from rosreconf.errors import ExitCode
+from rosreconf.outfiles import output_target
 from rosreconf.render.pictures import (
     RosPicture,
     View,
     library_dot,
+    picture,
     ros_dot,
     system_dot,
-    write_picture,
 )
 from rosreconf.solve.running import targets
 
@@ -51,6 +52,7 @@ def graph_command(
     3 when Graphviz's dot is missing or fails.
     """
 
+    target = output_target(output)
     sel = select(library, schema, fail, only)
     if view is View.SYSTEM:
         text = system_dot(sel.schemas)
@@ -61,6 +63,7 @@ def graph_command(
             RosPicture(t.schema, t.configuration, t.before) for t in targets(sel, configuration)
         ]
         text = ros_dot(sel.library, pictures, sel.failed)
-    written = write_picture(output, text, fmt)
-    stderr.print(f"rosreconf: wrote {output} ({view.value} view, {written})", markup=False)
+    data, written = picture(target.shown, text, fmt)
+    where = write_output(target, data)
+    stderr.print(f"rosreconf: wrote {where} ({view.value} view, {written})", markup=False)
     raise typer.Exit(ExitCode.OK)

@@ -15,9 +15,9 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr
+from rosreconf.cli.console import stderr, write_output
 from rosreconf.errors import ExitCode, UsageError
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_target
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.solve.running import targets
 
@@ -40,6 +40,7 @@ def launch_command(
 
     if ros1 == ros2:
         raise UsageError("give exactly one of --ros1 and --ros2")
+    out = output_target(output)
     sel = select(library, schema, fail, only)
     found = targets(sel, configuration)
     if len(found) != 1:
@@ -48,11 +49,11 @@ def launch_command(
     (target,) = found
     version = RosVersion.ROS1 if ros1 else RosVersion.ROS2
     result = launch_file(sel.library, target.schema, target.configuration, version)
-    write_atomic(output, result.text)
+    where = write_output(out, result.text)
     for note in result.notes:
         stderr.print(f"rosreconf: note: {note}", markup=False)
     stderr.print(
-        f"rosreconf: wrote {output} ({version.value}, {len(result.nodes)} nodes: "
+        f"rosreconf: wrote {where} ({version.value}, {len(result.nodes)} nodes: "
         f"{', '.join(result.nodes)})",
         markup=False,
     )

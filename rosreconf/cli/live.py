@@ -18,9 +18,9 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr, write_stdout
+from rosreconf.cli.console import stderr, write_output, write_stdout
 from rosreconf.errors import ExitCode
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_target
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
@@ -33,22 +33,22 @@ from rosreconf.solve.running import one_target
 def snapshot_command(
     master: MasterOption,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write here (default: stdout).")
-    ] = None,
+        str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
+    ] = "-",
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
 ) -> None:
     """Save what the ROS master lists (nodes, topics, services, types, pids) as JSON."""
 
+    target = output_target(output)
     text = to_json(read_live_graph(master, timeout=master_timeout, max_bytes=max_answer_mb << 20))
-    if output is None:
-        write_stdout(text)
-    else:
-        write_atomic(output, text)
+    write_output(target, text)
 
 
 def import_command(
-    output: Annotated[Path, typer.Option("--output", "-o", help="The library file to write.")],
+    output: Annotated[
+        str, typer.Option("--output", "-o", help="The library file to write (- for stdout).")
+    ],
     master: Annotated[
         str | None, typer.Option("--master", help="Read this ROS master's URI.")
     ] = None,
@@ -61,13 +61,14 @@ def import_command(
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
+    target = output_target(output)
     graph = read_live(master, snapshot, timeout=master_timeout, max_bytes=max_answer_mb << 20)
     text = draft_library(graph, name)
-    write_atomic(output, text)
+    where = write_output(target, text)
     live = without_plumbing(graph).nodes
     todo, nodes = text.count("# TODO"), len(live)
     stderr.print(
-        f"rosreconf: wrote {output}: {nodes} node(s) read, {todo} TODO(s) to fill in",
+        f"rosreconf: wrote {where}: {nodes} node(s) read, {todo} TODO(s) to fill in",
         markup=False,
     )
     anonymous = [n.name for n in live if is_anonymous(n.name)]

@@ -15,17 +15,22 @@ from rosreconf.cli.common import (
     ObjectiveOption,
     OnlyOption,
     SchemaOption,
+    finite,
     select,
     weights_of,
 )
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, UsageError
+from rosreconf.outfiles import output_target
 from rosreconf.planning.planners import DEFAULT_SEARCH, PlanStatus, planner_named
 from rosreconf.planning.replan import replan_all
 from rosreconf.render.pictures import ros_dot, write_picture
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.plan import REPORTERS, pictures
 from rosreconf.solve.running import running_mappings
+
+MAX_TIMEOUT = 7 * 24 * 3600.0
+"""Longest --timeout: a week; beyond it a number is a typo, and ``inf`` crashed the timer."""
 
 
 def plan_command(
@@ -42,7 +47,10 @@ def plan_command(
             f"string. Default: {DEFAULT_SEARCH}."
         ),
     ] = None,
-    timeout: Annotated[float, typer.Option(min=1, help="Seconds per schema.")] = 60.0,
+    timeout: Annotated[
+        float,
+        typer.Option(min=1, max=MAX_TIMEOUT, callback=finite, help="Seconds per schema."),
+    ] = 60.0,
     keep_pddl: Annotated[
         Path | None, typer.Option("--keep-pddl", help="Also write the PDDL into this folder.")
     ] = None,
@@ -66,6 +74,8 @@ def plan_command(
     errors, 3 when the planner is missing, fails or runs out of time.
     """
 
+    if graph is not None:
+        output_target(graph, stdout_ok=False)  # refuse a bad --graph before planning
     sel = select(library, schema, fail, only)
     if not sel.failed:
         raise UsageError("give at least one --fail COMPONENT")

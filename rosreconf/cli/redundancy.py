@@ -8,7 +8,7 @@ import typer
 
 from rosreconf.analysis.redundancy import redundancy
 from rosreconf.cli.common import JsonOption
-from rosreconf.cli.console import write_stdout
+from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.redundancy import REPORTERS
 
@@ -22,4 +22,12 @@ def redundancy_command(
     """Compute the redundancy r with (1 - p^r)^N >= q (Theorem 10), beside the approximation."""
 
     a = redundancy(p, n, q)
+    if p > 0.5:  # almost surely an availability: say so, and answer both readings
+        other = redundancy(1 - p, n, q)
+        stderr.print(
+            f"rosreconf: warning: p = {p:g} is read as a FAILURE probability (r = {a.r_needed}); "
+            f"a value above 0.5 is almost surely an availability: if so, the failure "
+            f"probability is {1 - p:g} and r = {other.r_needed} (give --p {1 - p:g})",
+            markup=False,
+        )
     write_stdout(REPORTERS[Output.of(as_json)].render(a))

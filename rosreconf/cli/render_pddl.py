@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -19,13 +18,14 @@ from rosreconf.cli.common import (
 )
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode
+from rosreconf.outfiles import output_folder
 from rosreconf.planning.replan import write_tasks
 from rosreconf.solve.running import running_mappings
 
 
 def render_pddl(
     output: Annotated[
-        Path,
+        str,
         typer.Option(
             "--output", "-o", help="Folder to write <schema>/domain.pddl and problem.pddl into."
         ),
@@ -39,12 +39,15 @@ def render_pddl(
 ) -> None:
     """Write the PDDL task of each schema (pre-grounded STRIPS with action costs; docs/pddl.md).
 
-    Each file is written whole or not at all. Exit 0 on success.
+    The pair is written into a temp folder and moved into place as one, so concurrent runs
+    never leave a domain and a problem from different runs. Exit 0 on success, 2 when the
+    output is not a folder.
     """
 
+    folder = output_folder(output)
     sel = select(library, schema, fail, only)
     weights = weights_of(objective)
     running = running_mappings(sel, current, weights)
-    written = write_tasks(sel.library, sel.schemas, sel.failed, running, weights, output)
+    written = write_tasks(sel.library, sel.schemas, sel.failed, running, weights, folder)
     write_stdout("".join(f"{path}\n" for path in written))
     raise typer.Exit(ExitCode.OK)

@@ -19,6 +19,7 @@ from rosreconf.cli.common import (
     MaxAnswerOption,
     OnlySchemaOption,
     SchemaOption,
+    finite,
     select,
 )
 from rosreconf.cli.console import stderr
@@ -44,9 +45,17 @@ def watch_command(
         bool,
         typer.Option("--stand-ins", help="Launch stand-in nodes instead of the real executables."),
     ] = False,
-    interval: Annotated[float, typer.Option(min=0.05, help="Seconds between polls.")] = 1.0,
+    interval: Annotated[
+        float, typer.Option(min=0.05, max=3600, callback=finite, help="Seconds between polls.")
+    ] = 1.0,
     settle: Annotated[
-        float, typer.Option(min=1.0, help="Seconds a change may take to show on the master.")
+        float,
+        typer.Option(
+            min=1.0,
+            max=3600,
+            callback=finite,
+            help="Seconds a change may take to show on the master.",
+        ),
     ] = 30.0,
     json_log: Annotated[
         Path | None, typer.Option("--json-log", help="Also write every event as a JSON line.")

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import functools
-import os
-from concurrent.futures import ProcessPoolExecutor
 from typing import Annotated
 
 import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from rosreconf.analysis.whatif import analyse
+from rosreconf.analysis.workers import executor
 from rosreconf.cli.common import JsonOption, LibraryOption, OnlyOption, SchemaOption, select
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
@@ -28,6 +27,10 @@ def whatif_command(
         int | None,
         typer.Option(min=1, help="Worker processes. Default: one per core.", show_default=False),
     ] = None,
+    cluster: Annotated[
+        str | None,
+        typer.Option(help="Solve on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
+    ] = None,
     as_json: JsonOption = False,
 ) -> None:
     """Show which schemas survive each set of up to K failures: critical parts and pairs."""
@@ -35,7 +38,6 @@ def whatif_command(
     sel = select(library, schema, None, only)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
-    n = workers or os.cpu_count() or 1
     progress = Progress(
         TextColumn("{task.description}"),
         BarColumn(),
@@ -46,14 +48,14 @@ def whatif_command(
         disable=not stderr.is_terminal,
     )
     reports = []
-    with progress, ProcessPoolExecutor(max_workers=n) as pool:
+    with progress, executor(workers, cluster) as pool:
         for s in sel.schemas:
             bar = progress.add_task(f"what if: {s.display_name}", total=None)
             report = analyse(
                 sel.library,
                 s,
                 max_failures,
-                pool if n > 1 else None,
+                pool,
                 functools.partial(progress.advance, bar),
             )
             progress.update(bar, visible=False)

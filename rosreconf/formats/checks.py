@@ -13,6 +13,7 @@ import difflib
 from collections.abc import Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
+from rosreconf.formats import simchecks
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -39,6 +40,7 @@ def check(
     problems: list[Problem] = []
     components = [c for lib in libraries for c in lib.components]
     problems.extend(_names(components))
+    problems.extend(p for c in components for p in simchecks.component_problems(c))
     if components:
         library = ComponentLibrary.merge(libraries)
         problems.extend(_couplings(library))
@@ -49,6 +51,7 @@ def check(
     known = components if library_complete else []
     for schema in schemas:
         problems.extend(_schema(schema, known))
+        problems.extend(simchecks.schema_problems(schema))
     if components and schemas and library_complete:
         problems.extend(_usage(components, schemas))
     return sorted(problems)

@@ -17,11 +17,11 @@ Whether a configuration is *valid* is not decided here (see ``rosreconf.model.va
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem, UsageError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.model import Span
@@ -86,4 +86,4 @@ def render_configurations(configs: Mapping[str, Mapping[str, str]]) -> str:
         "version": 1,
         "configurations": {s: dict(a) for s, a in configs.items()},
     }
-    return json.dumps(doc, indent=2) + "\n"
+    return jsonout.dumps(doc, indent=2) + "\n"

@@ -27,7 +27,7 @@ import random
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_folder, write_atomic
 
 LAYERS = ("sen", "per", "ctl", "act")
 """Layer prefixes in the order information flows (Fig. 2)."""
@@ -70,10 +70,20 @@ def layer_sizes(roles: int) -> list[int]:
     return [roles // 4 + (1 if i < roles % 4 else 0) for i in range(4)]
 
 
-def generate(roles: int, candidates: int, coupling: float = 0.2, seed: int = 0) -> Generated:
+def generate(
+    roles: int,
+    candidates: int,
+    coupling: float = 0.2,
+    seed: int = 0,
+    *,
+    dynamics: bool = False,
+) -> Generated:
     """Return a library and schema of ``roles`` roles with ``candidates`` candidates each.
 
-    The same arguments always give the same bytes (``random.Random(seed)``).
+    The same arguments always give the same bytes (``random.Random(seed)``). With
+    ``dynamics`` every component also gets a transfer function and the schema a simulation
+    block (``_dynamics``); they come from a second random stream, so the rest of the files
+    is the same bytes as without.
 
     Raises:
         ValueError: a size below 1 or a coupling outside [0, 1].
@@ -127,9 +137,54 @@ def generate(roles: int, candidates: int, coupling: float = 0.2, seed: int = 0) 
             if other in who.needs or other in who.excludes:
                 continue
             (who.needs if rng.random() < 0.5 else who.excludes).add(other)
-    library = _library_text(roles, candidates, seed, layers, cands, rng)
-    schema = _schema_text(roles, candidates, seed, layers, edges, nominal)
+    models = _dynamics(layers, cands, random.Random(seed + 1)) if dynamics else None
+    library = _library_text(roles, candidates, seed, layers, cands, rng, models)
+    schema = _schema_text(roles, candidates, seed, layers, edges, nominal, models)
     return Generated(library, schema)
+
+
+@dataclass(frozen=True)
+class _Models:
+    """Generated dynamics: per component a transfer function line, and the loops."""
+
+    lines: dict[str, list[str]]
+    loops: list[tuple[str, list[str], list[str]]]
+
+
+def _dynamics(
+    layers: list[list[str]], cands: dict[str, list[_Candidate]], rng: random.Random
+) -> _Models | None:
+    """Give every component a model by its layer and close one loop per actuator role.
+
+    Sensors and perception are lags with dead time, controllers PI, actuators lags; loop
+    ``i`` runs control ``i`` -> actuator ``i`` -> a first-order plant, fed back through
+    sensor ``i`` and perception ``i`` (indices wrap around their layers). Gains are drawn
+    so that most loops are stable and some are not, as with real parts.
+    """
+    if len(layers) < 4:
+        return None
+    lines: dict[str, list[str]] = {}
+    for layer in layers:
+        for role in layer:
+            for c in cands[role]:
+                kind = role[:3]
+                if kind in ("sen", "per"):
+                    tau, delay = rng.uniform(0.01, 0.1), rng.uniform(0.0, 0.1)
+                    tf = f"{{num: [1.0], den: [{tau:.3f}, 1.0]}}"
+                    extra = [f"      delay: {delay:.3f}"]
+                elif kind == "ctl":
+                    kp, ki = rng.uniform(0.5, 4.0), rng.uniform(0.2, 3.0)
+                    tf, extra = f"{{num: [{kp:.3f}, {ki:.3f}], den: [1.0, 0.0]}}", []
+                else:
+                    tau = rng.uniform(0.02, 0.3)
+                    tf, extra = f"{{num: [1.0], den: [{tau:.3f}, 1.0]}}", []
+                lines[c.name] = ["    dynamics:", f"      transfer_function: {tf}", *extra]
+    sen, per, ctl, act = layers
+    loops = [
+        (f"loop{i}", [ctl[i % len(ctl)], a], [sen[i % len(sen)], per[i % len(per)]])
+        for i, a in enumerate(act)
+    ]
+    return _Models(lines, loops)
 
 
 def _library_text(
@@ -139,6 +194,7 @@ def _library_text(
     layers: list[list[str]],
     cands: dict[str, list[_Candidate]],
     rng: random.Random,
+    models: _Models | None = None,
 ) -> str:
     out = [
         LIBRARY_HEADER,
@@ -172,6 +228,8 @@ def _library_text(
                 out.append(f"    failure_probability: {rng.uniform(0.001, 0.05):.4f}")
                 cost, settle = rng.uniform(1.0, 10.0), rng.uniform(0.1, 2.0)
                 out.append(f"    metrics: {{cost: {cost:.2f}, settling_time: {settle:.3f}}}")
+                if models is not None:
+                    out.extend(models.lines[c.name])
     return "\n".join(out) + "\n"
 
 
@@ -182,6 +240,7 @@ def _schema_text(
     layers: list[list[str]],
     edges: list[tuple[str, list[str]]],
     nominal: dict[str, str],
+    models: _Models | None = None,
 ) -> str:
     out = [
         SCHEMA_HEADER,
@@ -205,6 +264,18 @@ def _schema_text(
             out.append(f"  - {{consumer: {consumer}, providers: [{', '.join(providers)}]}}")
     out.append("nominal:")
     out.extend(f"  {role}: {comp}" for role, comp in nominal.items())
+    if models is not None:
+        out += [
+            "simulation:",
+            "  duration: 10.0",
+            "  requirements: {settling_time: 5.0, steady_state_error: 0.02, overshoot: 30.0}",
+            "  loops:",
+        ]
+        for name, forward, feedback in models.loops:
+            out.append(f"    - name: {name}")
+            out.append(f"      forward: [{', '.join(forward)}]")
+            out.append("      plant: {transfer_function: {num: [1.0], den: [0.5, 1.0]}}")
+            out.append(f"      feedback: [{', '.join(feedback)}]")
     return "\n".join(out) + "\n"
 
 
@@ -219,6 +290,5 @@ def write(generated: Generated, directory: Path) -> tuple[Path, Path]:
         directory / "schemas" / "generated.yaml",
     )
     for path, text in zip(paths, (generated.library, generated.schema), strict=True):
-        path.parent.mkdir(parents=True, exist_ok=True)
-        write_atomic(path, text)
+        write_atomic(output_folder(path.parent) / path.name, text)
     return paths

@@ -11,7 +11,9 @@ to work on invalid input.
 from __future__ import annotations
 
 import contextlib
+import errno
 import gc
+import os
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -22,20 +24,27 @@ from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.checks import check
 from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+from rosreconf.formats.values import duplicate_edges, value_problems
 from rosreconf.model import (
     Component,
     ComponentLibrary,
     ConfigurationLibrary,
+    ControlLoop,
     Edge,
     Interface,
     InterfaceKind,
     InteroperabilitySchema,
+    PerformanceRequirements,
     Requirement,
     Role,
     RosLaunch,
+    Simulation,
     Span,
+    Substitution,
     SystemGraph,
+    TransferFunction,
 )
+from rosreconf.outfiles import special_kind
 from rosreconf.resources import Bundle, bundled
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -47,6 +56,8 @@ class Source:
 
     name: str
     data: bytes
+    size: int = -1
+    """The file's size when only its first bytes were read (over the limit); else -1."""
 
 
 @dataclass
@@ -84,26 +95,67 @@ class Loaded:
 def discover(paths: Iterable[Path]) -> list[Path]:
     """Expand folders into their YAML files (sorted, recursive); keep files as given.
 
+    A FIFO, a device or a symlink loop is named for what it is, given directly or found in a
+    folder under a YAML name: reading one would block, never end, or fail obscurely. A folder
+    without YAML files is an error too: a CI job pointed at the wrong folder must fail, not
+    report "0 file(s) valid".
+
     Raises:
-        UsageError: a path does not exist.
+        UsageError: a path does not exist, is not a regular file or folder, or a folder holds
+            no YAML file.
     """
     out: list[Path] = []
     for p in paths:
-        if p.is_dir():
-            out.extend(sorted(f for f in p.rglob("*") if f.is_file() and f.suffix in YAML_SUFFIXES))
-        elif p.is_file():
+        kind = _file_kind(p)
+        if kind == "a folder":
+            found = []
+            for f in sorted(p.rglob("*")):
+                if f.suffix not in YAML_SUFFIXES or f.is_dir():
+                    continue
+                inner = _file_kind(f)
+                if inner != "a regular file":
+                    raise UsageError(f"{f}: is {inner}, not a YAML file (remove or rename it)")
+                found.append(f)
+            if not found:
+                raise UsageError(
+                    f"{p}: folder has no .yaml or .yml files (is it the right folder?)"
+                )
+            out.extend(found)
+        elif kind == "a regular file":
             out.append(p)
-        else:
+        elif kind is None:
             raise UsageError(f"{p}: no such file or folder")
+        else:
+            raise UsageError(f"{p}: is {kind}, not a YAML file or folder")
     return out
 
 
+def _file_kind(path: Path) -> str | None:
+    """Name what ``path`` is ("a regular file", "a FIFO (named pipe)"...); None if nothing."""
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "a symlink loop"
+        if os.path.islink(path):
+            return "a broken symlink"
+        return None
+    return special_kind(info.st_mode)
+
+
 def read_sources(paths: Iterable[Path]) -> list[Source]:
-    """Read files as bytes (size is checked by the parser), failing clearly when unreadable."""
+    """Read files as bytes, at most one byte over the parser's limit, failing clearly.
+
+    Reading stops after ``MAX_BYTES + 1`` bytes, so a 200 MB file costs no more than the limit
+    and the parser still reports it as too large (with its real size from ``stat``).
+    """
     sources = []
     for p in paths:
         try:
-            sources.append(Source(str(p), p.read_bytes()))
+            with open(p, "rb") as f:
+                data = f.read(ys.MAX_BYTES + 1)
+                size = max(len(data), os.fstat(f.fileno()).st_size)
+            sources.append(Source(str(p), data, size))
         except OSError as exc:
             raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
     return sources
@@ -137,6 +189,10 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
     loaded = Loaded()
     for src in sources:
         loaded.files.append(src.name)
+        if src.size > ys.MAX_BYTES:
+            loaded.problems.append(ys.too_large(src.name, src.size))
+            loaded.library_complete = False
+            continue
         try:
             tree = ys.parse(src.data, src.name)
         except InvalidInputError as exc:
@@ -150,6 +206,8 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
             continue
         loaded.problems.extend(todo_marks(src))
         structural = list(structure_problems(tree, kind))
+        if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
+            structural = value_problems(tree)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
@@ -158,6 +216,7 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
         if kind is DocumentKind.LIBRARY:
             loaded.libraries.append(_build_library(tree, src.name))
         else:
+            loaded.problems.extend(duplicate_edges(tree))
             loaded.schemas.append(_build_schema(tree, src.name))
     return loaded
 
@@ -234,6 +293,8 @@ def load_split(
     """
     if not library_paths and not schema_paths:
         return load_selection([], base=base)
+    if library_paths and schema_paths:  # both given: the defaults are not read at all
+        return load_paths([*library_paths, *schema_paths])
     default = load_selection([], base=base)
     given = load_paths([*library_paths, *schema_paths])
     if not library_paths:
@@ -308,6 +369,9 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
     items = _map(node)
     params: dict[str, str | int | float | bool] = {}
     for key, value in _map(items.get("parameters")).items():
+        if isinstance(value, ys.YMapping):  # {substitution: ...}, marked by the user
+            params[key] = Substitution(_text(value.items["substitution"]))
+            continue
         assert isinstance(value, ys.YScalar) and value.value is not None
         params[key] = value.value
     remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
@@ -321,6 +385,70 @@ def _launch(node: ys.YNode | None) -> RosLaunch | None:
         namespace=_text(ns) if ns is not None else None,
         node=_text(node_name) if node_name is not None else None,
         args=tuple(_text(a) for a in _seq(items.get("args"))),
+    )
+
+
+def _number(node: ys.YNode | None, default: float) -> float:
+    if isinstance(node, ys.YScalar) and isinstance(node.value, int | float):
+        return float(node.value)
+    return default
+
+
+def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> TransferFunction | None:
+    """Build a transfer function and record where its values are (keys under ``key``)."""
+    if node is None:
+        return None
+    items = _map(node)
+    tf = _map(items["transfer_function"])
+    where[key] = node.span
+    coefficients: dict[str, tuple[float, ...]] = {}
+    for part in ("num", "den"):
+        where[f"{key}.{part}"] = tf[part].span
+        values = _seq(tf[part])
+        for i, n in enumerate(values):
+            where[f"{key}.{part}.{i}"] = n.span
+        coefficients[part] = tuple(_number(n, 0.0) for n in values)
+    if "delay" in items:
+        where[f"{key}.delay"] = items["delay"].span
+    return TransferFunction(
+        coefficients["num"], coefficients["den"], _number(items.get("delay"), 0.0)
+    )
+
+
+def _simulation(node: ys.YNode | None, where: dict[str, Span]) -> Simulation | None:
+    """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
+    if node is None:
+        return None
+    items = _map(node)
+    where["simulation"] = node.span
+    loops = []
+    for i, n in enumerate(_seq(items["loops"])):
+        loop = _map(n)
+        key = f"simulation.loops.{i}"
+        where[key] = n.span
+        where[f"{key}.name"] = loop["name"].span
+        paths: dict[str, tuple[str, ...]] = {}
+        for path in ("forward", "feedback"):
+            roles = _seq(loop.get(path))
+            for j, r in enumerate(roles):
+                where[f"{key}.{path}.{j}"] = r.span
+            paths[path] = tuple(_text(r) for r in roles)
+        plant = _dynamics(loop["plant"], f"{key}.plant", where)
+        assert plant is not None
+        loops.append(ControlLoop(_text(loop["name"]), paths["forward"], plant, paths["feedback"]))
+    limits = _map(items.get("requirements"))
+    for metric, value in limits.items():
+        where[f"simulation.requirements.{metric}"] = value.span
+    for key in ("reference", "duration"):
+        if key in items:
+            where[f"simulation.{key}"] = items[key].span
+    return Simulation(
+        loops=tuple(loops),
+        reference=_number(items.get("reference"), 1.0),
+        duration=_number(items.get("duration"), 10.0),
+        requirements=PerformanceRequirements(
+            **{m: _number(v, 0.0) for m, v in limits.items()}  # keys fixed by the JSON Schema
+        ),
     )
 
 
@@ -340,6 +468,7 @@ def _component(node: ys.YNode) -> Component:
             where[f"{key}.{i}"] = n.span
     for i, n in enumerate(_seq(_map(items.get("ros")).get("args"))):
         where[f"ros.args.{i}"] = n.span
+    dynamics = _dynamics(items.get("dynamics"), "dynamics", where)
     return Component(
         name=_text(items["name"]),
         abstraction=_text(items["abstraction"]),
@@ -353,6 +482,7 @@ def _component(node: ys.YNode) -> Component:
         schemas=frozenset(_text(n) for n in _seq(items.get("schemas"))),
         launch=_launch(items.get("ros")),
         metrics=MappingProxyType(metrics),
+        dynamics=dynamics,
         description=_text(items.get("description")),
         span=node.span,
         where=MappingProxyType(where),
@@ -393,6 +523,7 @@ def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
     where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
     for n in _seq(items["roles"]):
         where[f"role.{_text(_map(n)['name'])}.abstraction"] = _map(n)["abstraction"].span
+    simulation = _simulation(items.get("simulation"), where)
     return InteroperabilitySchema(
         name=_text(items["name"]),
         title=_text(items.get("title")),
@@ -400,6 +531,7 @@ def _build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
         skill=_text(items["skill"]).strip(),
         environment=_text(items["environment"]).strip(),
         nominal=MappingProxyType(nominal),
+        simulation=simulation,
         span=tree.span,
         source=name,
         where=MappingProxyType(where),

@@ -29,8 +29,9 @@ import yaml
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
 
-MAX_BYTES = 4 * 1024 * 1024
-"""Largest YAML file rosreconf reads; a real component library is far below this."""
+MAX_BYTES = 64 * 1024 * 1024
+"""Largest YAML file rosreconf reads: room for a 10,000-role, 10-candidate library (27 MB as
+``rosreconf generate`` writes it); the loader reads no more than this of any file."""
 
 MAX_DEPTH = 32
 """Deepest nesting accepted; rosreconf's formats need 6 levels."""
@@ -49,6 +50,8 @@ _OCT = re.compile(r"0o[0-7]+\Z")
 _HEX = re.compile(r"0x[0-9a-fA-F]+\Z")
 _FLOAT = re.compile(r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?\Z")
 _INF = re.compile(r"[-+]?\.(inf|Inf|INF)\Z")
+_MAX_INT_DIGITS = 4000
+"""Longer integers read as infinite (out of every range, so refused where a number goes)."""
 _NAN = re.compile(r"\.(nan|NaN|NAN)\Z")
 
 
@@ -98,6 +101,8 @@ def resolve_plain(text: str) -> Scalar:
     if text in ("false", "False", "FALSE"):
         return False
     if _INT.match(text):
+        if len(text) > _MAX_INT_DIGITS:  # int() refuses more digits; no count of ours is text
+            return -math.inf if text.startswith("-") else math.inf
         return int(text)
     if _OCT.match(text):
         return int(text[2:], 8)
@@ -126,6 +131,16 @@ def _offset_span(file: str, text: str, offset: int) -> Span:
     return Span(file, line, column)
 
 
+def too_large(file: str, size: int) -> Problem:
+    """Return the problem of a file over ``MAX_BYTES`` (checked before reading it whole)."""
+    return Problem(
+        Span(file, 1, 1),
+        f"file is {size} bytes, over the limit of {MAX_BYTES} bytes",
+        "split the library into several files",
+        code="too-large",
+    )
+
+
 def parse(data: bytes, file: str) -> YNode | None:
     """Parse one YAML document into a positioned tree; ``None`` for an empty file.
 
@@ -134,16 +149,7 @@ def parse(data: bytes, file: str) -> YNode | None:
             parsing at the first one, because nothing after it can be trusted).
     """
     if len(data) > MAX_BYTES:
-        raise InvalidInputError(
-            [
-                Problem(
-                    Span(file, 1, 1),
-                    f"file is {len(data)} bytes, over the limit of {MAX_BYTES} bytes",
-                    "split the library into several files",
-                    code="too-large",
-                )
-            ]
-        )
+        raise InvalidInputError([too_large(file, len(data))])
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:

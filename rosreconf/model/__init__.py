@@ -20,11 +20,19 @@ How the paper's names map onto this module::
     configuration library C (Def. 8)       ConfigurationLibrary (orthogonality: analysis)
     ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
     configuration                          Configuration (role -> component)
+    M-solution: a component's model        Component.dynamics (TransferFunction)
+    M-solution: environment, loops         InteroperabilitySchema.simulation (Simulation)
 """
 
 # The model's public names, re-exported so that readers import them from one place.
 from typing import TYPE_CHECKING, Any
 
+from rosreconf.model.dynamics import (
+    ControlLoop,
+    PerformanceRequirements,
+    Simulation,
+    TransferFunction,
+)
 from rosreconf.model.library import (
     NOWHERE,
     Component,
@@ -34,6 +42,7 @@ from rosreconf.model.library import (
     Requirement,
     RosLaunch,
     Span,
+    Substitution,
 )
 from rosreconf.model.schema import (
     Configuration,
@@ -66,16 +75,21 @@ __all__ = [
     "ComponentLibrary",
     "Configuration",
     "ConfigurationLibrary",
+    "ControlLoop",
     "Edge",
     "Interface",
     "InterfaceKind",
     "InteroperabilitySchema",
+    "PerformanceRequirements",
     "Requirement",
     "Role",
     "RosGraph",
     "RosLaunch",
+    "Simulation",
     "Span",
+    "Substitution",
     "SystemGraph",
+    "TransferFunction",
     "VertexKind",
     "interface_vertex",
     "node_vertex",

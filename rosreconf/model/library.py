@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import NamedTuple
 
+from rosreconf.model.dynamics import TransferFunction
+
 
 class Span(NamedTuple):
     """Where a value was written: file, 1-based line and column.
@@ -95,6 +97,16 @@ class Requirement:
         return tuple(o for o in self.options if o in have)
 
 
+class Substitution(str):
+    """A launch parameter value the user marked as a roslaunch substitution (``$(find ...)``).
+
+    Launch files evaluate ``$(...)`` in every value; only values of this type may carry one,
+    so that a library cannot run code on the robot by accident (``rosreconf.formats.values``).
+    """
+
+    __slots__ = ()
+
+
 @dataclass(frozen=True)
 class RosLaunch:
     """How to start a component as a ROS node.
@@ -139,6 +151,8 @@ class Component:
         schemas: names of the schemas it may serve in (Table 1's "In Schema"); empty = any.
         launch: how to start it, if known.
         metrics: named numbers (cost, settling_time, ...) for optimisation.
+        dynamics: its dynamical model for the M-solution (``rosreconf simulate``), if known;
+            a role whose component has none is simulated as unity gain.
         description: free text for people.
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
@@ -156,6 +170,7 @@ class Component:
     schemas: frozenset[str] = frozenset()
     launch: RosLaunch | None = None
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    dynamics: TransferFunction | None = None
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)

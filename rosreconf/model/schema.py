@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
+from rosreconf.model.dynamics import Simulation
 from rosreconf.model.library import NOWHERE, Interface, InterfaceKind, Span
 
 if TYPE_CHECKING:  # networkx costs 0.2 s to import: only the commands that build graphs pay it
@@ -114,6 +115,8 @@ class InteroperabilitySchema:
         skill: x, the skill the graph implements.
         environment: e, the environment the skill can operate in.
         nominal: the declared running configuration, role -> component (may be empty).
+        simulation: the control loops to simulate and the performance required of them
+            (the M-solution), if given.
         span: where the schema was written.
         source: the file it came from.
         where: positions of values for error messages: ``"name"``, ``"nominal.<role>"``,
@@ -126,6 +129,7 @@ class InteroperabilitySchema:
     environment: str
     title: str = ""
     nominal: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    simulation: Simulation | None = None
     span: Span = field(default=NOWHERE, compare=False)
     source: str = ""
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)

@@ -14,16 +14,17 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from rosreconf.errors import UsageError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_folder, write_files_atomic
 from rosreconf.planning.narrative import Change, changes, explain_impossible, explain_replan
 from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
 from rosreconf.solve.instance import compile_instance, explain
 from rosreconf.solve.objective import Objective
-from rosreconf.solve.solver import ClingoEngine, optimise
+from rosreconf.solve.solver import ClingoEngine, configurations, optimise
 
 
 @dataclass(frozen=True)
@@ -103,8 +104,19 @@ def plan(
         return ReplanResult(
             schema, PlanStatus.UNSOLVABLE_PROVEN, current, why_not=why, explanation=tuple(lines)
         )
+    forbid: list[Configuration] = []
+    notes: list[str] = []
+    if schema.simulation is not None:
+        target, forbid, notes = _performing(library, schema, inst.failed, current, weights, best)
+        if target is None:
+            why = notes[-1]
+            lines = [*explain_impossible(schema, inst.failed, current, why)]
+            return ReplanResult(
+                schema, PlanStatus.UNSOLVABLE_PROVEN, current, why_not=why, explanation=tuple(lines)
+            )
+        best = target
     fewest = objective.score(inst, best)[0] if current else None
-    task = render(inst, objective)
+    task = render(inst, objective, forbid=forbid)
     if keep_pddl is not None:
         write_task(task, keep_pddl)
     run = solve(
@@ -118,7 +130,57 @@ def plan(
                 schema, PlanStatus.PLANNER_ERROR, current, message=message, planner=run
             )
         return ReplanResult(schema, run.status, current, message=message, planner=run)
-    return _read_back(library, schema, inst.failed, current, task, run, fewest)
+    result = _read_back(library, schema, inst.failed, current, task, run, fewest)
+    return replace(result, explanation=(*notes, *result.explanation)) if notes else result
+
+
+FORBID_LIMIT = 2000
+"""Most valid configurations ``plan`` forbids to pin the planner to a performing target."""
+
+
+def _performing(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str],
+    current: Mapping[str, str],
+    weights: Mapping[str, float] | None,
+    fewest: Configuration,
+) -> tuple[Configuration | None, list[Configuration], list[str]]:
+    """Return the target that meets the performance requirements, what to forbid, and notes.
+
+    When the plain optimum ``fewest`` performs (and no simulated metric is weighted) it
+    stands and nothing is forbidden. Otherwise the planner is pinned to the chosen target by
+    forbidding every other valid configuration (``render``'s ``forbid``), and a note says
+    why the fewest-change configuration was passed over.
+
+    Raises:
+        UsageError: pinning would forbid more than ``FORBID_LIMIT`` configurations.
+    """
+    from rosreconf.analysis.simulate import choose, shortfall  # imports python-control
+
+    choice = choose(library, schema, fewest, current, dict(weights or {}), failed)
+    notes: list[str] = []
+    if choice.passed_over_performance is not None:
+        notes.append(
+            "The fewest-change configuration was passed over: it fails the schema's "
+            f"performance requirements ({shortfall(schema, choice.passed_over_performance)})."
+        )
+    if choice.configuration is None:
+        notes.append(
+            f"every one of the {choice.valid} valid configuration(s) fails the schema's "
+            "performance requirements (rosreconf simulate shows by how much)"
+        )
+        return None, [], notes
+    if choice.configuration == fewest:
+        return fewest, [], notes
+    others = [c for c in configurations(library, schema, failed) if c != choice.configuration]
+    if len(others) > FORBID_LIMIT:
+        raise UsageError(
+            f"schema '{schema.name}': {len(others)} valid configurations would have to be "
+            f"forbidden to make the planner reach the performing one (limit {FORBID_LIMIT}); "
+            "use rosreconf simulate to choose"
+        )
+    return choice.configuration, others, notes
 
 
 def unaffected(
@@ -190,7 +252,9 @@ def _read_back(
         PlanStatus.SOLVED,
         current,
         configuration=config,
-        steps=tuple(_step_text(s, current, chosen) for s in steps if s.kind != "finish"),
+        steps=tuple(
+            _step_text(s, current, chosen) for s in steps if s.kind in ("choose", "connect")
+        ),
         actions=tuple(name for name, _ in run.actions),
         changes=tuple(changes(current, config)),
         explanation=tuple(lines),
@@ -218,12 +282,13 @@ def _step_text(step: Step, current: Mapping[str, str], chosen: Mapping[str, str]
 
 
 def write_task(task: PddlTask, folder: Path) -> Path:
-    """Write ``folder/<schema>/domain.pddl`` and ``problem.pddl``, each whole or not at all."""
-    target = folder / task.schema
-    target.mkdir(parents=True, exist_ok=True)
-    for name, text in (("domain.pddl", task.domain), ("problem.pddl", task.problem)):
-        write_atomic(target / name, text)
-    return target
+    """Write ``folder/<schema>/domain.pddl`` and ``problem.pddl`` as one pair.
+
+    The pair moves into place in one step (``write_files_atomic``), so two runs writing into
+    one folder never leave a domain of one beside a problem of the other.
+    """
+    files = {"domain.pddl": task.domain, "problem.pddl": task.problem}
+    return write_files_atomic(output_folder(folder) / task.schema, files)
 
 
 def replan_all(

@@ -118,6 +118,8 @@ def format_for(path: Path, given: str | None = None) -> str:
         if given not in choices:
             raise UsageError(f"--format {given}: choose one of {', '.join(choices)}")
         return given
+    if str(path) == "-":
+        return "dot"  # stdout: text unless --format asks for a picture
     fmt = FORMATS.get(path.suffix.lower())
     if fmt is None:
         raise UsageError(

@@ -35,7 +35,7 @@ from rosreconf.model import (
     VertexKind,
 )
 from rosreconf.model.validity import ros_graph
-from rosreconf.outfiles import write_atomic
+from rosreconf.outfiles import output_target, write_atomic
 from rosreconf.render.dot import DOT_TIMEOUT, DotGraph, Html, format_for, html, render
 
 
@@ -220,21 +220,36 @@ def library_dot(
     return g.text()
 
 
-def write_picture(
-    path: Path, dot_text: str, fmt: str | None = None, *, timeout: float = DOT_TIMEOUT
-) -> str:
-    """Write ``dot_text`` to ``path`` as DOT, SVG or PNG (default: from the suffix); return it.
-
-    Nothing is written unless the whole picture is ready (see ``rosreconf.outfiles``).
+def picture(
+    path: Path | str, dot_text: str, fmt: str | None = None, *, timeout: float = DOT_TIMEOUT
+) -> tuple[bytes, str]:
+    """Return ``dot_text`` as DOT, SVG or PNG bytes (default: from the suffix) and the format.
 
     Raises:
-        UsageError: unknown format, or ``path`` cannot be written.
+        UsageError: unknown format.
         ExternalToolError: Graphviz's ``dot`` is missing, fails or times out (exit 3).
     """
-    chosen = format_for(path, fmt)
+    chosen = format_for(Path(path), fmt)
     data = (
         dot_text.encode("utf-8") if chosen == "dot" else render(dot_text, chosen, timeout=timeout)
     )
+    return data, chosen
+
+
+def write_picture(
+    path: Path | str, dot_text: str, fmt: str | None = None, *, timeout: float = DOT_TIMEOUT
+) -> str:
+    """Write ``dot_text`` to ``path`` as DOT, SVG or PNG (default: from the suffix); return it.
+
+    Nothing is written unless the whole picture is ready (see ``rosreconf.outfiles``); the
+    target is checked before Graphviz runs, so a refused path costs no rendering.
+
+    Raises:
+        UsageError: unknown format, or ``path`` may not or cannot be written.
+        ExternalToolError: Graphviz's ``dot`` is missing, fails or times out (exit 3).
+    """
+    output_target(path, stdout_ok=False)
+    data, chosen = picture(path, dot_text, fmt, timeout=timeout)
     write_atomic(path, data)
     return chosen
 

@@ -8,10 +8,10 @@ goes, so library code never prints.
 from __future__ import annotations
 
 import enum
-import json
 from collections.abc import Sequence
 from typing import Protocol
 
+from rosreconf import jsonout
 from rosreconf.errors import Problem, Severity
 
 
@@ -78,7 +78,7 @@ class JsonReporter:
             "note": note,
             "problems": [problem_dict(p) for p in problems],
         }
-        return json.dumps(doc, indent=2) + "\n"
+        return jsonout.dumps(doc, indent=2) + "\n"
 
 
 def _escape_data(text: str) -> str:

@@ -38,7 +38,13 @@ from dataclasses import dataclass
 import yaml
 
 from rosreconf.errors import RosreconfError
-from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Configuration,
+    InteroperabilitySchema,
+    Substitution,
+)
 from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
 from rosreconf.ros.conformance import node_live_name
@@ -220,6 +226,8 @@ ROS1_TYPES = {bool: "bool", int: "int", float: "double", str: "str"}
 
 def _param(name: str, value: str | int | float | bool, version: RosVersion) -> dict[str, str]:
     """Return a ``<param>``'s attributes, writing the value so each dialect reads its type."""
+    if isinstance(value, Substitution):  # marked by the user: the launcher evaluates it
+        return {"name": name, "value": str(value)}
     if isinstance(value, bool):
         text = "true" if value else "false"
     elif isinstance(value, str) and version is RosVersion.ROS2 and _not_plain(value):

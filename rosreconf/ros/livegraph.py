@@ -41,6 +41,7 @@ from typing import Any
 
 import jsonschema
 
+from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
@@ -172,7 +173,7 @@ def to_json(graph: LiveGraph) -> str:
         ],
         "topic_types": dict(graph.topic_types),
     }
-    return json.dumps(doc, indent=2) + "\n"
+    return jsonout.dumps(doc, indent=2) + "\n"
 
 
 def from_json(text: str, source: str = "<snapshot>") -> LiveGraph:

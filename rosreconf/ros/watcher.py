@@ -244,14 +244,40 @@ class Watcher:
     def _say(self, kind: str, message: str, **data: Any) -> None:
         self.log(Event(kind, message, data))
 
+    def _performing(
+        self, fewest: Configuration, failed: frozenset[str]
+    ) -> tuple[Configuration | None, str]:
+        """Return the configuration that meets the schema's performance requirements.
+
+        Says so when the fewest-change configuration was passed over for failing them.
+        """
+        from rosreconf.analysis.simulate import choose, shortfall  # imports python-control
+
+        choice = choose(self.library, self.schema, fewest, self.current.mapping, {}, failed)
+        if choice.passed_over is not None and choice.passed_over_performance is not None:
+            self._say(
+                "passed-over",
+                "the fewest-change configuration fails the performance requirements "
+                f"({shortfall(self.schema, choice.passed_over_performance)}): passed over",
+                configuration=choice.passed_over.mapping,
+            )
+        if choice.configuration is None:
+            return None, (
+                f"every one of the {choice.valid} valid configuration(s) fails the schema's "
+                "performance requirements"
+            )
+        return choice.configuration, ""
+
     def _replan(self) -> bool:
         """Find the minimal-change configuration without the failed components; apply it."""
         failed = frozenset(self.failed)
         if failed == self._hopeless:
             return False
         new = nearest_valid(self.library, self.schema, failed, self.current)
+        why = why_not(self.library, self.schema, failed) if new is None else ""
+        if new is not None and self.schema.simulation is not None:
+            new, why = self._performing(new, failed)
         if new is None:
-            why = why_not(self.library, self.schema, failed)
             self._say(
                 "no-configuration",
                 f"no valid configuration without {', '.join(sorted(failed))}: {why}",
@@ -265,14 +291,14 @@ class Watcher:
         self._say(
             "replanned",
             f"replanned without {', '.join(sorted(failed))}: "
-            f"{len(changes)} change(s), the fewest possible: {text}",
+            f"{len(changes)} change(s), the fewest possible (exact optimum): {text}",
             failed=sorted(failed),
             configuration=new.mapping,
             changes=[{"role": r, "from": a, "to": b} for r, a, b in changes],
         )
-        for line in explain_replan(
-            self.library, self.schema, failed, old, new, fewest_changes=len(changes)
-        ):
+        # best_configuration is the exact optimum of the change count, so it is the fewest by
+        # proof; passing len(changes) as "fewest" would only compare a number with itself.
+        for line in explain_replan(self.library, self.schema, failed, old, new):
             self._say("why", line)
         if not self.apply:
             self.current = new

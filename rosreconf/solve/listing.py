@@ -32,6 +32,8 @@ class Listing:
         best: the objective ``--best`` minimises (None: list or count).
         optimum: with ``best``, the weights, the optimum's weighted sum and the engine that
             proved it (None when there is no configuration).
+        counted_by_listing: exact counting would have needed too large a table, so the count
+            was made by listing every configuration (slow; the CLI says so).
     """
 
     def __init__(
@@ -56,10 +58,12 @@ class Listing:
         self.first: Configuration | None = None
         self.why_not: str | None = None
         self.optimum: dict[str, object] | None = None
+        self.counted_by_listing = False
         if count_only:
             try:
                 self.total = count(self._inst)
-            except CountTooHard:
+            except CountTooHard:  # said in the output: the user asked for a count, not a list
+                self.counted_by_listing = True
                 self.total = sum(1 for _ in ClingoEngine().configurations(self._inst))
             if want_first and self.total:
                 self.first = first_configuration(self._inst)

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from dataclasses import asdict
 from typing import Protocol
 
+from rosreconf import jsonout
 from rosreconf.analysis.library import SchemaAnalysis
 from rosreconf.formats.selection import Selection
 from rosreconf.render.reports import Output
@@ -38,7 +38,7 @@ class JsonReporter:
             "files": sel.loaded.files,
             "schemas": [asdict(r) for r in results],
         }
-        return json.dumps(doc, indent=2) + "\n"
+        return jsonout.dumps(doc, indent=2) + "\n"
 
 
 REPORTERS: dict[Output, AnalyseReporter] = {
@@ -56,21 +56,31 @@ def _text(a: SchemaAnalysis) -> str:
             f"  orthogonal: no ({a.valid} of {a.substitutions} label-respecting substitutions "
             "are valid)"
         )
+        for un in a.unusable[:12]:
+            lines.append(f"    {un.component} (in no configuration): {un.reason}")
         for ip in a.incompatible[:12]:
             lines.append(f"    {ip.first} x {ip.second}: {ip.reason}")
         if len(a.incompatible) > 12:
             lines.append(f"    ... and {len(a.incompatible) - 12} more incompatible pairs (--json)")
+        if not a.counterexamples_complete:
+            lines.append(
+                "    (a sample: some substitutions fail only through three or more components "
+                "together, when a requirement can be met from several roles)"
+            )
     lines.append("  redundancy per role (r = candidates; usable = in some valid configuration):")
     for r in a.redundancy:
         usable = "?" if r.usable is None else str(len(r.usable))
         lines.append(
             f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {', '.join(r.candidates)}"
         )
-    spof = ", ".join(a.single_points_of_failure) or "none"
-    lines.append(f"  single points of failure: {spof}")
-    if a.critical_pairs is None:
+    if a.valid == 0:
+        lines.append("  single points of failure: not applicable (no configuration to lose)")
+        lines.append("  critical pairs: not applicable (no configuration to lose)")
+    elif a.critical_pairs is None:
+        lines.append(f"  single points of failure: {_spof(a)}")
         lines.append("  critical pairs: too many components to check here (use rosreconf whatif)")
     else:
+        lines.append(f"  single points of failure: {_spof(a)}")
         pairs = ", ".join(f"{{{x}, {y}}}" for x, y in a.critical_pairs[:15])
         more = f" ... ({len(a.critical_pairs)} in all)" if len(a.critical_pairs) > 15 else ""
         lines.append(
@@ -89,3 +99,8 @@ def _text(a: SchemaAnalysis) -> str:
     else:
         lines.append("  reconfigurability probability: 0 (no configuration)")
     return "\n".join(lines) + "\n\n"
+
+
+def _spof(a: SchemaAnalysis) -> str:
+    """List the single points of failure of a schema that has a configuration."""
+    return ", ".join(a.single_points_of_failure) or "none"

@@ -8,10 +8,10 @@ output-enumerate.schema.json.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable
 from typing import Protocol
 
+from rosreconf import jsonout
 from rosreconf.formats.selection import Selection
 from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
@@ -106,6 +106,7 @@ def _summary(total: int | None, listed: int, why: str | None) -> str:
         return f"  {listed} configuration(s) listed; stopped at --limit\n\n"
     if why:
         return f"  no configuration: {why}\n\n"
+    jsonout.allow_big_ints()  # counts of 10,000-role libraries have thousands of digits
     digits = str(total)
     # Counts can have a thousand digits, far beyond a float: write the estimate from the digits.
     size = f" (about {digits[0]}.{digits[1:4]}e{len(digits) - 1}, {len(digits)} digits)"
@@ -126,7 +127,7 @@ class JsonReporter:
             "note": sel.loaded.note,
             "failed": list(sel.failed),
         }
-        self._w(json.dumps(head)[:-1] + ', "schemas": [')
+        self._w(jsonout.dumps(head)[:-1] + ', "schemas": [')
 
     def _w(self, text: str) -> None:
         self.write(text)
@@ -136,7 +137,7 @@ class JsonReporter:
         self.first_schema = False
         self.first_config = True
         head = {"name": s.name, "title": s.display_name, "roles": [r.name for r in s.graph.roles]}
-        self._w(sep + json.dumps(head)[:-1] + ', "configurations": [')
+        self._w(sep + jsonout.dumps(head)[:-1] + ', "configurations": [')
 
     def configuration(
         self, sel: Selection, s: InteroperabilitySchema, config: Configuration, n: int
@@ -149,7 +150,7 @@ class JsonReporter:
             "components": list(config.components),
             "ros_graph": graph_dict(ros_graph(config, sel.library, s)),
         }
-        self._w(sep + json.dumps(doc))
+        self._w(sep + jsonout.dumps(doc))
 
     def end_schema(
         self,
@@ -168,7 +169,7 @@ class JsonReporter:
         }
         if optimum is not None:  # --best: what the configuration is optimal for
             tail["optimum"] = optimum
-        self._w("], " + json.dumps(tail, allow_nan=False)[1:])
+        self._w("], " + jsonout.dumps(tail)[1:])
 
     def close(self) -> None:
         self._w("]}\n")

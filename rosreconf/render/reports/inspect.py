@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import json
 from typing import Protocol
 
+from rosreconf import jsonout
 from rosreconf.model import InteroperabilitySchema
 from rosreconf.render.reports import Output
 from rosreconf.ros.conformance import Conformance
@@ -35,7 +35,7 @@ class JsonReporter:
 
     def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
         """Return the JSON document."""
-        return json.dumps(result.to_dict(), indent=2) + "\n"
+        return jsonout.dumps(result.to_dict(), indent=2) + "\n"
 
 
 REPORTERS: dict[Output, InspectReporter] = {

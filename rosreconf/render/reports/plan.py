@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from typing import Any, Protocol
 
+from rosreconf import jsonout
 from rosreconf.formats.selection import Selection
 from rosreconf.model import Configuration
 from rosreconf.planning.planners import Planner, PlanStatus
@@ -42,7 +42,7 @@ class JsonReporter:
             "planner": planner.label,
             "schemas": [_schema_doc(r) for r in results],
         }
-        return json.dumps(doc, indent=2) + "\n"
+        return jsonout.dumps(doc, indent=2) + "\n"
 
 
 REPORTERS: dict[Output, PlanReporter] = {Output.TEXT: TextReporter(), Output.JSON: JsonReporter()}

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import json
 from dataclasses import asdict
 from typing import Protocol
 
+from rosreconf import jsonout
 from rosreconf.analysis.redundancy import RedundancyAnswer
 from rosreconf.render.reports import Output
 
@@ -44,7 +44,7 @@ class JsonReporter:
 
     def render(self, a: RedundancyAnswer) -> str:
         """Return the JSON document."""
-        return json.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n"
+        return jsonout.dumps({**asdict(a), "note": NOTE}, indent=2) + "\n"
 
 
 REPORTERS: dict[Output, RedundancyReporter] = {

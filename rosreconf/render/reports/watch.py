@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import json
-
+from rosreconf import jsonout
 from rosreconf.ros.watcher import Event
 
 
@@ -15,4 +14,4 @@ def event_line(event: Event) -> str:
 def event_json(event: Event) -> str:
     """Return the event as one JSON line (``--json-log``), newline included."""
     doc = {"time": event.time.isoformat(), "event": event.kind, "message": event.message}
-    return json.dumps({**doc, **event.data}) + "\n"
+    return jsonout.dumps({**doc, **event.data}) + "\n"

@@ -6,11 +6,11 @@ both are built here from the ``SchemaReport``s, so the CLI only picks one and wr
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 
 from rich.table import Table
 
+from rosreconf import jsonout
 from rosreconf.analysis.whatif import SchemaReport
 
 
@@ -61,4 +61,4 @@ def document(reports: Sequence[SchemaReport], k: int) -> str:
                 ],
             }
         )
-    return json.dumps({"max_failures": k, "schemas": out}) + "\n"
+    return jsonout.dumps({"max_failures": k, "schemas": out}) + "\n"

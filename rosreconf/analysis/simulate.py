@@ -1,0 +1,422 @@
+"""Simulate every valid configuration of a schema and rank them: the M-solution's sweep.
+
+A loop's result depends only on the dynamics in its roles (and the plant, reference and
+horizon), so configurations are first turned into their loops' ``LoopSpec`` values, the
+distinct ones are simulated once each (``performance.simulate_all``, in process, in a
+process pool or on a Dask cluster), and every configuration then reads its loops from that
+cache. A configuration's figure for a metric is the worst over its loops; it meets the
+schema's requirements when every loop does.
+
+``choose`` is what ``plan`` and ``watch`` use so that they never pick a configuration that
+connects but does not perform: it keeps the lexicographic objective (fewest changes first,
+then the weighted metrics), over the configurations that meet the requirements only.
+Simulated metrics are not sums over roles (a loop's settling time is not the sum of its
+blocks'), so that choice is made by enumerating the valid configurations, which the cache
+keeps cheap.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Collection, Iterable, Mapping, Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass, field
+
+from rosreconf.analysis.performance import (
+    LoopResult,
+    LoopSpec,
+    Progress,
+    meets,
+    pareto_front,
+    rank_key,
+    simulate_all,
+    worst,
+)
+from rosreconf.analysis.workers import executor
+from rosreconf.errors import UsageError
+from rosreconf.model import (
+    ComponentLibrary,
+    Configuration,
+    ControlLoop,
+    InteroperabilitySchema,
+    Simulation,
+    TransferFunction,
+)
+from rosreconf.model.dynamics import METRICS, UNITY
+from rosreconf.solve.solver import configurations
+
+Cache = dict[LoopSpec, LoopResult]
+"""Simulated loops by content: shared across schemas, configurations and commands."""
+
+
+@dataclass(frozen=True)
+class LoopOutcome:
+    """One loop of one configuration, simulated.
+
+    Attributes:
+        loop: the loop's name.
+        result: its figures.
+        unity: the loop's roles whose component has no dynamics (simulated as unity gain).
+        meets_requirements: the loop is stable and meets every requirement of the schema.
+    """
+
+    loop: str
+    result: LoopResult
+    unity: tuple[str, ...]
+    meets_requirements: bool
+
+
+@dataclass(frozen=True)
+class Performance:
+    """How one configuration performs.
+
+    Attributes:
+        configuration: the configuration.
+        loops: its loops, in the schema's order.
+        figures: metric -> the worst figure over its loops (+inf when undefined), plus the
+            library's metrics summed over its components.
+        meets_requirements: every loop is stable and meets every requirement.
+    """
+
+    configuration: Configuration
+    loops: tuple[LoopOutcome, ...]
+    figures: Mapping[str, float]
+    meets_requirements: bool
+
+    @property
+    def stable(self) -> bool:
+        """Tell whether every loop is stable."""
+        return all(o.result.stable for o in self.loops)
+
+
+@dataclass
+class SchemaSimulation:
+    """Every valid configuration of one schema, simulated and ranked.
+
+    Attributes:
+        schema: the schema.
+        ranked: the configurations, best first (``performance.rank_key``).
+        loops_simulated: distinct loops simulated for this schema (the rest came from the
+            cache).
+        distinct_loops: distinct loops among this schema's configurations.
+        pareto: indices into ``ranked`` of the Pareto front over ``pareto_metrics``.
+        pareto_metrics: the metrics of the front (empty when none was asked for).
+    """
+
+    schema: InteroperabilitySchema
+    ranked: list[Performance] = field(default_factory=list)
+    loops_simulated: int = 0
+    distinct_loops: int = 0
+    pareto: list[int] = field(default_factory=list)
+    pareto_metrics: tuple[str, ...] = ()
+
+
+def simulation_of(schema: InteroperabilitySchema) -> Simulation:
+    """Return the schema's simulation block.
+
+    Raises:
+        UsageError: the schema has none.
+    """
+    if schema.simulation is None:
+        raise UsageError(
+            f"schema '{schema.name}' has no simulation block (add 'simulation:' with loops, "
+            "a duration and requirements; docs/simulation.md)"
+        )
+    return schema.simulation
+
+
+def loop_spec(
+    library: ComponentLibrary, sim: Simulation, loop: ControlLoop, mapping: Mapping[str, str]
+) -> tuple[LoopSpec, tuple[str, ...]]:
+    """Return the loop's spec under ``mapping`` and its roles simulated as unity gain."""
+    unity: list[str] = []
+
+    def block(role: str) -> TransferFunction:
+        dyn = library[mapping[role]].dynamics
+        if dyn is None:
+            unity.append(role)
+            return UNITY
+        return dyn
+
+    forward = tuple(block(r) for r in loop.forward)
+    feedback = tuple(block(r) for r in loop.feedback)
+    spec = LoopSpec(forward, loop.plant, feedback, sim.reference, sim.duration)
+    return spec, tuple(unity)
+
+
+def library_metrics(library: ComponentLibrary) -> frozenset[str]:
+    """Return the metric names some component of ``library`` carries."""
+    return frozenset(m for c in library for m in c.metrics)
+
+
+def check_metrics(library: ComponentLibrary, names: Iterable[str]) -> tuple[str, ...]:
+    """Return ``names`` if each is simulated or a library metric.
+
+    Raises:
+        UsageError: a name is neither.
+    """
+    known = set(METRICS) | library_metrics(library)
+    out = tuple(names)
+    for name in out:
+        if name not in known:
+            raise UsageError(f"unknown metric '{name}' (use one of {', '.join(sorted(known))})")
+    return out
+
+
+def simulate_schema(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str] = (),
+    *,
+    limit: int | None = None,
+    pareto: Sequence[str] = (),
+    cache: Cache | None = None,
+    executor: Executor | None = None,
+    progress: Progress | None = None,
+) -> SchemaSimulation:
+    """Simulate every valid configuration of ``schema`` (at most ``limit``) and rank them.
+
+    Raises:
+        UsageError: the schema has no simulation block, or a ``pareto`` metric is unknown.
+    """
+    sim = simulation_of(schema)
+    metrics = check_metrics(library, pareto)
+    cache = {} if cache is None else cache
+    configs = list(configurations(library, schema, failed, limit))
+    # Configurations that agree on a loop's roles share its spec: key by component names
+    # (cheap to hash) and build each spec once.
+    index = {r.name: i for i, r in enumerate(schema.graph.roles)}
+    positions = [tuple(index[r] for r in loop.roles) for loop in sim.loops]
+    specs: dict[tuple[int, tuple[str, ...]], tuple[LoopSpec, tuple[str, ...]]] = {}
+    keys: list[tuple[tuple[int, tuple[str, ...]], ...]] = []
+    for config in configs:
+        names = config.components
+        row: list[tuple[int, tuple[str, ...]]] = []
+        for i, (loop, pos) in enumerate(zip(sim.loops, positions, strict=True)):
+            key = (i, tuple(names[p] for p in pos))
+            if key not in specs:
+                specs[key] = loop_spec(library, sim, loop, config.mapping)
+            row.append(key)
+        keys.append(tuple(row))
+    distinct = {spec for spec, _ in specs.values()}
+    before = len(cache)
+    simulate_all(distinct, cache, executor, progress=progress)
+    report = SchemaSimulation(
+        schema, loops_simulated=len(cache) - before, distinct_loops=len(distinct)
+    )
+    judged: dict[tuple[tuple[int, tuple[str, ...]], ...], Performance] = {}
+    done = []
+    for config, loop_keys in zip(configs, keys, strict=True):
+        if loop_keys not in judged:
+            judged[loop_keys] = _performance(
+                library,
+                sim,
+                config,
+                [(specs[k][0], cache[specs[k][0]], specs[k][1]) for k in loop_keys],
+            )
+        same = judged[loop_keys]
+        done.append(
+            Performance(
+                config,
+                same.loops,
+                {**_library_figures(library, config), **worst(o.result for o in same.loops)},
+                same.meets_requirements,
+            )
+        )
+    order = sorted(
+        range(len(done)), key=lambda i: (*rank_key(done[i].meets_requirements, done[i].figures), i)
+    )
+    report.ranked = [done[i] for i in order]
+    if metrics:
+        points = [tuple(p.figures.get(m, 0.0) for m in metrics) for p in report.ranked]
+        report.pareto = pareto_front(points)
+        report.pareto_metrics = metrics
+    return report
+
+
+def _performance(
+    library: ComponentLibrary,
+    sim: Simulation,
+    config: Configuration,
+    loops: Sequence[tuple[LoopSpec, LoopResult, tuple[str, ...]]],
+) -> Performance:
+    outcomes = tuple(
+        LoopOutcome(loop.name, result, unity, meets(sim.requirements, result))
+        for loop, (_, result, unity) in zip(sim.loops, loops, strict=True)
+    )
+    figures: dict[str, float] = {
+        **_library_figures(library, config),
+        **worst(o.result for o in outcomes),  # a simulated figure wins over a library metric
+    }
+    ok = all(o.meets_requirements for o in outcomes)
+    return Performance(config, outcomes, figures, ok)
+
+
+@dataclass
+class Sweep:
+    """What ``rosreconf simulate`` found over several schemas.
+
+    Attributes:
+        reports: one per schema with a simulation block, in the order given.
+        skipped: (schema, reason) for the schemas that were not simulated.
+        failed: the failed components the configurations avoid.
+    """
+
+    reports: list[SchemaSimulation] = field(default_factory=list)
+    skipped: list[tuple[str, str]] = field(default_factory=list)
+    failed: tuple[str, ...] = ()
+
+    @property
+    def notes(self) -> list[str]:
+        """Return one sentence per skipped schema, for the user."""
+        return [f"schema '{name}' not simulated: {why}" for name, why in self.skipped]
+
+
+def sweep(
+    library: ComponentLibrary,
+    schemas: Sequence[InteroperabilitySchema],
+    failed: Collection[str] = (),
+    limit: int | None = None,
+    pareto: Sequence[str] = (),
+    workers: int | None = None,
+    cluster: str | None = None,
+    *,
+    explicit: bool = False,
+) -> Sweep:
+    """Simulate each schema that has a simulation block, sharing one cache of loops.
+
+    With ``explicit`` (the user named the schemas) a schema without a simulation block is an
+    error; otherwise it is skipped and said so.
+
+    Raises:
+        UsageError: no schema can be simulated, a named one has no block, or a bad metric.
+        ExternalToolError: the Dask cluster cannot be used.
+    """
+    out = Sweep(failed=tuple(failed))
+    cache: Cache = {}
+    with executor(workers, cluster) as pool:
+        for schema in schemas:
+            if schema.simulation is None:
+                if explicit:
+                    simulation_of(schema)  # raises, saying what to add
+                out.skipped.append((schema.name, "it has no simulation block"))
+                continue
+            out.reports.append(
+                simulate_schema(
+                    library,
+                    schema,
+                    failed,
+                    limit=limit,
+                    pareto=pareto,
+                    cache=cache,
+                    executor=pool,
+                )
+            )
+    if not out.reports:
+        raise UsageError(
+            "no schema has a simulation block (add 'simulation:' to a schema; docs/simulation.md)"
+        )
+    return out
+
+
+def _library_figures(library: ComponentLibrary, config: Configuration) -> dict[str, float]:
+    """Return the library's metrics (not simulated ones) summed over ``config``'s components."""
+    out: dict[str, float] = {}
+    for name in config.components:
+        for metric, value in library[name].metrics.items():
+            if metric not in METRICS:
+                out[metric] = out.get(metric, 0.0) + value
+    return out
+
+
+def performance_of(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    config: Configuration,
+    cache: Cache | None = None,
+) -> Performance:
+    """Simulate one configuration's loops (through ``cache``) and judge it."""
+    sim = simulation_of(schema)
+    cache = {} if cache is None else cache
+    per = [loop_spec(library, sim, loop, config.mapping) for loop in sim.loops]
+    simulate_all((spec for spec, _ in per), cache)
+    return _performance(library, sim, config, [(s, cache[s], u) for s, u in per])
+
+
+@dataclass(frozen=True)
+class Choice:
+    """A configuration chosen with the schema's performance requirements honoured.
+
+    Attributes:
+        configuration: the chosen configuration, or None when no valid one performs.
+        performance: how it performs (None when no simulation block or nothing chosen).
+        passed_over: the fewest-change configuration when it was passed over because it
+            fails the requirements (None otherwise).
+        passed_over_performance: how that one performs.
+        valid: how many valid configurations there were (None when not enumerated).
+    """
+
+    configuration: Configuration | None
+    performance: Performance | None = None
+    passed_over: Configuration | None = None
+    passed_over_performance: Performance | None = None
+    valid: int | None = None
+
+
+def choose(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    fewest: Configuration,
+    current: Mapping[str, str],
+    weights: Mapping[str, float],
+    failed: Collection[str] = (),
+    cache: Cache | None = None,
+) -> Choice:
+    """Return the best configuration that meets ``schema``'s performance requirements.
+
+    ``fewest`` is the optimum of the plain objective (fewest changes, then weighted library
+    metrics). When it performs and no weight names a simulated metric, it stands. Otherwise
+    every valid configuration is simulated (each distinct loop once) and the best that meets
+    the requirements by (changes, weighted metrics with simulated figures) is chosen.
+    """
+    if schema.simulation is None:
+        return Choice(fewest)
+    cache = {} if cache is None else cache
+    first = performance_of(library, schema, fewest, cache)
+    simulated_weights = any(m in METRICS for m in weights)
+    if first.meets_requirements and not simulated_weights:
+        return Choice(fewest, first)
+    report = simulate_schema(library, schema, failed, cache=cache)
+
+    def score(p: Performance) -> tuple[int, float]:
+        changes = sum(1 for r, c in p.configuration.assignment if r in current and current[r] != c)
+        metric = sum(w * p.figures.get(m, 0.0) for m, w in weights.items() if w)
+        return changes, (metric if math.isfinite(metric) else math.inf)
+
+    good = [p for p in report.ranked if p.meets_requirements]
+    order = {c.configuration: i for i, c in enumerate(report.ranked)}
+    best = min(good, key=lambda p: (*score(p), order[p.configuration]), default=None)
+    passed = None if first.meets_requirements else first
+    return Choice(
+        best.configuration if best else None,
+        best,
+        passed.configuration if passed else None,
+        passed,
+        len(report.ranked),
+    )
+
+
+def shortfall(schema: InteroperabilitySchema, performance: Performance) -> str:
+    """Say which loop misses which requirement, e.g. "gripper_force: overshoot 29.9 > 25"."""
+    sim = simulation_of(schema)
+    parts = []
+    for o in performance.loops:
+        if not o.result.stable:
+            parts.append(f"{o.loop}: unstable")
+            continue
+        for metric, limit in sim.requirements.limits().items():
+            value = o.result.figure(metric)
+            if value > limit:
+                shown = "not settled" if math.isinf(value) else f"{value:.3g}"
+                parts.append(f"{o.loop}: {metric} {shown} > {limit:g}")
+    return "; ".join(parts) or "none"

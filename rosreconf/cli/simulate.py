@@ -1,0 +1,78 @@
+"""``rosreconf simulate``: will each valid configuration perform? The paper's M-solution."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rosreconf.cli.common import (
+    FailOption,
+    JsonOption,
+    LibraryOption,
+    OnlyOption,
+    SchemaOption,
+    select,
+)
+from rosreconf.cli.console import stderr, stdout, write_stdout
+from rosreconf.errors import ExitCode
+
+
+def simulate_command(
+    library: LibraryOption = None,
+    schema: SchemaOption = None,
+    only: OnlyOption = None,
+    fail: FailOption = None,
+    limit: Annotated[
+        int | None,
+        typer.Option(
+            min=1, help="Simulate at most N configurations per schema.", show_default=False
+        ),
+    ] = None,
+    pareto: Annotated[
+        str | None,
+        typer.Option(
+            help="List only the Pareto front over these metrics (comma-separated; simulated: "
+            "settling_time, steady_state_error, overshoot; or the library's metrics).",
+            show_default=False,
+        ),
+    ] = None,
+    plot: Annotated[
+        Path | None,
+        typer.Option(
+            help="Draw the step responses (and the front) to FILE.svg or .png.", show_default=False
+        ),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option(min=1, help="Worker processes. Default: one per core.", show_default=False),
+    ] = None,
+    cluster: Annotated[
+        str | None,
+        typer.Option(help="Simulate on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
+    ] = None,
+    as_json: JsonOption = False,
+) -> None:
+    """Simulate every valid configuration's control loops; rank by settling time and error."""
+    from rosreconf.analysis.simulate import sweep  # imports python-control: only when run
+    from rosreconf.render.reports.simulate import document, table
+
+    sel = select(library, schema, fail, only)
+    metrics = tuple(m.strip() for m in (pareto or "").split(",") if m.strip())
+    result = sweep(
+        sel.library, sel.schemas, sel.failed, limit, metrics, workers, cluster, explicit=bool(only)
+    )
+    if plot is not None:
+        from rosreconf.render.plots import draw_sweep
+
+        draw_sweep(plot, sel.library, result)
+    if as_json:
+        write_stdout(document(result))
+    else:
+        for note in result.notes:
+            stderr.print(f"rosreconf: {note}", markup=False)
+        for report in result.reports:
+            stdout.print(table(report))
+    ok = all(any(p.meets_requirements for p in r.ranked) for r in result.reports)
+    raise typer.Exit(ExitCode.OK if ok else ExitCode.FAILED)

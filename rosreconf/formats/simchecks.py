@@ -1,0 +1,126 @@
+"""Check the M-solution's models: component dynamics and schemas' simulation blocks.
+
+The JSON Schema already holds their shape (lists of numbers, a non-negative delay, positive
+durations); what it cannot say is checked here, each problem at the offending value: numbers
+YAML reads as infinite or NaN (``.inf``, ``.nan``), denominators that are all zero, models
+whose numerator has a higher order than their denominator (improper: not realisable, and
+python-control cannot simulate them), loops naming roles the schema does not have, and a
+role in both the forward and the feedback path (it would sit twice in one loop).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+
+from rosreconf.errors import Problem
+from rosreconf.model import Component, InteroperabilitySchema, Span, TransferFunction
+
+
+def component_problems(c: Component) -> Iterator[Problem]:
+    """Yield the problems of ``c``'s dynamics (none when it has no dynamics)."""
+    if c.dynamics is not None:
+        yield from _transfer_function(
+            c.dynamics, "dynamics", c.at, f"the dynamics of component '{c.name}'"
+        )
+
+
+def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
+    """Yield the problems of ``s``'s simulation block (none when it has none)."""
+    sim = s.simulation
+    if sim is None:
+        return
+    for key in ("reference", "duration"):
+        value = getattr(sim, key)
+        if not math.isfinite(value):
+            yield _not_finite(s.at(f"simulation.{key}"), f"simulation {key}")
+    for metric, value in sim.requirements.limits().items():
+        if not math.isfinite(value):
+            yield _not_finite(s.at(f"simulation.requirements.{metric}"), f"requirement {metric}")
+    roles = {r.name for r in s.graph.roles}
+    names: dict[str, int] = {}
+    for i, loop in enumerate(sim.loops):
+        key = f"simulation.loops.{i}"
+        if loop.name in names:
+            yield Problem(
+                s.at(f"{key}.name"),
+                f"duplicate loop name '{loop.name}' (first is loop {names[loop.name] + 1})",
+                "give every loop of a schema a unique name",
+                code="duplicate-loop",
+            )
+        names.setdefault(loop.name, i)
+        for path in ("forward", "feedback"):
+            for j, role in enumerate(getattr(loop, path)):
+                if role not in roles:
+                    yield Problem(
+                        s.at(f"{key}.{path}.{j}"),
+                        f"loop '{loop.name}' names role '{role}', which schema '{s.name}' "
+                        "does not define",
+                        "use one of the schema's roles: " + ", ".join(sorted(roles)),
+                        code="unknown-loop-role",
+                    )
+        feedback = set(loop.feedback)
+        for j, role in enumerate(loop.forward):
+            if role in feedback:
+                yield Problem(
+                    s.at(f"{key}.forward.{j}"),
+                    f"role '{role}' is in both the forward and the feedback path of loop "
+                    f"'{loop.name}'",
+                    "a role's component sits in one place of a loop: keep it in one path",
+                    code="role-in-both-paths",
+                )
+        yield from _transfer_function(
+            loop.plant, f"{key}.plant", s.at, f"the plant of loop '{loop.name}'"
+        )
+
+
+def _transfer_function(
+    tf: TransferFunction, key: str, at: Callable[[str], Span], what: str
+) -> Iterator[Problem]:
+    finite = True
+    for part in ("num", "den"):
+        for i, value in enumerate(getattr(tf, part)):
+            if not math.isfinite(value):
+                finite = False
+                yield _not_finite(at(f"{key}.{part}.{i}"), f"{part} coefficient {i + 1} of {what}")
+    if not math.isfinite(tf.delay):
+        finite = False
+        yield _not_finite(at(f"{key}.delay"), f"the delay of {what}")
+    if not finite:
+        return
+    if not any(tf.den):
+        yield Problem(
+            at(f"{key}.den"),
+            f"{what} has a denominator of zeros (it divides by zero)",
+            "give at least one non-zero coefficient, e.g. den: [1.0]",
+            code="zero-denominator",
+        )
+        return
+    num_order = _order(tf.num)
+    den_order = _order(tf.den)
+    if num_order > den_order:
+        yield Problem(
+            at(f"{key}.num"),
+            f"{what} is improper: its numerator has order {num_order}, its denominator "
+            f"order {den_order}",
+            "a physical model's denominator has at least the numerator's order; add a fast "
+            "pole (e.g. multiply den by (0.01 s + 1)) or drop leading numerator terms",
+            code="improper-transfer-function",
+        )
+
+
+def _order(coefficients: tuple[float, ...]) -> int:
+    """Return the polynomial's order once leading zeros are dropped (-1 for all zeros)."""
+    for i, c in enumerate(coefficients):
+        if c != 0:
+            return len(coefficients) - 1 - i
+    return -1
+
+
+def _not_finite(span: Span, what: str) -> Problem:
+    return Problem(
+        span,
+        f"{what} is not a finite number",
+        "write a real number (YAML's .inf and .nan are not allowed here)",
+        code="not-finite",
+    )

@@ -1,0 +1,159 @@
+"""Refuse values that would be unsafe or meaningless where rosreconf writes them.
+
+The JSON Schema checks types and ranges, but three kinds of value pass it and then do harm:
+
+- numbers that are not finite: ``.nan`` passes ``minimum: 0`` (every comparison with NaN is
+  false) and ends as a bare ``NaN`` in ``--json`` output, which is not JSON; ``.inf`` or a
+  401-digit integer as a metric makes every sum infinite or cannot be turned into a float at
+  all. Failure probabilities must lie in [0, 1] and metrics in [0, ``MAX_METRIC``];
+- launch parameter values containing ``$(``: roslaunch and ROS 2 launch evaluate ``$(eval
+  ...)``, ``$(env ...)`` and ``$(find ...)`` in every attribute, so a library file could run
+  Python on the robot. A value that really is a substitution must be marked as one:
+  ``name: {substitution: "$(find my_pkg)/config.yaml"}``;
+- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit).
+
+These checks run on the positioned tree, before model objects are built, so every problem
+has the value's ``file:line:column`` and nothing downstream ever sees such a value.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from rosreconf.errors import Problem, Severity
+from rosreconf.formats import yamlsource as ys
+from rosreconf.model import Span
+
+MAX_METRIC = 1e12
+"""Largest metric value: sums over 10,000 components stay exact in a float, and costs in PDDL."""
+
+INT32 = (-(2**31), 2**31 - 1)
+"""The integers a ROS 1 parameter can hold (XML-RPC ``i4``)."""
+
+SUBSTITUTION = "$("
+"""What starts a roslaunch / ROS 2 launch substitution."""
+
+
+def value_problems(tree: ys.YMapping) -> list[Problem]:
+    """Return the problems of a structurally valid component library's numbers and launch values."""
+    problems: list[Problem] = []
+    for component in _items(tree.items.get("components")):
+        fields = component.items if isinstance(component, ys.YMapping) else {}
+        fp = fields.get("failure_probability")
+        if isinstance(fp, ys.YScalar):
+            problems.extend(_number(fp, "failure_probability", 0.0, 1.0))
+        metrics = fields.get("metrics")
+        if isinstance(metrics, ys.YMapping):
+            for key, value in metrics.items.items():
+                if isinstance(value, ys.YScalar):
+                    problems.extend(_number(value, f"metric '{key}'", 0.0, MAX_METRIC))
+        ros = fields.get("ros")
+        params = ros.items.get("parameters") if isinstance(ros, ys.YMapping) else None
+        if isinstance(params, ys.YMapping):
+            for key, value in params.items.items():
+                problems.extend(_parameter(key, value))
+    return problems
+
+
+def _items(node: ys.YNode | None) -> list[ys.YNode]:
+    return node.items if isinstance(node, ys.YSequence) else []
+
+
+def _number(node: ys.YScalar, what: str, low: float, high: float) -> Iterator[Problem]:
+    """Refuse a non-finite number, one too large for a float, or one outside [low, high]."""
+    value = node.value
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return  # the JSON Schema reports the type
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        how = "too large to compute with" if isinstance(value, int) else "not a finite number"
+        yield Problem(
+            node.span,
+            f"{what} is {_shown(node.raw)}, {how}",
+            f"give a number between {low:g} and {high:g}",
+            code="not-finite",
+        )
+    elif not low <= number <= high:
+        yield Problem(
+            node.span,
+            f"{what} is {_shown(node.raw)}, outside [{low:g}, {high:g}]",
+            f"give a number between {low:g} and {high:g}",
+            code="out-of-range",
+        )
+
+
+def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
+    """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry."""
+    if isinstance(node, ys.YMapping):
+        return  # {substitution: "..."}: marked by the user (its shape is the Schema's job)
+    if not isinstance(node, ys.YScalar):
+        return
+    value = node.value
+    if isinstance(value, str) and SUBSTITUTION in value:
+        yield Problem(
+            node.span,
+            f"parameter '{key}' contains '$(', which roslaunch would evaluate as a "
+            "substitution ($(eval ...) runs Python, $(env ...) reads the environment)",
+            f'if it is meant as one, mark it: {key}: {{substitution: "{value}"}}; '
+            "otherwise remove the '$('",
+            code="launch-substitution",
+        )
+    elif isinstance(value, float) and not math.isfinite(value):
+        yield Problem(
+            node.span,
+            f"parameter '{key}' is {node.raw}, not a finite number",
+            "give a finite number",
+            code="not-finite",
+        )
+    elif (
+        isinstance(value, int) and not isinstance(value, bool) and not INT32[0] <= value <= INT32[1]
+    ):
+        yield Problem(
+            node.span,
+            f"parameter '{key}' is {_shown(node.raw)}, outside the 32-bit integers ROS 1 can carry",
+            "write it as a float (with a '.') or as a quoted string",
+            code="out-of-range",
+        )
+
+
+def _shown(raw: str) -> str:
+    """Quote a number as written, shortened when it is very long (a 401-digit integer)."""
+    return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
+
+
+def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
+    """Warn about a consumer-provider pair listed twice in a schema's edges.
+
+    The loader merges them (the entry without an ``interfaces`` restriction wins), which may
+    not be what the author meant: one of the two entries is ignored, silently until now.
+    """
+    seen: dict[tuple[str, str], Span] = {}
+    problems: list[Problem] = []
+    for entry in _items(tree.items.get("edges")):
+        fields = entry.items if isinstance(entry, ys.YMapping) else {}
+        consumer = fields.get("consumer")
+        if not isinstance(consumer, ys.YScalar):
+            continue
+        for provider in _items(fields.get("providers")):
+            if not isinstance(provider, ys.YScalar):
+                continue
+            key = (consumer.raw, provider.raw)
+            if key in seen:
+                problems.append(
+                    Problem(
+                        provider.span,
+                        f"edge {provider.raw} -> {consumer.raw} is listed again (first at "
+                        f"{seen[key]}); the two entries are merged and the one without "
+                        "'interfaces' wins",
+                        "list each consumer-provider pair once",
+                        code="duplicate-edge",
+                        severity=Severity.WARNING,
+                    )
+                )
+            else:
+                seen[key] = provider.span
+    return problems
