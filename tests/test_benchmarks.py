@@ -31,3 +31,13 @@ def test_quick_grid_writes_table_and_json(tmp_path: Path) -> None:
     assert 0 < sim["loops_simulated"] == sim["distinct_loops"] <= sim["configurations"]
     fd = [r["fast_downward"]["first"] for r in doc["grid"]]  # ff-first on the rendered task
     assert all(m["status"] == "ok" and m["planned"] == "solved" and m["valid"] for m in fd), fd
+    whole = doc["whole_process"]  # interleaved pairs: CPU seconds of ours and the reference
+    assert [w["status"] for w in whole] == ["ok", "ok"], whole
+    assert all(w["cpu_seconds"] > 0 and w["reference_cpu_seconds"] > 0 for w in whole)
+    assert all(w["scope"] == "whole-process" for w in whole)
+    growth = doc["growth"]
+    assert [r["roles"] for r in growth["rows"]] == [8, 16]
+    assert all(r["status"] == "ok" and r["first_found"] for r in growth["rows"])
+    assert growth["exponent"]["count"] is not None
+    assert doc["watch"]["replan_seconds"] > 0 and doc["watch"]["fast_downward_seconds"] > 0
+    assert doc["import_floor"]["status"] == "ok"

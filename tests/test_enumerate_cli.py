@@ -10,6 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
+from rosreconf.formats.loader import load_bundled
 
 DC_CAM1 = [
     "NDC1",
@@ -208,3 +209,31 @@ def test_astronomical_count_is_exact_and_printable(runner: CliRunner, tmp_path: 
     doc = runner.invoke(app, [*args, "--json"])
     [schema_doc] = [s for s in json.loads(doc.stdout)["schemas"] if s["name"] == "wide"]
     assert schema_doc["count"] == 3**400 and schema_doc["count_text"] == str(3**400)
+
+
+def test_best_is_the_least_weighted_sum_of_all_listed(runner: CliRunner, tmp_path: Path) -> None:
+    _, listed = _json(runner, tmp_path, "enumerate")
+    code, best = _json(runner, tmp_path, "enumerate", "--best", "--objective", "cost=1")
+    assert code == 0
+    cost = {c.name: c.metrics.get("cost", 0.0) for c in load_bundled().library}
+    for every, one in zip(listed["schemas"], best["schemas"], strict=True):
+        sums = [sum(cost[n] for n in c["components"]) for c in every["configurations"]]
+        [chosen] = one["configurations"]
+        assert one["optimum"]["weighted_sum"] == pytest.approx(min(sums))
+        assert sum(cost[n] for n in chosen["components"]) == pytest.approx(min(sums))
+        assert one["count"] is None and not one["limit_reached"]
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--best", "--count"],
+        ["--best", "--limit", "2"],
+        ["--objective", "cost=1"],
+        ["--best", "--objective", "cost"],
+    ],
+)
+def test_best_usage_errors_exit_2(runner: CliRunner, args: list[str]) -> None:
+    result = runner.invoke(app, ["enumerate", *args])
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output

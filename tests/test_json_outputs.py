@@ -31,6 +31,7 @@ RUNS = [
     ("enumerate", ["enumerate", "--json"], None),
     ("enumerate", ["enumerate", "--json", "--fail", "NSM3", "--limit", "1"], None),
     ("enumerate", ["enumerate", "--json", "--count"], None),
+    ("enumerate", ["enumerate", "--json", "--best", "--objective", "cost=1"], None),
     ("analyse", ["analyse", "--json"], None),
     ("redundancy", ["redundancy", "--p", "0.1", "--n", "20", "--q", "0.99", "--json"], None),
     ("whatif", ["whatif", "--only", "object_repositioning", "--workers", "1", "--json"], None),

@@ -11,7 +11,12 @@ from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 from rosreconf.formats.configfile import read_configurations
+from rosreconf.formats.loader import load_bundled
 from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
+from rosreconf.planning.replan import unaffected
+from rosreconf.solve.instance import compile_instance
+from rosreconf.solve.running import running_configuration
+from rosreconf.solve.solver import Objective, optimise
 
 
 def by_name(doc: dict[str, object]) -> dict[str, dict[str, object]]:
@@ -126,3 +131,38 @@ def test_render_pddl_writes_every_schema(runner: CliRunner, tmp_path: Path) -> N
             name == "indoor_navigation"
         )
     assert not list(tmp_path.rglob("*.tmp"))
+
+
+@pytest.mark.planner
+def test_a_schema_without_a_failed_component_keeps_running_and_runs_no_planner(
+    runner: CliRunner,
+) -> None:
+    result = runner.invoke(app, ["plan", "--fail", "NSM3", "--json"])
+    schemas = by_name(json.loads(result.stdout))
+    kept = schemas["indoor_navigation"]
+    assert kept["status"] == "solved" and kept["steps"] == [] and kept["actions"] == []
+    assert kept["elapsed"] is None and kept["cost"] is None  # no planner ran
+    assert "NSM3 not among them" in str(kept["unaffected"])
+    assert kept["configurations"] == [{"assignment": kept["current"]}]
+    assert schemas["object_repositioning"]["unaffected"] is None  # re-planned
+    assert schemas["object_repositioning"]["elapsed"] is not None
+
+
+def test_unaffected_agrees_with_the_proven_fewest_changes() -> None:
+    """Where ``unaffected`` skips the planner, the optimum proves zero changes are needed;
+    where a running component failed, it never skips."""
+    loaded = load_bundled()
+    library = loaded.library
+    for schema in loaded.schemas:
+        running = running_configuration(library, schema)
+        assert running is not None
+        current = running.mapping
+        for failed in [frozenset({c.name}) for c in library]:
+            inst = compile_instance(library, schema, failed)
+            best = optimise(inst, Objective(current)).configuration
+            kept = unaffected(library, schema, failed, current)
+            if failed & set(current.values()):
+                assert kept is None
+            elif kept is not None:
+                assert best is not None and Objective(current).score(inst, best)[0] == 0
+                assert kept[0] == best

@@ -15,18 +15,21 @@ from rosreconf.cli.common import (
     FailOption,
     JsonOption,
     LibraryOption,
+    ObjectiveOption,
     OnlyOption,
     SchemaOption,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import stderr, write_stdout
-from rosreconf.errors import ExitCode
+from rosreconf.errors import ExitCode, UsageError
 from rosreconf.model import InteroperabilitySchema
 from rosreconf.outfiles import output_target
 from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.enumerate import REPORTERS
 from rosreconf.solve.listing import Listing
+from rosreconf.solve.objective import Objective
 
 
 def enumerate_command(
@@ -40,6 +43,13 @@ def enumerate_command(
     count_only: Annotated[
         bool, typer.Option("--count", help="Count exactly without listing.")
     ] = False,
+    best: Annotated[
+        bool,
+        typer.Option(
+            "--best", help="Print only the optimal configuration for --objective (proven)."
+        ),
+    ] = False,
+    objective: ObjectiveOption = None,
     as_json: JsonOption = False,
     graph: Annotated[
         Path | None,
@@ -56,6 +66,11 @@ def enumerate_command(
     Exit 0 when every schema has a configuration, 1 when some schema has none.
     """
 
+    if best and (count_only or limit is not None):
+        raise UsageError("--best prints one configuration: leave out --count and --limit")
+    if objective and not best:
+        raise UsageError("--objective says what --best minimises: add --best")
+    goal = Objective(weights=weights_of(objective)) if best else None
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before the work
     sel = select(library, schema, fail, only)
@@ -67,7 +82,7 @@ def enumerate_command(
     for s in sel.schemas:
         found = Listing(
             sel.library, s, sel.failed,
-            limit=limit, count_only=count_only, want_first=graph is not None,
+            limit=limit, count_only=count_only, want_first=graph is not None, best=goal,
         )  # fmt: skip
         report.begin_schema(s)
         with _progress(stderr, s, quiet=as_json) as tick:
@@ -84,7 +99,11 @@ def enumerate_command(
             firsts.append(RosPicture(s, found.first))
         empty += found.total == 0
         report.end_schema(
-            found.total, found.listed, limit_reached=found.total is None, why=found.why_not
+            found.total,
+            found.listed,
+            limit_reached=found.total is None and goal is None,
+            why=found.why_not,
+            optimum=found.optimum,
         )
     report.close()
     if graph is not None:

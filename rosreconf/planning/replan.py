@@ -45,6 +45,8 @@ class ReplanResult:
         message: how the planner run went, or what was wrong with its plan.
         fewest_changes: the fewest role changes any valid configuration needs (clingo's proof).
         planner: the planner's result (None when no planner ran).
+        unaffected: why no planner ran because the running configuration stays valid (no
+            failed component in it); empty when the schema was re-planned.
     """
 
     schema: InteroperabilitySchema
@@ -59,6 +61,7 @@ class ReplanResult:
     message: str = ""
     fewest_changes: int | None = None
     planner: PlanResult | None = field(default=None, repr=False)
+    unaffected: str = ""
 
 
 def plan(
@@ -73,7 +76,25 @@ def plan(
     memory_limit_mb: int = 2048,
     keep_pddl: Path | None = None,
 ) -> ReplanResult:
-    """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``."""
+    """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``.
+
+    A schema whose running configuration holds no failed component and is still valid keeps
+    running as it is: no planner runs for it (a planner would only prove "change nothing").
+    """
+    kept = unaffected(library, schema, failed, current)
+    if kept is not None:
+        config, reason = kept
+        return ReplanResult(
+            schema,
+            PlanStatus.SOLVED,
+            current,
+            configuration=config,
+            changes=tuple(changes(current, config)),
+            explanation=tuple(explain_replan(library, schema, failed, current, config, 0)),
+            message="unaffected: no planner run",
+            fewest_changes=0,
+            unaffected=reason,
+        )
     inst = compile_instance(library, schema, failed)
     objective = Objective(dict(current), dict(weights or {}))
     best = optimise(inst, objective).configuration if current else ClingoEngine().first(inst)
@@ -160,6 +181,31 @@ def _performing(
             "use rosreconf simulate to choose"
         )
     return choice.configuration, others, notes
+
+
+def unaffected(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: Collection[str],
+    current: Mapping[str, str],
+) -> tuple[Configuration, str] | None:
+    """Return the running configuration and why it keeps running, or None if it must change.
+
+    It keeps running when it fills every role, none of its components failed, and it is
+    still a valid configuration with those components gone (Definition 5 checked again by
+    ``validity.violations``, so a failure that breaks it indirectly is never missed).
+    """
+    roles = schema.graph.roles
+    if not current or any(r.name not in current for r in roles):
+        return None
+    down = set(failed)
+    if down & set(current.values()):
+        return None
+    config = Configuration.of(schema.name, dict(current), roles)
+    if violations(config, library, schema, failed):
+        return None
+    names = ", ".join(sorted(down))
+    return config, f"none of its running components failed ({names} not among them)"
 
 
 def _read_back(

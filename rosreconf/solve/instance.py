@@ -3,7 +3,7 @@
 Which components can fill which role, which candidate pairs realise which edge, and which
 providers meet which requirement are all decided here, once, in Python; the solvers (clingo,
 the counter, the PDDL renderer) only see the resulting tables. Computing these joins ahead
-is what keeps grounding linear (see shared/notes/planners.md: lifted joins explode).
+is what keeps grounding linear (docs/pddl.md, "The encoding": lifted joins explode).
 
 It also explains emptiness: ``explain`` prunes candidates by local reasoning and turns the
 first role left without candidates into a plain-language reason.

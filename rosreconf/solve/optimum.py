@@ -32,7 +32,7 @@ from rosreconf.solve.factors import (
 )
 from rosreconf.solve.instance import Instance, prune
 
-__all__ = ["MAX_FACTOR_ROWS", "TooHard", "minimise"]
+__all__ = ["MAX_FACTOR_ROWS", "TooHard", "first", "minimise"]
 
 Trace = list[tuple[int, tuple[int, ...], dict[tuple[str, ...], str]]]
 """Per eliminated role: its neighbours' scope and, per neighbour row, the cheapest candidate."""
@@ -54,16 +54,48 @@ def minimise(
         TooHard: an intermediate table would exceed ``max_rows`` rows.
     """
     with paused_gc():
-        return _minimise(inst, costs, max_rows)
+        alive, _, _ = prune(inst)
+        if any(not a for a in alive):
+            return None
+        packed, unpack = _pack(alive, costs)
+        found = _minimise(inst, alive, packed, max_rows)
+    return None if found is None else (found[0], unpack(found[1]))
+
+
+def first(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Configuration | None:
+    """Return the first valid configuration in enumeration order, or None if none exists.
+
+    Enumeration order is lexicographic: roles in schema order, candidates in library order
+    (``ClingoEngine.configurations``). That first configuration is the one of least cost when
+    a candidate's cost is its position in its role's domain scaled by ``B ** (R - 1 - r)``
+    (``B`` larger than any domain, ``R`` roles): an earlier role then outweighs every later one
+    together. Min-plus elimination over counting's tables finds it without grounding
+    anything in clingo, which is most of clingo's time on large libraries.
+
+    Raises:
+        TooHard: an intermediate table would exceed ``max_rows`` rows.
+    """
+    with paused_gc():
+        alive, _, _ = prune(inst)
+        if any(not a for a in alive):
+            return None
+        base = max(len(d) for d in inst.domains) + 1 if inst.domains else 1
+        n = len(alive)
+        packed = []
+        weight = 1
+        for r in range(n - 1, -1, -1):  # the last role weighs 1, each earlier one base times more
+            position = {c.name: j for j, c in enumerate(inst.domains[r])}
+            packed.append({c: position[c] * weight for c in alive[r]})
+            weight *= base
+        packed.reverse()
+        found = _minimise(inst, alive, packed, max_rows)
+    return None if found is None else found[0]
 
 
 def _minimise(
-    inst: Instance, costs: Sequence[Mapping[str, tuple[int, ...]]], max_rows: int
-) -> tuple[Configuration, tuple[int, ...]] | None:
-    alive, _, _ = prune(inst)
-    if any(not a for a in alive):
-        return None
-    packed, unpack = _pack(alive, costs)
+    inst: Instance, alive: list[list[str]], packed: list[dict[str, int]], max_rows: int
+) -> tuple[Configuration, int] | None:
+    """Minimise the packed unary costs over the constraint tables; the answer and its total."""
     factors = constraint_factors(inst, alive, 0, max_rows)
     order = elimination_order([f.scope for f in factors], len(inst.roles))
     factors.extend(Factor((r,), {(c,): w for c, w in packed[r].items()}) for r in range(len(alive)))
@@ -84,7 +116,7 @@ def _minimise(
         chosen[var] = arg[tuple(chosen[v] for v in scope)]
     mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
-    return config, unpack(sum(scalars))
+    return config, sum(scalars)
 
 
 def _min_out(f: Factor, var: int, rank: Mapping[str, int], trace: Trace) -> Factor:

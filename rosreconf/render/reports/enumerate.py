@@ -32,9 +32,18 @@ class EnumerateReporter(Protocol):
         ...
 
     def end_schema(
-        self, total: int | None, listed: int, *, limit_reached: bool, why: str | None
+        self,
+        total: int | None,
+        listed: int,
+        *,
+        limit_reached: bool,
+        why: str | None,
+        optimum: dict[str, object] | None = None,
     ) -> None:
-        """Close a schema's part with its count (None: stopped at the limit) or why none."""
+        """Close a schema's part with its count (None: not counted) or why none.
+
+        ``optimum`` (``--best``): the weights, weighted sum and engine of the one listed.
+        """
         ...
 
     def close(self) -> None:
@@ -59,13 +68,33 @@ class TextReporter:
         self.write(f"  {n:>3}. {', '.join(config.components)}\n")
 
     def end_schema(
-        self, total: int | None, listed: int, *, limit_reached: bool, why: str | None
+        self,
+        total: int | None,
+        listed: int,
+        *,
+        limit_reached: bool,
+        why: str | None,
+        optimum: dict[str, object] | None = None,
     ) -> None:
-        """Write the count, the limit note or why there is none."""
+        """Write the count, the limit note, what the optimum is optimal for, or why none."""
+        if optimum is not None:
+            self.write(_optimum_line(optimum) + "\n")
+            return
         self.write(_summary(total, listed, why))
 
     def close(self) -> None:
         """Nothing to close in text."""
+
+
+def _optimum_line(optimum: dict[str, object]) -> str:
+    """Say what the listed configuration is optimal for, and who proved it."""
+    weights = optimum["weights"]
+    assert isinstance(weights, dict)
+    goal = ", ".join(f"{m}={w:g}" for m, w in weights.items()) or "no metric"
+    return (
+        f"  optimal for {goal}: weighted sum {optimum['weighted_sum']:g} "
+        f"(proven by {optimum['engine']})\n"
+    )
 
 
 def _heading(s: InteroperabilitySchema) -> str:
@@ -124,14 +153,22 @@ class JsonReporter:
         self._w(sep + jsonout.dumps(doc))
 
     def end_schema(
-        self, total: int | None, listed: int, *, limit_reached: bool, why: str | None
+        self,
+        total: int | None,
+        listed: int,
+        *,
+        limit_reached: bool,
+        why: str | None,
+        optimum: dict[str, object] | None = None,
     ) -> None:
-        tail = {
+        tail: dict[str, object] = {
             "count": total,
             "count_text": None if total is None else str(total),
             "limit_reached": limit_reached,
             "why_not": why,
         }
+        if optimum is not None:  # --best: what the configuration is optimal for
+            tail["optimum"] = optimum
         self._w("], " + jsonout.dumps(tail)[1:])
 
     def close(self) -> None:

@@ -56,6 +56,8 @@ def _text(r: ReplanResult) -> str:
         out.append(f"  planner failed ({r.status}): {r.message}")
     else:
         run = r.planner
+        if r.unaffected:
+            out.append(f"  unaffected, keeps running: {r.unaffected}")
         if run is not None:
             out.append(f"  plan ({run.planner}, {run.elapsed:.2f} s, cost {run.cost}):")
         out += [f"  {n:>4}. {step}" for n, step in enumerate(r.steps, start=1)]
@@ -90,6 +92,7 @@ def _schema_doc(r: ReplanResult) -> dict[str, Any]:
         "message": r.message,
         "cost": run.cost if run else None,
         "elapsed": round(run.elapsed, 3) if run else None,
+        "unaffected": r.unaffected or None,
     }
 
 
