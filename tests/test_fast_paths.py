@@ -261,21 +261,6 @@ def test_validators_agree(doc: dict[str, Any]) -> None:
 
 
 @pytest.mark.parametrize(
-    "path",
-    sorted([*REPO.glob("libraries/*.yaml"), *REPO.glob("schemas/*.yaml")]),
-    ids=lambda p: p.name,
-)
-def test_clean_files_take_the_one_loop_fast_tree(
-    path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """A valid file is built by ``_fast_tree`` (not read twice), into the reference tree."""
-    text = path.read_text(encoding="utf-8")
-    fast = ys._fast_tree(text, "f.yaml")
-    assert fast is not ys._UNCLEAN
-    assert _dump(fast) == _parse(text.encode(), False, monkeypatch)
-
-
-@pytest.mark.parametrize(
     "text",
     [
         "a: 1\na: 2\n",  # duplicate key
@@ -287,7 +272,6 @@ def test_clean_files_take_the_one_loop_fast_tree(
         "a:" + " [" * 40 + "]" * 40 + "\n",  # too deep
     ],
 )
-def test_fast_tree_hands_every_problem_to_the_full_reader(text: str) -> None:
-    assert ys._fast_tree(text, "f.yaml") is ys._UNCLEAN
+def test_every_problem_is_refused_whichever_parser_reads_first(text: str) -> None:
     with pytest.raises(ys.InvalidInputError):
         ys.parse(text.encode(), "f.yaml")
