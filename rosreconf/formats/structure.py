@@ -99,13 +99,65 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
 @cache
 def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
     """Return ``kind``'s JSON Schema compiled by fastjsonschema (raises on invalid data)."""
-    validate: Callable[[Any], Any] = fastjsonschema.compile(json_schema(kind))
+    validate: Callable[[Any], Any] = fastjsonschema.compile(without_one_of(json_schema(kind)))
     return validate
 
 
-def structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
-    """Yield every structural problem of ``tree`` against ``kind``'s JSON Schema."""
-    plain = ys.to_plain(tree)
+EXCLUSIVE_ONE_OF = {
+    "/$defs/requirement": "an interface has no 'any_of' key, an any_of object no other key",
+    "/$defs/component/properties/ros/properties/parameters/additionalProperties": (
+        "a scalar is not an object"
+    ),
+}
+"""The ``oneOf``s whose branches no value can satisfy together, and why: ``anyOf`` says the
+same there. fastjsonschema's ``oneOf`` tries every branch and builds an exception with its
+message for each failing one (most of the structure check's time on a large library);
+``anyOf`` stops at the first branch that holds."""
+
+REQUIRED_ONE_OF = "/$defs/interface"
+"""The ``oneOf`` of ``{required: [topic]}`` and ``{required: [service]}``: ``anyOf`` of the
+two, plus ``topic`` forbidding ``service``, says the same (exactly one of them)."""
+
+
+def without_one_of(schema: dict[str, Any]) -> dict[str, Any]:
+    """Return a copy of the JSON Schema with the same verdicts and no ``oneOf`` on hot paths.
+
+    Only for the fast validator: jsonschema keeps the published Schema for its messages.
+    Every ``oneOf`` this does not know stays as it is; tests/test_fast_paths.py holds the
+    two validators to the same verdicts.
+    """
+    fast: dict[str, Any] = json.loads(json.dumps(schema))
+    for pointer in EXCLUSIVE_ONE_OF:
+        node = _at(fast, pointer)
+        if node is not None and "oneOf" in node:
+            node["anyOf"] = node.pop("oneOf")
+    node = _at(fast, REQUIRED_ONE_OF)
+    if node is not None and node.get("oneOf") == [
+        {"required": ["topic"]},
+        {"required": ["service"]},
+    ]:
+        node["anyOf"] = node.pop("oneOf")
+        node["dependencies"] = {"topic": {"properties": {"service": False}}}
+    return fast
+
+
+def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
+    """Return the sub-schema at a JSON pointer (``/a/b``), or None when it is not there."""
+    node: Any = schema
+    for step in pointer.strip("/").split("/"):
+        node = node.get(step) if isinstance(node, dict) else None
+    return node if isinstance(node, dict) else None
+
+
+def structure_problems(
+    tree: ys.YNode, kind: DocumentKind, plain: ys.Plain | None = None
+) -> Iterator[Problem]:
+    """Yield every structural problem of ``tree`` against ``kind``'s JSON Schema.
+
+    ``plain`` is the tree as plain data when the reader already built it (``parse_plain``).
+    """
+    if plain is None:
+        plain = ys.to_plain(tree)
     try:
         fast_validator(kind)(plain)
         return
