@@ -370,3 +370,46 @@ def test_the_fast_validator_has_no_one_of_left(kind: DocumentKind) -> None:
     # A new oneOf in a published Schema stays a oneOf (correct, but slow): add it to
     # structure.EXCLUSIVE_ONE_OF when its branches cannot both hold.
     assert '"oneOf"' not in json.dumps(without_one_of(json_schema(kind)))
+
+
+SCHEMA_DOCS = [
+    ys.to_plain(ys.parse(p.read_bytes(), p.name)) for p in sorted(REPO.glob("schemas/*.yaml"))
+]
+
+
+@settings(max_examples=examples(200))
+@given(
+    which=st.integers(0, len(SCHEMA_DOCS) - 1),
+    key=st.sampled_from(["roles", "edges", "nominal", "simulation", "name", "extra"]),
+    item=st.integers(0, 3),
+    value=st.one_of(st.none(), st.integers(), st.text(max_size=4), st.lists(st.integers())),
+)
+def test_validators_agree_on_interoperability_schemas(
+    which: int, key: str, item: int, value: Any
+) -> None:
+    # The fast validator runs fastjsonschema's code with its item names dropped
+    # (structure.fast_validator): verdicts on schemas too must stay jsonschema's.
+    doc = copy.deepcopy(SCHEMA_DOCS[which])
+    assert isinstance(doc, dict)
+    target = doc.get(key)
+    if isinstance(target, list) and target:  # damage one item of a list
+        entry = target[item % len(target)]
+        if isinstance(entry, dict) and entry:
+            entry[sorted(entry)[item % len(entry)]] = value
+        else:
+            target[item % len(target)] = value
+    else:
+        doc[key] = value
+    kind = DocumentKind.SCHEMA
+    reference = jsonschema.Draft202012Validator(json_schema(kind)).is_valid(doc)
+    try:
+        fast_validator(kind)(doc)
+        fast = True
+    except fastjsonschema.JsonSchemaException:
+        fast = False
+    assert fast == reference
+
+
+@pytest.mark.parametrize("doc", SCHEMA_DOCS)
+def test_the_fast_validator_accepts_the_bundled_schemas(doc: Any) -> None:
+    fast_validator(DocumentKind.SCHEMA)(doc)
