@@ -269,3 +269,21 @@ def test_whatif_on_the_cluster_equals_local(
         remote = runner.invoke(app, [*args, "--cluster", cluster.scheduler_address])
     assert local.exit_code == remote.exit_code == 0, remote.stderr
     assert json.loads(remote.stdout) == json.loads(local.stdout)
+
+
+def test_the_table_shows_the_best_top_configurations(runner: CliRunner, tmp_path: Path) -> None:
+    code, out, _ = run(runner, tmp_path, "--only", "indoor_navigation", "--workers", "1")
+    assert code in (0, 1)
+    words = " ".join(out.split())
+    assert "the best 20 of 24 shown" in words
+    code, out, _ = run(
+        runner, tmp_path, "--only", "indoor_navigation", "--workers", "1", "--top", "3"
+    )
+    words = " ".join(out.split())
+    assert "the best 3 of 24 shown" in words
+    ranks = [line.split()[1] for line in out.splitlines() if line.startswith("│ ")]
+    assert [r for r in ranks if r.isdigit()] == ["1", "2", "3"]
+    code, out, _ = run(
+        runner, tmp_path, "--only", "indoor_navigation", "--workers", "1", "--top", "0"
+    )
+    assert "shown (--top" not in " ".join(out.split())
