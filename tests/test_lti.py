@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from rosreconf.analysis import lti
 from rosreconf.analysis.performance import SAMPLES, SETTLING_BAND, LoopSpec, closed_loop
-from rosreconf.model.dynamics import TransferFunction
+from rosreconf.model.dynamics import StateSpace, TransferFunction
 
 PROPS = settings(max_examples=50, deadline=None, derandomize=True)
 
@@ -162,3 +162,33 @@ def test_unbalanced_companion_exponential_errs_on_such_loops() -> None:
             x = held[:n, :n] @ x + held[:n, n]
     theirs = control.step_response(interconnected(HIGH_ORDER[0]), t).outputs
     assert not np.max(np.abs(np.array(y) - theirs)) < 1e-3  # wrong by more, or NaN
+
+
+@st.composite
+def state_spaces(draw: st.DrawFn) -> StateSpace:
+    n = draw(st.integers(1, 4))
+    entry = st.floats(-3.0, 3.0).map(lambda x: round(x, 2))
+    a = tuple(tuple(draw(entry) for _ in range(n)) for _ in range(n))
+    b = tuple((draw(entry),) for _ in range(n))
+    c = (tuple(draw(entry) for _ in range(n)),)
+    d = ((draw(entry),),)
+    return StateSpace(a, b, c, d, draw(st.sampled_from([0.0, 0.1])))
+
+
+@PROPS
+@given(model=state_spaces())
+def test_state_space_becomes_python_controls_ss2tf(model: StateSpace) -> None:
+    """The same transfer function as control.ss2tf: equal frequency responses, same delay."""
+    tf = lti.ss2tf(model)
+    assert tf.delay == model.delay
+    theirs = control.ss2tf(
+        np.array(model.a), np.array(model.b), np.array(model.c), np.array(model.d)
+    )
+    assert len(tf.den) == len(model.a) + 1 and tf.den[0] == 1.0
+    for s in (0.3j, 1.0 + 2.0j, 7.0j, -0.5 + 0.1j):
+        ours = np.polyval(tf.num, s) / np.polyval(tf.den, s)
+        ref = complex(theirs(s))
+        assert ours == pytest.approx(ref, rel=1e-6, abs=1e-6)
+    assert lti.transfer_function(model) == tf
+    plain = TransferFunction((1.0,), (1.0, 1.0))
+    assert lti.transfer_function(plain) is plain

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 import scipy.linalg  # before threadpoolctl limits BLAS: scipy's own OpenBLAS must be loaded
 
-from rosreconf.model.dynamics import TransferFunction
+from rosreconf.model.dynamics import Dynamics, StateSpace, TransferFunction
 
 Array = np.ndarray[Any, Any]
 
@@ -53,6 +53,29 @@ def pade(delay: float, order: int = PADE_ORDER) -> tuple[Array, Array]:
         den[order - k] = cd
     lead = den[0]
     return np.array([c / lead for c in num]), np.array([c / lead for c in den])
+
+
+def transfer_function(model: Dynamics) -> TransferFunction:
+    """Return ``model`` as a transfer function (a state-space model by ``ss2tf``)."""
+    return ss2tf(model) if isinstance(model, StateSpace) else model
+
+
+@functools.lru_cache(maxsize=1024)
+def ss2tf(model: StateSpace) -> TransferFunction:
+    """Return the transfer function ``C (sI - A)^-1 B + D`` of a SISO state-space model.
+
+    As scipy's and python-control's ``ss2tf``: ``den = det(sI - A)``, and
+    ``num = det(sI - A + B C) + (D - 1) den`` (the matrix determinant lemma), with the
+    characteristic polynomials from ``np.poly``. The delay carries over. The shapes must
+    have been checked (``formats.simchecks``): A n x n, B n x 1, C 1 x n, D 1 x 1.
+    """
+    a = np.array(model.a, dtype=float)
+    b = np.array(model.b, dtype=float)[:, 0]
+    c = np.array(model.c, dtype=float)[0]
+    d = float(model.d[0][0])
+    den = np.poly(a)
+    num = np.poly(a - np.outer(b, c)) + (d - 1.0) * den
+    return TransferFunction(tuple(float(x) for x in num), tuple(float(x) for x in den), model.delay)
 
 
 def series(blocks: Iterable[TransferFunction]) -> tuple[Array, Array]:

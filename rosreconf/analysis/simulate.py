@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rosreconf.analysis.lti import transfer_function
 from rosreconf.analysis.performance import (
     LoopResult,
     LoopSpec,
@@ -91,11 +92,12 @@ def loop_spec(
         if dyn is None:
             unity.append(role)
             return UNITY
-        return dyn
+        return transfer_function(dyn)
 
     forward = tuple(block(r) for r in loop.forward)
     feedback = tuple(block(r) for r in loop.feedback)
-    spec = LoopSpec(forward, loop.plant, feedback, sim.reference, sim.duration)
+    plant = transfer_function(loop.plant)
+    spec = LoopSpec(forward, plant, feedback, sim.reference, sim.duration)
     return spec, tuple(unity)
 
 
