@@ -413,3 +413,33 @@ def test_validators_agree_on_interoperability_schemas(
 @pytest.mark.parametrize("doc", SCHEMA_DOCS)
 def test_the_fast_validator_accepts_the_bundled_schemas(doc: Any) -> None:
     fast_validator(DocumentKind.SCHEMA)(doc)
+
+
+_TF = {"num": [1.0], "den": [1.0, 1.0]}
+_SS = {"A": [[-1.0]], "B": [[1.0]], "C": [[1.0]], "D": [[0.0]]}
+
+
+@pytest.mark.parametrize(
+    "dynamics",
+    [
+        {"transfer_function": _TF},
+        {"state_space": _SS},
+        {"transfer_function": _TF, "state_space": _SS},  # both: exactly one is allowed
+        {"delay": 0.1},  # neither
+        {"transfer_function": _TF, "delay": 0.1},
+        {},
+    ],
+)
+def test_validators_agree_on_dynamics(dynamics: dict[str, Any]) -> None:
+    # dynamics is a oneOf of single required keys, rewritten like the interface's.
+    doc = copy.deepcopy(PLAIN_LIBRARY)
+    assert isinstance(doc, dict)
+    doc["components"][0]["dynamics"] = dynamics
+    reference = jsonschema.Draft202012Validator(json_schema(DocumentKind.LIBRARY)).is_valid(doc)
+    assert reference == (("transfer_function" in dynamics) != ("state_space" in dynamics))
+    try:
+        fast_validator(DocumentKind.LIBRARY)(doc)
+        fast = True
+    except fastjsonschema.JsonSchemaException:
+        fast = False
+    assert fast == reference

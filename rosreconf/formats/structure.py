@@ -132,31 +132,53 @@ same there. fastjsonschema's ``oneOf`` tries every branch and builds an exceptio
 message for each failing one (most of the structure check's time on a large library);
 ``anyOf`` stops at the first branch that holds."""
 
-REQUIRED_ONE_OF = "/$defs/interface"
-"""The ``oneOf`` of ``{required: [topic]}`` and ``{required: [service]}``: ``anyOf`` of the
-two, plus ``topic`` forbidding ``service``, says the same (exactly one of them)."""
-
 
 def without_one_of(schema: dict[str, Any]) -> dict[str, Any]:
     """Return a copy of the JSON Schema with the same verdicts and no ``oneOf`` on hot paths.
 
-    Only for the fast validator: jsonschema keeps the published Schema for its messages.
-    Every ``oneOf`` this does not know stays as it is; tests/test_fast_paths.py holds the
-    two validators to the same verdicts.
+    Two kinds are rewritten: those listed in ``EXCLUSIVE_ONE_OF`` become ``anyOf``; and a
+    ``oneOf`` of single required keys (``{required: [topic]}``, ``{required: [service]}``:
+    exactly one of them) becomes their ``anyOf`` (at least one) with each key forbidding the
+    others (``dependencies``: at most one). Only for the fast validator: jsonschema keeps the
+    published Schema for its messages. Every other ``oneOf`` stays as it is;
+    tests/test_fast_paths.py holds the two validators to the same verdicts.
     """
     fast: dict[str, Any] = json.loads(json.dumps(schema))
     for pointer in EXCLUSIVE_ONE_OF:
         node = _at(fast, pointer)
         if node is not None and "oneOf" in node:
             node["anyOf"] = node.pop("oneOf")
-    node = _at(fast, REQUIRED_ONE_OF)
-    if node is not None and node.get("oneOf") == [
-        {"required": ["topic"]},
-        {"required": ["service"]},
-    ]:
-        node["anyOf"] = node.pop("oneOf")
-        node["dependencies"] = {"topic": {"properties": {"service": False}}}
+    stack: list[Any] = [fast]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, list):
+            stack.extend(node)
+            continue
+        if not isinstance(node, dict):
+            continue
+        stack.extend(node.values())
+        keys = _single_required_keys(node.get("oneOf"))
+        if keys and "dependencies" not in node:
+            node["anyOf"] = node.pop("oneOf")
+            node["dependencies"] = {
+                k: {"properties": {other: False for other in keys if other != k}} for k in keys
+            }
     return fast
+
+
+def _single_required_keys(branches: Any) -> list[str] | None:
+    """Return the keys of a ``oneOf`` whose every branch is ``{required: [one key]}``."""
+    if not isinstance(branches, list) or len(branches) < 2:
+        return None
+    keys = []
+    for branch in branches:
+        if not (isinstance(branch, dict) and list(branch) == ["required"]):
+            return None
+        required = branch["required"]
+        if not (isinstance(required, list) and len(required) == 1):
+            return None
+        keys.append(str(required[0]))
+    return keys if len(set(keys)) == len(keys) else None
 
 
 def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
@@ -246,6 +268,10 @@ def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) ->
         )
     if validator == "uniqueItems":
         return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
+    if validator == "oneOf":  # with no failing branch to blame: several branches matched
+        return Problem(
+            span, f"{where} gives more than one of its alternatives", hint, code="one-of"
+        )
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 
