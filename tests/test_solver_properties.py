@@ -30,7 +30,9 @@ PROPS = settings(max_examples=examples(120))
 A, _, _, A2 = IFACES  # topic "a" with type m/A, and topic "a" with type m/A2
 
 
-def _problem(provides: list[frozenset[Interface]]) -> tuple[ComponentLibrary, InteroperabilitySchema]:
+def _problem(
+    provides: list[frozenset[Interface]],
+) -> tuple[ComponentLibrary, InteroperabilitySchema]:
     """Return one component per role (role i, label li) providing ``provides[i]``, no edges."""
     roles = tuple(Role(f"r{i}", f"l{i}") for i in range(len(provides)))
     comps = tuple(

@@ -16,18 +16,26 @@ from __future__ import annotations
 
 import itertools
 import math
-import random
+from collections import Counter
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
 from functools import cache
 
-from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+import numpy
+
+from rosreconf.analysis.marginals import marginals
+from rosreconf.model import Component, ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
+from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import Instance, compile_instance
+from rosreconf.solve.optimum import minimise
 from rosreconf.solve.solver import ClingoEngine
 
 EXACT_LIMIT = 5_000
 """Most configurations the exact probability (and usable-candidate) analysis lists."""
+
+MC_BLOCK = 1_000
+"""Failure states drawn as one array (1,000 x 10,000 components is 10 MB)."""
 
 PAIR_LIMIT = 80
 """Most relevant components for which every failure pair is checked (whatif scales further)."""
@@ -113,10 +121,17 @@ def analyse(
     samples: int = 20_000,
     seed: int = 0,
 ) -> SchemaAnalysis:
-    """Analyse ``schema`` over ``library`` with ``failed`` components already gone."""
-    inst = compile_instance(library, schema, failed)
+    """Analyse ``schema`` over ``library`` with ``failed`` components already gone.
+
+    Usable candidates and single points of failure come from counting's marginals (one
+    two-pass elimination, ``rosreconf.analysis.marginals``), not one count per component, so
+    they scale with the library as counting does.
+    """
+    with paused_gc():  # compiling allocates many small tuples; collections would find none
+        inst = compile_instance(library, schema, failed)
     substitutions = _substitutions(inst)
-    valid = count(inst)
+    marg = marginals(inst)
+    valid = marg.total
     result = SchemaAnalysis(
         schema=schema.name,
         title=schema.display_name,
@@ -134,18 +149,14 @@ def analyse(
         )
     result.unusable = unusable
     result.counterexamples_complete = complete
-    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
-    configs = [frozenset(c.components) for c in listed]
-    used: list[set[str]] = [set() for _ in inst.roles]
-    for cfg in listed:
-        for u, (_, comp) in enumerate(cfg.assignment):
-            used[u].add(comp)
     for u, role in enumerate(inst.roles):
         candidates = tuple(c.name for c in inst.domains[u])
-        usable = tuple(c for c in candidates if c in used[u]) if listed or valid == 0 else None
+        usable = tuple(c for c in candidates if marg.per_role[u].get(c, 0))
         result.redundancy.append(RoleRedundancy(role.name, role.abstraction, candidates, usable))
     if valid == 0:
         return result
+    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
+    configs = [frozenset(c.components) for c in listed]
     dead = frozenset(failed)
 
     def kills(failures: frozenset[str]) -> bool:
@@ -155,11 +166,9 @@ def analyse(
             return all(cfg & failures for cfg in configs)
         return count(compile_instance(library, schema, dead | failures)) == 0
 
-    relevant = sorted(set().union(*configs)) if configs else _relevant(inst)
-    # A single point of failure is in every configuration, so in any one of them: only the
-    # components of one witness need the check (R counts, not one per candidate).
-    first = configs[0] if configs else _first(inst)
-    result.single_points_of_failure = [c for c in relevant if c in first and kills(frozenset({c}))]
+    relevant = sorted(marg.usable())
+    # In every configuration: its marginal count is the total (a component fills one role).
+    result.single_points_of_failure = marg.in_every()
     survivors = [c for c in relevant if c not in result.single_points_of_failure]
     if len(survivors) <= PAIR_LIMIT:
         result.critical_pairs = [
@@ -173,7 +182,9 @@ def analyse(
             exact, f"exact (factoring over {len(configs)} configurations)", exact, exact, assumed
         )
     else:
-        result.reliability = monte_carlo(library, schema, dead, p, samples, seed, assumed)
+        result.reliability = monte_carlo(
+            library, schema, dead, p, samples, seed, assumed, relevant=relevant
+        )
     return result
 
 
@@ -187,16 +198,6 @@ def _substitutions(inst: Instance) -> int:
         return math.prod(len(d) for d in inst.domains)
     names = [[c.name for c in d] for d in inst.domains]
     return sum(1 for combo in itertools.product(*names) if len(set(combo)) == len(combo))
-
-
-def _first(inst: Instance) -> frozenset[str]:
-    """Return the components of one valid configuration (the instance has one)."""
-    found = ClingoEngine().first(inst)
-    return frozenset(found.components) if found is not None else frozenset()
-
-
-def _relevant(inst: Instance) -> list[str]:
-    return sorted({c.name for dom in inst.domains for c in dom})
 
 
 def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
@@ -269,10 +270,10 @@ def requirement_counterexamples(
                     unusable.setdefault(
                         c.name, f"{c.name} needs {need}, which can fill no other role"
                     )
-    for (u, name, i), meeting in sorted(inst.meets.items()):
+    for (_u, name, i), meeting in sorted(inst.meets.items()):
         if name in unusable:
             continue
-        component = next(c for c in inst.domains[u] if c.name == name)
+        component = inst.library[name]  # by name: a scan of the role was K^2 in all
         wanted = " or ".join(o.label for o in component.requires[i].options)
         roles = {v for v, _ in meeting}
         if not roles:
@@ -345,30 +346,114 @@ def monte_carlo(
     samples: int,
     seed: int,
     assumed: tuple[str, ...],
+    *,
+    relevant: Collection[str] | None = None,
 ) -> Reliability:
-    """Estimate the probability by sampling failure states (seeded, so reproducible)."""
-    rng = random.Random(seed)
-    names = sorted(p)
-    engine = ClingoEngine()
+    """Estimate the probability by sampling failure states (seeded, so reproducible).
+
+    Only ``relevant`` components (those in some configuration) with a failure probability
+    above 0 are drawn: no other failure changes the answer. States are drawn in blocks as
+    one array; a state that misses every part of a known surviving configuration (a
+    witness) survives with it, decided for the whole block at once. Only the rest go to the
+    solver, which returns the most reliable configuration that survives them, so that one
+    witness covers as many later states as it can.
+    """
+    twins = Twins(library, schema)
+    names = sorted(n for n in (p if relevant is None else relevant) if p[n] > 0 and n not in dead)
+    index = {n: i for i, n in enumerate(names)}
+    probs = numpy.array([p[n] for n in names], dtype=float)
+    rng = numpy.random.default_rng(seed)
+    witnesses: list[numpy.ndarray] = []
+    seen: dict[bytes, bool] = {}
     hits = 0
-    seen: dict[frozenset[str], bool] = {}
-    witnesses: list[frozenset[str]] = []  # configurations found so far
-    for _ in range(samples):
-        failed = frozenset(n for n in names if rng.random() < p[n]) | dead
-        if failed not in seen:
-            # A state that misses every component of a known configuration survives with it:
-            # no compile, no solver call (most samples of a large library are such states).
-            if any(not (w & failed) for w in witnesses):
-                seen[failed] = True
-            else:
-                found = engine.first(compile_instance(library, schema, failed))
+    for start in range(0, samples, MC_BLOCK):
+        failed = rng.random((min(MC_BLOCK, samples - start), len(names))) < probs
+        alive = numpy.zeros(len(failed), dtype=bool)
+        for w in witnesses:
+            alive |= ~failed[:, w].any(axis=1)
+        for row in numpy.flatnonzero(~alive):
+            if alive[row]:  # covered by a witness found for an earlier row of this block
+                continue
+            key = numpy.packbits(failed[row]).tobytes()
+            if key not in seen:
+                state = dead | {names[i] for i in numpy.flatnonzero(failed[row])}
+                found = most_reliable(twins.survivors(state, p), schema, state, p)
+                seen[key] = found is not None
                 if found is not None:
-                    witnesses.append(frozenset(found.components))
-                seen[failed] = found is not None
-        hits += seen[failed]
+                    w = numpy.array([index[c] for c in found if c in index], dtype=numpy.intp)
+                    witnesses.append(w)
+                    alive |= ~failed[:, w].any(axis=1)
+            alive[row] = seen[key]
+        hits += int(alive.sum())
     est = hits / samples
     low, high = wilson(hits, samples)
     return Reliability(est, f"Monte Carlo ({samples} samples, seed {seed})", low, high, assumed)
+
+
+class Twins:
+    """Group components that validity cannot tell apart, to solve over one of each.
+
+    Validity reads a component's label, provisions, requirements, needs, excludes and
+    schemas, never its name, unless another component names it in ``needs`` or
+    ``excludes``. Components alike in all of these can swap places in any configuration,
+    so a failure state leaves a configuration exactly when it leaves one over the library
+    cut down to the most reliable working members of each group (as many as the schema has
+    roles with their label, since one component fills one role): 10,000 candidates for a
+    role are a handful of groups, and the solver sees only those.
+    """
+
+    def __init__(self, library: ComponentLibrary, schema: InteroperabilitySchema) -> None:
+        named = {n for c in library for n in c.needs | c.excludes}
+        self.library = library
+        self.room = Counter(r.abstraction for r in schema.graph.roles)
+        groups: dict[object, list[Component]] = {}
+        for c in library:
+            key: object = c.name if c.name in named else _behaviour(c)
+            groups.setdefault(key, []).append(c)
+        self.groups = list(groups.values())
+
+    def survivors(self, failed: frozenset[str], p: dict[str, float]) -> ComponentLibrary:
+        """Return the library cut to the most reliable working members of every group."""
+        keep: set[str] = set()
+        for members in self.groups:
+            working = [c.name for c in members if c.name not in failed]
+            working.sort(key=lambda n: p[n])  # stable: library order among equals
+            keep.update(working[: max(1, self.room[members[0].abstraction])])
+        kept = tuple(c for c in self.library if c.name in keep)
+        return ComponentLibrary(self.library.name, kept)
+
+
+def _behaviour(c: Component) -> tuple[object, ...]:
+    """Return everything validity reads from a component, except its name."""
+    return (c.abstraction, c.provides, c.requires, c.needs, c.excludes, c.schemas)
+
+
+def most_reliable(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    failed: frozenset[str],
+    p: dict[str, float],
+) -> frozenset[str] | None:
+    """Return the components of the configuration most likely to keep working, or None.
+
+    Each candidate costs -log(1 - p) (scaled to integers), so the least total cost is the
+    greatest probability that all parts work: min-plus elimination over counting's tables,
+    clingo's first configuration when the tables would be too large.
+    """
+    with paused_gc():
+        inst = compile_instance(library, schema, failed)
+    costs = [{c.name: (_log_cost(p[c.name]),) for c in dom} for dom in inst.domains]
+    try:
+        found = minimise(inst, costs)
+        config = found[0] if found is not None else None
+    except TooHard:
+        config = ClingoEngine().first(inst)
+    return None if config is None else frozenset(config.components)
+
+
+def _log_cost(p: float) -> int:
+    """Return -log(1 - p) in millionths (a certain failure costs more than any sum of others)."""
+    return 10**12 if p >= 1 else round(-math.log1p(-p) * 1e6)
 
 
 def wilson(hits: int, n: int, z: float = 1.959964) -> tuple[float, float]:
