@@ -12,6 +12,7 @@ from randomlib import IFACES, brute_force, problems
 
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis.library import analyse, exact_probability
+from rosreconf.analysis.marginals import marginals
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -155,3 +156,22 @@ def test_single_points_of_failure_are_exactly_the_parts_of_every_configuration(
         library_analysis.EXACT_LIMIT = limit
     expected = sorted(frozenset.intersection(*valid)) if valid else []
     assert result.single_points_of_failure == expected
+
+
+@PROPS
+@given(problem=problems(), data=st.data())
+def test_marginals_are_brute_force_counts_per_role_and_candidate(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema], data: st.DataObject
+) -> None:
+    """The two-pass elimination counts, per role and candidate, what listing counts."""
+    library, schema = problem
+    failed = frozenset(data.draw(st.sets(st.sampled_from([c.name for c in library]), max_size=2)))
+    inst = compile_instance(library, schema, failed)
+    expected = [dict.fromkeys((c.name for c in dom), 0) for dom in inst.domains]
+    configs = brute_force(library, schema, failed)
+    for config in configs:
+        for u, (_, comp) in enumerate(config.assignment):
+            expected[u][comp] += 1
+    marg = marginals(inst)
+    assert marg.total == len(configs)
+    assert marg.per_role == expected
