@@ -15,7 +15,8 @@ from manylib import write_many
 
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis import whatif
-from rosreconf.analysis.library import Twins, analyse, exact_probability, most_reliable
+from rosreconf.analysis.library import analyse
+from rosreconf.analysis.reliability import Twins, exact_probability, most_reliable
 from rosreconf.analysis.marginals import marginals
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from rosreconf.analysis.whatif import analyse
+from rosreconf.analysis.whatif import analyse, sweep
 from rosreconf.cli.app import app
 from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_bundled, load_paths
@@ -64,3 +64,27 @@ def test_bundled_in_process_without_pool() -> None:
     schema = next(s for s in loaded.schemas if s.name == "object_repositioning")
     report = analyse(loaded.library, schema, 1)
     assert report.critical == ["NREA"]
+
+
+def test_sweep_runs_every_schema_on_one_pool_and_reports_progress_per_schema() -> None:
+    loaded = load_bundled()
+    calls: list[tuple[str, int]] = []
+    reports = sweep(
+        loaded.library,
+        loaded.schemas,
+        2,
+        workers=2,
+        progress=lambda schema, decided: calls.append((schema.name, decided)),
+    )
+    assert [r.schema for r in reports] == [s.name for s in loaded.schemas]
+    starts = [name for name, decided in calls if decided == 0]
+    assert starts[: len(loaded.schemas)] == [s.name for s in loaded.schemas]
+    for schema, report in zip(loaded.schemas, reports, strict=True):
+        alone = analyse(loaded.library, schema, 2)  # in process, no pool
+        assert {k: o.survives for k, o in report.outcomes.items()} == {
+            k: o.survives for k, o in alone.outcomes.items()
+        }
+        told = [decided for name, decided in calls if name == schema.name]
+        assert told[0] == 0  # the schema's start, before any set is decided
+        # Every failure set but the empty one is told once, whether pruned or solved.
+        assert sum(told) == len(report.outcomes) - 1

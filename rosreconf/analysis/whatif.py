@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import clingo
 
 from rosreconf.analysis.marginals import Marginals, marginals
+from rosreconf.analysis.workers import executor as open_executor
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
@@ -267,6 +268,38 @@ def analyse(
             if progress:
                 progress(len(outcomes))
     return report
+
+
+SchemaProgress = Callable[[InteroperabilitySchema, int], None]
+"""Called with 0 when a schema's analysis starts, then with each number of sets decided."""
+
+
+def sweep(
+    library: ComponentLibrary,
+    schemas: Sequence[InteroperabilitySchema],
+    max_failures: int = 2,
+    workers: int | None = None,
+    cluster: str | None = None,
+    progress: SchemaProgress | None = None,
+) -> list[SchemaReport]:
+    """Analyse every schema on one pool: local worker processes, or a Dask cluster.
+
+    The pool is ``rosreconf.analysis.workers.executor`` (``--workers N`` / ``--cluster
+    ADDRESS``), the one that also runs ``simulate``'s sweep, so both commands run their units
+    of work the same way. ``progress`` is how a caller shows progress: this never prints.
+
+    Raises:
+        UsageError: both ``workers`` and ``cluster`` were given.
+        ExternalToolError: the cluster cannot be reached (or ``distributed`` is missing).
+    """
+    reports = []
+    with open_executor(workers, cluster) as pool:
+        for schema in schemas:
+            tick = None if progress is None else functools.partial(progress, schema)
+            if tick is not None:
+                tick(0)
+            reports.append(analyse(library, schema, max_failures, pool, tick))
+    return reports
 
 
 def _prune(known: dict[frozenset[str], Outcome], failed: tuple[str, ...]) -> Outcome | None:

@@ -29,10 +29,11 @@ from rosreconf.cli.console import stderr
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
+from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.sources import open_source
-from rosreconf.ros.watcher import Event, Watcher, launch_log_dir
+from rosreconf.ros.watcher import Event, Watcher
 from rosreconf.solve.running import one_target
 
 

@@ -2,17 +2,26 @@
 
 from __future__ import annotations
 
-import functools
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Annotated
 
 import typer
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+)
 
-from rosreconf.analysis.whatif import analyse
-from rosreconf.analysis.workers import executor
+from rosreconf.analysis.whatif import SchemaProgress, sweep
 from rosreconf.cli.common import JsonOption, LibraryOption, OnlyOption, SchemaOption, select
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
+from rosreconf.model import InteroperabilitySchema
 from rosreconf.render.reports.whatif import document, table
 
 
@@ -38,31 +47,37 @@ def whatif_command(
     sel = select(library, schema, None, only)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
-    progress = Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=stderr,
-        transient=True,
-        disable=not stderr.is_terminal,
-    )
-    reports = []
-    with progress, executor(workers, cluster) as pool:
-        for s in sel.schemas:
-            bar = progress.add_task(f"what if: {s.display_name}", total=None)
-            report = analyse(
-                sel.library,
-                s,
-                max_failures,
-                pool,
-                functools.partial(progress.advance, bar),
-            )
-            progress.update(bar, visible=False)
-            reports.append(report)
+    with _bars(stderr) as progress:
+        reports = sweep(sel.library, sel.schemas, max_failures, workers, cluster, progress)
     if as_json:
         write_stdout(document(reports, max_failures))
     else:
         for s, report in zip(sel.schemas, reports, strict=True):
             stdout.print(table(report, s.display_name, max_failures))
     raise typer.Exit(ExitCode.OK)
+
+
+@contextmanager
+def _bars(console: Console) -> Iterator[SchemaProgress]:
+    """Show one bar of failure sets decided for the schema being analysed (terminals only)."""
+    progress = Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=not console.is_terminal,
+    )
+    bars: dict[str, TaskID] = {}
+
+    def advance(schema: InteroperabilitySchema, decided: int) -> None:
+        if schema.name not in bars:
+            for bar in bars.values():  # the schema before is done
+                progress.update(bar, visible=False)
+            label = f"what if: {schema.display_name}"
+            bars[schema.name] = progress.add_task(label, total=None)
+        progress.advance(bars[schema.name], decided)
+
+    with progress:
+        yield advance

@@ -107,7 +107,12 @@ def requirement_met(
     schema: InteroperabilitySchema,
     chosen: dict[str, Component],
 ) -> bool:
-    """Tell whether some provider along ``consumer_role``'s edges meets ``req``."""
+    """Tell whether some provider along ``consumer_role``'s edges meets ``req`` (Lemma 4).
+
+    Lemma 4 says that within a ROS-graph every service and topic a node requires (S-, T-)
+    is provided (S+, T+); checking it here, one requirement at a time along the schema's
+    edges, is what makes every valid configuration a ROS-graph in the lemma's sense.
+    """
     for edge in schema.graph.providers_of(consumer_role):
         provider = chosen.get(edge.provider)
         if provider is None:

@@ -3,9 +3,10 @@
 rosreconf's own environment has no rospy, and needs none: the master API
 (http://wiki.ros.org/ROS/Master_API) and every node's own API
 (http://wiki.ros.org/ROS/Slave_API) are plain XML-RPC, each call answering
-``[code, status, value]`` with code 1 for success. Every failure (nothing listening, no
-answer within ``timeout``, an answer that is not that shape) becomes ``ExternalToolError``
-naming the URI; nothing here prints.
+``[code, status, value]`` with code 1 for success. Each call goes through
+``rosreconf.ros.rpc`` (one total deadline and a byte cap per call). Every failure (nothing
+listening, no answer within ``timeout``, an answer that is not that shape) becomes
+``ExternalToolError`` naming the URI; nothing here prints.
 
 What the master does not do: it never checks that a registered node is alive. A node that
 shuts down cleanly (SIGINT/SIGTERM) unregisters itself; a node killed with SIGKILL stays
@@ -16,20 +17,16 @@ for its pid to tell the difference, and ``purge_dead`` unregisters the dead ones
 
 from __future__ import annotations
 
-import http.client
-import socket
-import time
-import xmlrpc.client
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
-from urllib.parse import urlsplit
-from xml.parsers.expat import ExpatError
 
 from rosreconf.errors import ExternalToolError, UsageError
+from rosreconf.ros import rpc
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
+from rosreconf.ros.rpc import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, printable
 
 __all__ = [
     "DEFAULT_MAX_BYTES",
@@ -48,206 +45,8 @@ __all__ = [
 _PID_WORKERS = 8
 """How many nodes are asked for their pid at once, so hung nodes cost one timeout, not many."""
 
-DEFAULT_TIMEOUT = 3.0
-"""Seconds one XML-RPC call may take in all: connecting, sending, and the whole answer."""
-
-DEFAULT_MAX_BYTES = 32 << 20
-"""How many bytes one answer may have (headers included); a large real master sends a few MiB."""
-
 _NODE_MAX_BYTES = 64 << 10
 """The cap for a node's answers (getPid, shutdown), which are a few hundred bytes."""
-
-_SHOWN_CHARS = 200
-"""How much of a text from the wire an error message quotes."""
-
-
-def printable(text: str, limit: int = _SHOWN_CHARS) -> str:
-    """Return ``text`` fit for a terminal: control and other unprintable characters escaped.
-
-    Anything that came over the wire (a status text, an HTTP reason phrase, a name) may carry
-    escape sequences that retitle or clear a terminal, or reorder what it shows; messages
-    quote it only through this function, cut to ``limit`` characters.
-    """
-    shown = "".join(
-        c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in text
-    )
-    return shown if len(shown) <= limit else shown[: limit - 3] + "..."
-
-
-class _Late(TimeoutError):
-    """The call's total deadline passed while connecting, sending or reading."""
-
-
-class _TooLarge(OSError):
-    """The answer grew past the byte cap."""
-
-
-class _BoundedSocket(socket.socket):
-    """A socket that gives each operation only what is left of one total deadline.
-
-    ``http.client`` reads through a buffered file that loops over ``recv_into`` until it
-    has what it asked for, so a per-read timeout lets a peer that sends one byte at a time
-    keep a call going for as long as it likes. Here every ``recv_into``/``recv``/``sendall``
-    first sets the timeout to the time left, and counts the bytes received against the cap.
-    """
-
-    deadline: float = 0.0
-    max_bytes: int = DEFAULT_MAX_BYTES
-    received: int = 0
-
-    def _arm(self) -> None:
-        left = self.deadline - time.monotonic()
-        if left <= 0:
-            raise _Late
-        self.settimeout(left)
-
-    def _count(self, n: int) -> int:
-        self.received += n
-        if self.received > self.max_bytes:
-            raise _TooLarge
-        return n
-
-    def recv_into(self, buffer: Any, nbytes: int = 0, flags: int = 0) -> int:
-        self._arm()
-        return self._count(super().recv_into(buffer, nbytes, flags))
-
-    def recv(self, bufsize: int, flags: int = 0) -> bytes:
-        self._arm()
-        data = super().recv(bufsize, flags)
-        self._count(len(data))
-        return data
-
-    def sendall(self, data: Any, flags: int = 0) -> None:
-        self._arm()
-        super().sendall(data, flags)
-
-
-class _BoundedConnection(http.client.HTTPConnection):
-    """An HTTP connection over a ``_BoundedSocket`` with the transport's deadline and cap."""
-
-    def __init__(self, host: str, deadline: float, max_bytes: int) -> None:
-        super().__init__(host)
-        self._deadline = deadline
-        self._max_bytes = max_bytes
-
-    def connect(self) -> None:
-        left = self._deadline - time.monotonic()
-        if left <= 0:
-            raise _Late
-        plain = socket.create_connection((self.host, self.port), timeout=left)
-        sock = _BoundedSocket(plain.family, plain.type, plain.proto, fileno=plain.detach())
-        sock.deadline, sock.max_bytes = self._deadline, self._max_bytes
-        self.sock = sock
-
-
-class _BoundedTransport(xmlrpc.client.Transport):
-    """An XML-RPC transport with a total deadline and a byte cap for each call.
-
-    The deadline starts when the request starts and covers connecting, sending and reading
-    the whole answer; the cap counts every byte received. Compressed answers are neither
-    asked for nor accepted: a small gzip body can unpack to any size.
-    """
-
-    accept_gzip_encoding = False
-
-    def __init__(self, timeout: float, max_bytes: int) -> None:
-        super().__init__()
-        self._timeout = timeout
-        self._max_bytes = max_bytes
-        self._deadline = 0.0
-
-    def request(self, host: Any, handler: str, request_body: Any, verbose: bool = False) -> Any:
-        self._deadline = time.monotonic() + self._timeout
-        return super().request(host, handler, request_body, verbose)
-
-    def make_connection(self, host: Any) -> http.client.HTTPConnection:
-        if self._connection[1] is not None and host == self._connection[0]:
-            return self._connection[1]
-        chost, self._extra_headers, _ = self.get_host_info(host)
-        conn = _BoundedConnection(chost, self._deadline, self._max_bytes)
-        self._connection = host, conn
-        return conn
-
-    def parse_response(self, response: http.client.HTTPResponse) -> Any:
-        encoding = response.getheader("Content-Encoding", "") or "identity"
-        if encoding.lower() != "identity":
-            raise xmlrpc.client.ResponseError(
-                f"answered with Content-Encoding {printable(encoding, 40)}, which was not asked for"
-            )
-        parser, unmarshaller = self.getparser()
-        while chunk := response.read(1 << 16):
-            parser.feed(chunk)
-        parser.close()
-        return unmarshaller.close()
-
-
-def _check_uri(uri: str, what: str) -> None:
-    """Refuse a URI that cannot be an XML-RPC endpoint, before any connection is tried."""
-    parts = urlsplit(uri)
-    try:
-        port = parts.port
-    except ValueError:
-        port = None
-    if parts.scheme != "http" or not parts.hostname or port is None:
-        raise UsageError(f"{what} URI {uri!r} is not of the form http://HOST:PORT/")
-
-
-def _ask(uri: str, who: str, timeout: float, max_bytes: int, method: str, *args: object) -> Any:
-    """Call ``method`` at ``uri`` within ``timeout`` and ``max_bytes``; return the raw answer."""
-    proxy = xmlrpc.client.ServerProxy(uri, transport=_BoundedTransport(timeout, max_bytes))
-    try:
-        return getattr(proxy, method)(*args)
-    except TimeoutError:
-        msg = (
-            f"{who} at {uri} did not answer {method} within {timeout:g} s "
-            "(the whole answer must arrive in that time; a slow master needs a longer timeout)"
-        )
-        raise ExternalToolError(msg) from None
-    except _TooLarge:
-        msg = (
-            f"{who} at {uri} answered {method} with more than {_mib(max_bytes)} "
-            "(a runaway answer: it was cut off; a really that large system needs a larger cap)"
-        )
-        raise ExternalToolError(msg) from None
-    except ConnectionRefusedError:
-        msg = f"{who} at {uri} refused the connection (is it running on that port?)"
-        raise ExternalToolError(msg) from None
-    except xmlrpc.client.ProtocolError as e:
-        reason = printable(str(e.errmsg), 80)
-        msg = f"{who} at {uri}: {method} failed: HTTP status {e.errcode} {reason}"
-        raise ExternalToolError(msg) from None
-    except xmlrpc.client.Fault as e:
-        msg = f"{who} at {uri}: {method} failed: XML-RPC fault {printable(str(e.faultString))}"
-        raise ExternalToolError(msg) from None
-    except (OSError, xmlrpc.client.Error, http.client.HTTPException, ExpatError) as e:
-        why = printable(str(e)) or type(e).__name__
-        msg = f"{who} at {uri}: {method} failed: {type(e).__name__}: {why}"
-        raise ExternalToolError(msg) from None
-    finally:
-        proxy("close")()
-
-
-def _mib(n: int) -> str:
-    """Say a byte count in MiB (or bytes below one MiB)."""
-    return f"{n / (1 << 20):g} MiB" if n >= 1 << 20 else f"{n} bytes"
-
-
-def _call(
-    uri: str,
-    who: str,
-    timeout: float,
-    method: str,
-    *args: object,
-    max_bytes: int = DEFAULT_MAX_BYTES,
-) -> Any:
-    """Call ``method`` at ``uri`` and return the value of a code-1 answer, or raise."""
-    answer = _ask(uri, who, timeout, max_bytes, method, *args)
-    if not (isinstance(answer, list) and len(answer) == 3 and isinstance(answer[0], int)):
-        msg = f"{who} at {uri}: {method} gave {answer!r:.200}, not [code, status, value]"
-        raise ExternalToolError(printable(msg, 400))
-    if answer[0] != 1:
-        raise ExternalToolError(f"{who} at {uri}: {method} failed: {printable(str(answer[1]))}")
-    return answer[2]
 
 
 def _bad(uri: str, method: str, value: object) -> ExternalToolError:
@@ -298,7 +97,7 @@ def _lookup_node(
     master_uri: str, name: str, timeout: float, max_bytes: int, caller_id: str
 ) -> str | None:
     """Return the API URI of node ``name``, or None if the master does not know it now."""
-    answer = _ask(master_uri, "ROS master", timeout, max_bytes, "lookupNode", caller_id, name)
+    answer = rpc.ask(master_uri, "ROS master", timeout, max_bytes, "lookupNode", caller_id, name)
     if isinstance(answer, list) and len(answer) == 3 and answer[0] == 1:
         uri = answer[2]
         return uri if isinstance(uri, str) and uri.isprintable() else None
@@ -308,8 +107,8 @@ def _lookup_node(
 def node_pid(node_uri: str, *, timeout: float = 1.0, caller_id: str = "/rosreconf") -> int | None:
     """Return the pid a node's own API reports, or None when it does not answer properly."""
     try:
-        _check_uri(node_uri, "node")
-        pid = _call(node_uri, "node", timeout, "getPid", caller_id, max_bytes=_NODE_MAX_BYTES)
+        rpc.check_uri(node_uri, "node")
+        pid = rpc.call(node_uri, "node", timeout, "getPid", caller_id, max_bytes=_NODE_MAX_BYTES)
     except (ExternalToolError, UsageError):
         return None
     return pid if isinstance(pid, int) and not isinstance(pid, bool) else None
@@ -345,12 +144,12 @@ def read_live_graph(
     unprintable characters are refused: no ROS client library makes them, and they would
     reach the terminal.
     """
-    _check_uri(master_uri, "ROS master")
+    rpc.check_uri(master_uri, "ROS master")
     who = "ROS master"
     taken_at = datetime.now(UTC)
 
     def ask(method: str) -> Any:
-        return _call(master_uri, who, timeout, method, caller_id, max_bytes=max_bytes)
+        return rpc.call(master_uri, who, timeout, method, caller_id, max_bytes=max_bytes)
 
     pubs, subs, srvs = _registrations(master_uri, ask("getSystemState"))
     types = _topic_types(master_uri, ask("getTopicTypes"))
@@ -390,12 +189,12 @@ def purge_dead(
     Each registration is withdrawn in the dead node's name (the master checks the caller's
     API URI). ``only`` restricts the purge to those node names. Returns the purged names.
     """
-    _check_uri(master_uri, "ROS master")
+    rpc.check_uri(master_uri, "ROS master")
     wanted = None if only is None else frozenset(only)
     purged: list[str] = []
 
     def ask(method: str, *args: object) -> Any:
-        return _call(master_uri, "ROS master", timeout, method, *args, max_bytes=max_bytes)
+        return rpc.call(master_uri, "ROS master", timeout, method, *args, max_bytes=max_bytes)
 
     for node in graph.nodes:
         if (wanted is not None and node.name not in wanted) or node.uri is None:
@@ -425,8 +224,10 @@ def shutdown_node(
     a node that is already gone is not an error.
     """
     try:
-        _check_uri(node_uri, "node")
-        _call(node_uri, "node", timeout, "shutdown", caller_id, reason, max_bytes=_NODE_MAX_BYTES)
+        rpc.check_uri(node_uri, "node")
+        rpc.call(
+            node_uri, "node", timeout, "shutdown", caller_id, reason, max_bytes=_NODE_MAX_BYTES
+        )
     except (ExternalToolError, UsageError):
         return False
     return True
@@ -446,10 +247,10 @@ def master_identity(
     that every node failed. roscore sets the parameter ``/run_id`` to a fresh UUID; a bare
     ``rosmaster`` does not (``None``), and then the pid alone tells.
     """
-    _check_uri(master_uri, "ROS master")
+    rpc.check_uri(master_uri, "ROS master")
     who = "ROS master"
-    pid = _call(master_uri, who, timeout, "getPid", caller_id, max_bytes=max_bytes)
-    answer = _ask(master_uri, who, timeout, max_bytes, "getParam", caller_id, "/run_id")
+    pid = rpc.call(master_uri, who, timeout, "getPid", caller_id, max_bytes=max_bytes)
+    answer = rpc.ask(master_uri, who, timeout, max_bytes, "getParam", caller_id, "/run_id")
     found = isinstance(answer, list) and len(answer) == 3 and answer[0] == 1
     run_id = answer[2] if found else None  # -1: no such parameter (a bare rosmaster)
     pid_ok = isinstance(pid, int) and not isinstance(pid, bool)

@@ -28,7 +28,8 @@ from rosreconf.errors import UsageError
 from rosreconf.procs import Background, start_program
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes, graph_uri
+from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes
+from rosreconf.ros.ros2.graph import graph_uri
 from rosreconf.ros.rosmaster import (
     DEFAULT_MAX_BYTES,
     DEFAULT_TIMEOUT,

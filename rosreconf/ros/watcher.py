@@ -21,17 +21,15 @@ nodes the new master does not know, and starts the configuration again).
 
 roslaunch's own errors (a package that does not exist, a node that cannot start) are read
 from its output while the watcher waits, and handed on, escaped, with the paths of the launch
-file and of that output; both are kept in ``launch_dir``. A component that was launched and
-never came up is not launched again on every poll.
+file and of that output; both are kept in ``launch_dir`` (``rosreconf.ros.launcher`` owns the
+launch processes). A component that was launched and never came up is not launched again on
+every poll.
 
 Every decision is an ``Event`` handed to the ``log`` callback; nothing here prints.
 """
 
 from __future__ import annotations
 
-import os
-import re
-import tempfile
 import time
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
@@ -42,13 +40,12 @@ from typing import Any
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.planning.narrative import explain_replan
-from rosreconf.procs import Background, stop_all
+from rosreconf.procs import Background
 from rosreconf.ros.conformance import Conformance, compare, node_live_name
-from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.ros.launcher import Launcher
+from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.rosmaster import printable
 from rosreconf.ros.sources import LiveSource, lifecycle_steps
-from rosreconf.ros.standins import write_standin_package
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.solver import why_not
 
@@ -92,7 +89,6 @@ class Watcher:
         launch_dir: where launch files and roslaunch's output go, kept after the watcher
             ends (default: ``workdir``).
         failed: components known to have failed (sticky).
-        launches: the roslaunch processes started, stopped by ``close``.
     """
 
     source: LiveSource
@@ -107,15 +103,23 @@ class Watcher:
     settle: float = 30.0
     launch_dir: Path | None = None
     failed: set[str] = field(default_factory=set)
-    launches: list[Background] = field(default_factory=list)
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
     _master: tuple[int | None, str | None] | None = None
-    _launched: set[str] = field(default_factory=set)
-    _exited: set[int] = field(default_factory=set)
-    _steps: int = 0
     _running: bool = False
+    _launcher: Launcher = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self._launcher = Launcher(
+            self.source, self.library, self.schema, self.workdir, self.env, self._say,
+            stand_ins=self.stand_ins, launch_dir=self.launch_dir,
+        )  # fmt: skip
+
+    @property
+    def launches(self) -> list[Background]:
+        """Return the roslaunch processes started and not yet stopped (``close`` stops them)."""
+        return self._launcher.launches
 
     def _read(self) -> LiveGraph:
         return self.source.read()
@@ -123,7 +127,7 @@ class Watcher:
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_master()
-        self._check_launches()
+        self._launcher.check()
         graph = self._read()
         check = compare(self.current, self.library, self.schema, graph)
         missing = []
@@ -161,15 +165,15 @@ class Watcher:
                 return self._confirm()
         elif missing:
             # What was launched and never came up is not launched again on every poll.
-            stuck = [c for c in missing if c in self._launched] if self.apply else missing
+            stuck = [c for c in missing if c in self._launcher.launched] if self.apply else missing
             if stuck and tuple(stuck) != self._missing:
                 self._missing = tuple(stuck)
                 if not self.apply:
                     why = "use --apply to start"
                 elif self.launches:
-                    why = f"launched but not running (see the launch output in {self._dir()})"
+                    why = f"launched but not running (see the launch output in {self._where})"
                 else:
-                    why = f"no launcher here: the launch file is in {self._dir()}"
+                    why = f"no launcher here: the launch file is in {self._where}"
                 self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
             fresh = [c for c in missing if c not in stuck]
             if fresh and self._start(fresh, "not running yet"):
@@ -194,47 +198,20 @@ class Watcher:
             new_run_id=now[1],
         )
         if self.apply and self.launches:
-            n = len(self.launches)
-            stop_all(self.launches)
-            self.launches.clear()
+            n = self._launcher.stop()
             self._say(
                 "stopped",
                 f"stopped the {n} roslaunch process(es) started with the old master, "
                 "to start their nodes again with the new one",
             )
         self._seen.clear()
-        self._launched.clear()
+        self._launcher.launched.clear()
         self._missing = ()
         self._running = False
 
-    def _dir(self) -> Path:
-        return self.launch_dir if self.launch_dir is not None else self.workdir
-
-    def _check_launches(self) -> bool:
-        """Hand on roslaunch's errors and exits; return whether the newest one has exited."""
-        for launch in self.launches:
-            files = self._files(launch)
-            for line in _error_lines(launch.new_output()):
-                self._say("launch-error", f"roslaunch: {line} ({files})", **self._paths(launch))
-            code = launch.poll()
-            if code is not None and launch.process.pid not in self._exited:
-                self._exited.add(launch.process.pid)
-                self._say(
-                    "launch-exited",
-                    f"roslaunch exited with code {code} ({files})",
-                    returncode=code,
-                    **self._paths(launch),
-                )
-        return bool(self.launches) and self.launches[-1].process.poll() is not None
-
-    @staticmethod
-    def _paths(launch: Background) -> dict[str, str]:
-        log = launch.log or Path("?")
-        return {"launch_file": str(log.with_suffix(".launch")), "output": str(log)}
-
-    def _files(self, launch: Background) -> str:
-        paths = self._paths(launch)
-        return f"launch file {paths['launch_file']}, its output {paths['output']}"
+    @property
+    def _where(self) -> Path:
+        return self._launcher.directory
 
     def _role(self, comp: str) -> str:
         return next(r for r, c in self.current.assignment if c == comp)
@@ -336,51 +313,13 @@ class Watcher:
 
     def _start(self, components: Collection[str], why: str) -> bool:
         """Start ``components`` with one launch process (or say what would run); True if run."""
-        self._steps += 1
-        self._dir().mkdir(parents=True, exist_ok=True)
-        version = self.source.ros_version
-        suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
-        launch = self._dir() / f"step{self._steps}{suffix}"
-        text = launch_file(
-            self.library,
-            self.schema,
-            self.current,
-            version,
-            only=components,
-            stand_ins=self.stand_ins,
-        ).text
-        launch.write_text(text, encoding="utf-8")
-        pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
-        process = self.source.start(launch, self.env, pkg)
-        self._launched |= set(components)
-        command = " ".join(self.source.launch_command(launch))
-        if process is None:
-            self._say(
-                "would-launch",
-                f"no launcher here: would run '{command}' to start {', '.join(components)} "
-                f"({why}); wrote {launch}",
-                components=list(components),
-                launch_file=str(launch),
-                command=command,
-            )
-            return False
-        self.launches.append(process)
-        how = "stand-ins of " if self.stand_ins else ""
-        launcher = "roslaunch" if version is RosVersion.ROS1 else "ros2 launch"
-        self._say(
-            "launch",
-            f"{launcher} started {how}{', '.join(components)} ({why})",
-            components=list(components),
-            launch_file=str(launch),
-            output=str(launch.with_suffix(".log")),
-        )
-        return True
+        return self._launcher.start(self.current, components, why)
 
     def _confirm(self) -> Conformance:
         """Wait until the live graph conforms or ``settle`` passes; log which."""
         start = time.monotonic()
         while True:
-            ended = self._check_launches()
+            ended = self._launcher.check()
             check = compare(self.current, self.library, self.schema, self._read())
             took = time.monotonic() - start
             if check.ok:
@@ -407,16 +346,7 @@ class Watcher:
 
     def close(self) -> None:
         """Stop every roslaunch this watcher started, and the nodes they run."""
-        if self.launches:
-            stop_all(self.launches)
-            self._say("stopped", f"stopped the {len(self.launches)} roslaunch process(es) started")
-        self.launches.clear()
-        if self._steps and self.launch_dir is not None:
-            self._say(
-                "kept",
-                f"launch files and roslaunch's output are kept in {self.launch_dir}",
-                launch_dir=str(self.launch_dir),
-            )
+        self._launcher.close()
         self.source.close()
 
     def run(self, interval: float, *, once: bool = False) -> Conformance:
@@ -451,37 +381,3 @@ class Watcher:
             if once:
                 return check
             time.sleep(interval)
-
-
-_ERROR = re.compile(
-    r"error|exception|cannot|not found|no such|failed|has died|traceback", re.IGNORECASE
-)
-_ESCAPES = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)?|\x1b.")
-"""Terminal escape sequences (CSI colours, OSC window titles), which roslaunch writes."""
-
-
-def _error_lines(output: str, limit: int = 10) -> list[str]:
-    """Return roslaunch's error lines from ``output``: escapes removed, the rest made printable."""
-    lines = [printable(_ESCAPES.sub("", line).strip()) for line in output.splitlines()]
-    return [line for line in lines if line and _ERROR.search(line)][:limit]
-
-
-def launch_log_dir(env: Mapping[str, str]) -> Path:
-    """Make a new directory for launch files and roslaunch's output, next to ROS's own logs.
-
-    ROS keeps its logs in ``$ROS_LOG_DIR``, else ``$ROS_HOME/log``, else ``~/.ros/log``;
-    the directory made there (``rosreconf-watch-<UTC time>-<random>``) is never an existing
-    one, so nothing of the user's is overwritten.
-
-    Raises:
-        OSError: the directory cannot be made.
-    """
-    if env.get("ROS_LOG_DIR"):
-        base = Path(env["ROS_LOG_DIR"])
-    elif env.get("ROS_HOME"):
-        base = Path(env["ROS_HOME"]) / "log"
-    else:
-        base = Path(os.path.expanduser("~")) / ".ros" / "log"
-    base.mkdir(parents=True, exist_ok=True)
-    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
-    return Path(tempfile.mkdtemp(prefix=f"rosreconf-watch-{stamp}-", dir=base))

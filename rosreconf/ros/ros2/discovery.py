@@ -22,34 +22,38 @@ Humble does not. A sample is accepted only if its GID is the writing participant
 ``ros_discovery_info`` is not keyed: each participant rewrites its whole state on every change,
 all into one instance, so it is read with KEEP_ALL and the newest sample per participant is
 kept here (this object is a session: ``watch`` keeps one open). Nothing here prints.
+
+The cyclonedds binding, rmw's discovery type and QoS conversion are in ``dds``; joining the
+samples into a ``LiveGraph`` is ``graph`` (pure data, testable without DDS).
 """
 
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable
 from contextlib import suppress
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.model.qos import Durability, History, Liveliness, QosProfile, Reliability
-from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.ros2.names import DISCOVERY_TOPIC, Channel, ros_name, ros_type
+from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.ros2.dds import ALIVE, info_type, load_dds, qos_from_dds, user_data
+from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
+from rosreconf.ros.ros2.names import DISCOVERY_TOPIC
+
+__all__ = [
+    "DISTROS",
+    "GID_SIZES",
+    "Ros2Discovery",
+    "check_domain",
+    "gid_sizes",
+    "graph_uri",
+    "read_ros2_graph",
+]
 
 GID_SIZES = {"humble": 24, "iron": 16, "jazzy": 16, "kilted": 16, "rolling": 16}
 """The Gid message's size in each ROS 2 distribution (Humble's is 24 bytes)."""
 DISTROS = tuple(GID_SIZES)
-INFINITE_NS = 0x7FFFFFFFFFFFFFFF
-"""DDS_INFINITY, how discovery reports "no deadline" and "no lease"."""
-_ALIVE = 16
-"""DDS_ALIVE_INSTANCE_STATE."""
-
-
-def graph_uri(domain: int) -> str:
-    """Return the ``master_uri`` a ROS 2 live graph of ``domain`` carries."""
-    return f"ros2://domain/{domain}"
 
 
 def check_domain(domain: int) -> None:
@@ -69,153 +73,6 @@ def gid_sizes(distro: str | None) -> tuple[int, ...]:
             f"--distro {distro}: not a ROS 2 distribution rosreconf knows "
             f"(one of {', '.join(DISTROS)})"
         ) from None
-
-
-def _dds() -> Any:
-    """Import the cyclonedds modules used here, or say how to install them."""
-    try:
-        import cyclonedds.builtin as builtin
-        import cyclonedds.core as core
-        import cyclonedds.domain as domain
-        import cyclonedds.idl as idl
-        import cyclonedds.idl.types as types
-        import cyclonedds.qos as qos
-        import cyclonedds.sub as sub
-        import cyclonedds.topic as topic
-        import cyclonedds.util as util
-    except ImportError as exc:
-        raise ExternalToolError(
-            f"reading a ROS 2 graph needs the cyclonedds package ({exc}): "
-            "pip install 'rosreconf[ros2]'"
-        ) from None
-    return _Modules(builtin, core, domain, idl, types, qos, sub, topic, util)
-
-
-@dataclass(frozen=True)
-class _Modules:
-    """The cyclonedds modules, imported on first use (the extra is optional)."""
-
-    builtin: Any
-    core: Any
-    domain: Any
-    idl: Any
-    types: Any
-    qos: Any
-    sub: Any
-    topic: Any
-    util: Any
-
-
-def _info_type(dds: _Modules, size: int) -> Any:
-    """Build rmw_dds_common's ``ParticipantEntitiesInfo`` with a ``size``-byte Gid.
-
-    From ``rmw_dds_common/msg/*.msg``: ``Gid {char[N] data}``, ``NodeEntitiesInfo
-    {string<=256 node_namespace; string<=256 node_name; Gid[] reader_gid_seq; Gid[]
-    writer_gid_seq}``, ``ParticipantEntitiesInfo {Gid gid; NodeEntitiesInfo[]
-    node_entities_info_seq}``; ROS ``char`` is a uint8.
-    """
-    t, make = dds.types, dds.idl.make_idl_struct
-    gid = make(f"Gid{size}_", "rmw_dds_common::msg::dds_::Gid_", {"data": t.array[t.uint8, size]})
-    node = make(
-        f"NodeEntitiesInfo{size}_",
-        "rmw_dds_common::msg::dds_::NodeEntitiesInfo_",
-        {
-            "node_namespace": t.bounded_str[256],
-            "node_name": t.bounded_str[256],
-            "reader_gid_seq": t.sequence[gid],
-            "writer_gid_seq": t.sequence[gid],
-        },
-    )
-    return make(
-        f"ParticipantEntitiesInfo{size}_",
-        "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_",
-        {"gid": gid, "node_entities_info_seq": t.sequence[node]},
-    )
-
-
-@dataclass(frozen=True)
-class Endpoint:
-    """One DDS reader or writer as discovery announced it.
-
-    Attributes:
-        guid: its 16-byte GUID (its GID, unpadded).
-        participant: its participant's GUID.
-        topic: the DDS topic name (``rt/chatter``).
-        type_name: the DDS type name.
-        writer: True for a writer (publication), False for a reader.
-        qos: its QoS in rmw terms.
-        user_data: its USER_DATA (``typehash=...;`` from Iron on).
-    """
-
-    guid: bytes
-    participant: bytes
-    topic: str
-    type_name: str
-    writer: bool
-    qos: QosProfile
-    user_data: bytes
-
-
-@dataclass(frozen=True)
-class NodeInfo:
-    """One node of a participant's ``ros_discovery_info`` sample."""
-
-    namespace: str
-    name: str
-    readers: tuple[bytes, ...]
-    writers: tuple[bytes, ...]
-
-    @property
-    def full_name(self) -> str:
-        """Return the node's global name (``/ns`` + ``name``)."""
-        ns = self.namespace.rstrip("/")
-        return f"{ns}/{self.name}"
-
-
-def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
-    """Convert a discovered endpoint's DDS QoS to rmw terms, as rmw_cyclonedds does.
-
-    (``dds_qos_to_rmw_qos``: DDS infinity becomes "none"; TRANSIENT and PERSISTENT durability,
-    which ROS never sets, count as transient local; manual-by-participant liveliness, which
-    ROS never sets either, counts as automatic.)
-    """
-
-    def seconds(ns: int) -> float | None:
-        return None if ns >= INFINITE_NS else ns / 1e9
-
-    rel = qos[policy.Reliability]
-    dur = qos[policy.Durability]
-    deadline = qos[policy.Deadline]
-    live = qos[policy.Liveliness]
-    hist = qos[policy.History]
-    keep_all = hist is not None and hist == policy.History.KeepAll
-    return QosProfile(
-        reliability=(
-            Reliability.BEST_EFFORT
-            if rel == policy.Reliability.BestEffort
-            else Reliability.RELIABLE
-        ),
-        durability=(
-            Durability.VOLATILE
-            if dur is None or dur == policy.Durability.Volatile
-            else Durability.TRANSIENT_LOCAL
-        ),
-        deadline=None if deadline is None else seconds(deadline.deadline),
-        liveliness=(
-            Liveliness.MANUAL_BY_TOPIC
-            if isinstance(live, policy.Liveliness.ManualByTopic)
-            else Liveliness.AUTOMATIC
-        ),
-        lease_duration=None if live is None else seconds(live.lease_duration),
-        history=History.KEEP_ALL if keep_all else History.KEEP_LAST,
-        depth=0 if keep_all or hist is None else int(hist.depth),
-    )
-
-
-def _user_data(qos: Any, policy: Any) -> bytes:
-    """Return an entity's USER_DATA bytes (empty when it has none)."""
-    data = qos[policy.Userdata]
-    return bytes(data.data) if data is not None else b""
 
 
 @dataclass
@@ -244,7 +101,7 @@ class Ros2Discovery:
     def __post_init__(self) -> None:
         check_domain(self.domain)
         sizes = gid_sizes(self.distro)
-        self._dds = dds = _dds()
+        self._dds = dds = load_dds()
         policy = dds.qos.Policy
         try:
             self._dp = dds.domain.DomainParticipant(self.domain)
@@ -278,7 +135,7 @@ class Ros2Discovery:
             for size in sizes:
                 # One participant per layout: a participant holds one type per topic name.
                 dp = self._dp if size == sizes[0] else dds.domain.DomainParticipant(self.domain)
-                topic = dds.topic.Topic(dp, DISCOVERY_TOPIC, _info_type(dds, size))
+                topic = dds.topic.Topic(dp, DISCOVERY_TOPIC, info_type(dds, size))
                 self._info_readers[size] = dds.sub.DataReader(dp, topic, qos=info_qos)
         except dds.core.DDSException as exc:
             raise ExternalToolError(
@@ -314,13 +171,13 @@ class Ros2Discovery:
                     raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
                 time.sleep(0.01)
                 continue
-            return [s for s in samples if s.sample_info.instance_state == _ALIVE]
+            return [s for s in samples if s.sample_info.instance_state == ALIVE]
         return []
 
     def _participants(self) -> dict[bytes, bytes]:
         """Return alive participants: GUID -> USER_DATA."""
         policy = self._dds.qos.Policy
-        return {s.key.bytes: _user_data(s.qos, policy) for s in self._alive("participant")}
+        return {s.key.bytes: user_data(s.qos, policy) for s in self._alive("participant")}
 
     def _endpoints(self) -> dict[bytes, Endpoint]:
         """Return every alive endpoint, keyed by GUID."""
@@ -335,7 +192,7 @@ class Ros2Discovery:
                     type_name=s.type_name,
                     writer=kind == "publication",
                     qos=qos_from_dds(s.qos, policy),
-                    user_data=_user_data(s.qos, policy),
+                    user_data=user_data(s.qos, policy),
                 )
         return found
 
@@ -407,88 +264,6 @@ class Ros2Discovery:
             time.sleep(0.05)
         self._settled = True
         return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
-
-
-def build_graph(
-    domain: int,
-    taken_at: datetime,
-    ros_participants: Iterable[bytes],
-    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]],
-    endpoints: dict[bytes, Endpoint],
-) -> LiveGraph:
-    """Join the nodes of alive ROS participants with their endpoints into a live graph."""
-    topic_types: dict[str, str] = {}
-    service_types: dict[str, str] = {}
-    nodes: dict[str, LiveNode] = {}
-    for participant in sorted(ros_participants):
-        if participant not in infos:
-            continue
-        for info in infos[participant][1]:
-            node = _node(info, endpoints, topic_types, service_types)
-            if node.name in nodes:  # two contexts announce one name: ROS 2 allows it; merge
-                node = _merge(nodes[node.name], node)
-            nodes[node.name] = node
-    return LiveGraph(
-        graph_uri(domain),
-        taken_at,
-        tuple(nodes.values()),
-        topic_types,
-        ros_version=2,
-        service_types=service_types,
-    )
-
-
-def _node(
-    info: NodeInfo,
-    endpoints: dict[bytes, Endpoint],
-    topic_types: dict[str, str],
-    service_types: dict[str, str],
-) -> LiveNode:
-    """Build one live node from its discovery entry and the endpoints its GIDs name."""
-    pubs: dict[str, QosProfile] = {}
-    subs: dict[str, QosProfile] = {}
-    serves: set[str] = set()
-    clients: set[str] = set()
-    for gid in (*info.readers, *info.writers):
-        e = endpoints.get(gid)
-        if e is None:
-            continue  # not discovered (yet), or gone
-        named = ros_name(e.topic)
-        typ = ros_type(e.type_name)
-        if named is None or typ is None:
-            continue
-        channel, name = named
-        if channel is Channel.TOPIC:
-            (pubs if e.writer else subs).setdefault(name, e.qos)
-            topic_types.setdefault(name, typ)
-        else:
-            service_types.setdefault(name, typ)
-            server = (channel is Channel.REQUEST) != e.writer
-            (serves if server else clients).add(name)
-    return LiveNode(
-        name=info.full_name,
-        publishes=tuple(sorted(pubs)),
-        subscribes=tuple(sorted(subs)),
-        serves=tuple(sorted(serves)),
-        clients=tuple(sorted(clients)),
-        alive=True,
-        publish_qos=pubs,
-        subscribe_qos=subs,
-    )
-
-
-def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
-    """Join two announcements of one node name (ROS 2 does not forbid duplicates)."""
-    return LiveNode(
-        name=a.name,
-        publishes=tuple(sorted({*a.publishes, *b.publishes})),
-        subscribes=tuple(sorted({*a.subscribes, *b.subscribes})),
-        serves=tuple(sorted({*a.serves, *b.serves})),
-        clients=tuple(sorted({*a.clients, *b.clients})),
-        alive=True,
-        publish_qos={**b.publish_qos, **a.publish_qos},
-        subscribe_qos={**b.subscribe_qos, **a.subscribe_qos},
-    )
 
 
 def read_ros2_graph(

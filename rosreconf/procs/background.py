@@ -1,0 +1,141 @@
+"""Own long-running programs (roslaunch) and everything they fork, until they are stopped.
+
+``run_program`` waits for its program; a ``Background`` program keeps running after
+``start_program`` returns, under the same rules (an argument list, a new session, SIGINT's
+default action): ``stop`` or ``stop_all`` ends it and every process it started, even those
+that left its process group with ``setsid``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import subprocess
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.procs.signals import sigint_default, sigint_ignored, signal_group
+
+
+class Background:
+    """Own a long-running program (roslaunch) and every process it forks, until ``stop``.
+
+    Programs like roslaunch start their children with ``setsid``, so the children leave the
+    program's process group: ``remember`` records every descendant (read from /proc) so that
+    ``stop`` can kill their groups too. Call ``remember`` while the program runs (``poll``
+    does); ``stop`` calls it once more before signalling.
+
+    Attributes:
+        argv: the argument list that was run.
+        process: the running program (leader of its own session and group).
+        pids: every descendant seen so far.
+        log: the file its stdout and stderr go to, if known.
+    """
+
+    def __init__(
+        self, argv: tuple[str, ...], process: subprocess.Popen[bytes], log: Path | None = None
+    ) -> None:
+        self.argv = argv
+        self.process = process
+        self.pids: set[int] = set()
+        self.log = log
+        self._read_to = 0
+
+    def new_output(self, limit: int = 64 << 10) -> str:
+        """Return what the program wrote to its log since the last call (its last ``limit`` bytes).
+
+        For reporting a program's own error messages while it runs: the log may grow
+        without bound, so only its tail is read, decoded with replacements (the caller
+        must still escape it before showing it).
+        """
+        if self.log is None:
+            return ""
+        try:
+            with self.log.open("rb") as f:
+                size = f.seek(0, os.SEEK_END)
+                f.seek(max(self._read_to, size - limit))
+                data = f.read(limit)
+                self._read_to = f.tell()
+        except OSError:
+            return ""
+        return data.decode("utf-8", errors="replace")
+
+    def remember(self) -> None:
+        """Record the program's living descendants, which ``stop`` will also kill."""
+        self.pids |= descendants(self.process.pid)
+
+    def poll(self) -> int | None:
+        """Return the exit status, or None while it runs (recording its descendants)."""
+        self.remember()
+        return self.process.poll()
+
+    def stop(self, grace: float = 5.0, sig: signal.Signals = signal.SIGINT) -> int:
+        """Ask the program to stop (``sig``: roslaunch stops its nodes on SIGINT), then kill.
+
+        After ``grace`` seconds the program's group and the group of every recorded
+        descendant get SIGKILL, so nothing it started outlives this call.
+        """
+        stop_all([self], grace, sig)
+        return self.process.wait()
+
+
+def stop_all(programs: Sequence[Background], grace: float = 5.0, sig: int = signal.SIGINT) -> None:
+    """Stop several ``Background`` programs: signal all, share one ``grace``, then kill all."""
+    for prog in programs:
+        if prog.process.poll() is None:
+            prog.remember()
+            signal_group(prog.process.pid, signal.Signals(sig))
+    deadline = time.monotonic() + grace
+    for prog in programs:
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            prog.process.wait(timeout=max(0.0, deadline - time.monotonic()))
+        for pid in (prog.process.pid, *prog.pids):
+            signal_group(pid, signal.SIGKILL)
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.kill(pid, signal.SIGKILL)
+        prog.process.wait()
+
+
+def start_program(
+    argv: Sequence[str], *, log: Path, env: Mapping[str, str] | None = None, cwd: Path | None = None
+) -> Background:
+    """Start ``argv`` in a new session with output to ``log``; the caller must ``stop`` it.
+
+    The same rules as ``run_program`` (argument list, new session, the whole group killed at
+    the end) hold, but the program keeps running after the call: use it for roslaunch.
+
+    Raises:
+        ExternalToolError: the program is missing or cannot be run.
+    """
+    args = tuple(str(a) for a in argv)
+    with log.open("ab") as out:
+        try:
+            proc = subprocess.Popen(
+                args, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=cwd,
+                env=None if env is None else dict(env), start_new_session=True,
+                preexec_fn=sigint_default() if sigint_ignored() else None,
+            )  # fmt: skip
+        except FileNotFoundError:
+            raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None
+        except OSError as exc:
+            raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
+    return Background(args, proc, log)
+
+
+def descendants(root: int) -> set[int]:
+    """Return the pids of every living process below ``root`` (Linux /proc)."""
+    parents: dict[int, int] = {}
+    for entry in Path("/proc").iterdir():
+        with contextlib.suppress(OSError, ValueError, IndexError):
+            if entry.name.isdigit():
+                text = (entry / "stat").read_text()
+                parents[int(entry.name)] = int(text[text.rindex(")") + 2 :].split()[1])
+    found: set[int] = set()
+    frontier = {root}
+    while frontier:
+        frontier = {p for p, parent in parents.items() if parent in frontier} - found
+        found |= frontier
+    return found

@@ -1,0 +1,72 @@
+"""Handle the signals between rosreconf and the programs it runs.
+
+Two directions: a SIGTERM that reaches rosreconf while it owns a program or a temp dir must
+run the cleanup code (``sigterm_raises`` turns it into ``Terminated``), and the signals
+rosreconf sends go to a whole process group, which may already be gone (``signal_group``).
+SIGINT's inherited "ignore" is undone in children (``sigint_ignored``, ``sigint_default``):
+see the rules in the ``rosreconf.procs`` docstring.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import threading
+from collections.abc import Callable, Iterator
+from types import FrameType
+
+
+class Terminated(SystemExit):
+    """Stop rosreconf cleanly when it receives SIGTERM while a program or a workdir is live.
+
+    Raised from a SIGTERM handler that ``run_program`` and ``private_workdir`` install in the
+    main thread (only when SIGTERM still has its default action), so that ``finally`` blocks
+    kill the program's group and remove temp dirs. It is a ``SystemExit`` with code 143
+    (128 + SIGTERM), so an uncaught one ends rosreconf the way the shell expects, silently.
+    """
+
+
+@contextlib.contextmanager
+def sigterm_raises() -> Iterator[None]:
+    """Turn SIGTERM into ``Terminated`` while the block runs, so its cleanup code runs.
+
+    Only in the main thread (Python delivers signals there) and only when SIGTERM still has
+    its default action: an application's own handler is never replaced, and nested uses are
+    no-ops. Loops that own ``Background`` programs use it too.
+    """
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGTERM) != signal.SIG_DFL
+    ):
+        yield
+        return
+
+    def handler(signum: int, frame: FrameType | None) -> None:
+        raise Terminated(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def sigint_ignored() -> bool:
+    """Tell whether rosreconf runs with SIGINT ignored (a background job of a shell script)."""
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+
+
+def sigint_default() -> Callable[[], None]:
+    """Return a preexec_fn giving SIGINT back its default action (see ``rosreconf.procs``)."""
+
+    def setup() -> None:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    return setup
+
+
+def signal_group(pgid: int, sig: signal.Signals) -> None:
+    """Send ``sig`` to a process group; a group that is already gone is fine."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pgid, sig)

@@ -1,0 +1,192 @@
+"""Start a watcher's components with roslaunch (or ``ros2 launch``) and follow what it says.
+
+The watcher decides which components must start; this module writes one launch file per
+step, runs it through the ``LiveSource`` (or says the command when there is no launcher
+here), and while the watcher waits it reads each launch process's output for errors
+(escaped, with the paths of the launch file and of that output) and notices when one exits.
+Launch files and output are kept in ``launch_dir`` (``launch_log_dir`` makes one next to
+ROS's own logs). Every observation goes to the ``say`` callback; nothing here prints.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.procs import Background, stop_all
+from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.ros.rpc import printable
+from rosreconf.ros.sources import LiveSource
+from rosreconf.ros.standins import write_standin_package
+
+Say = Callable[..., None]
+"""Receives one event: its kind, its message, and its data as keyword arguments."""
+
+
+@dataclass
+class Launcher:
+    """Own the launch processes one watcher starts, from the first launch file to ``close``.
+
+    Attributes:
+        source: where launch files are run (``LiveSource.start``).
+        library, schema: what the launch files are written from.
+        workdir: a private directory for the stand-in package.
+        env: the environment the launch processes run in.
+        say: receives every event (``launch``, ``would-launch``, ``launch-error``,
+            ``launch-exited``, ``stopped``, ``kept``).
+        stand_ins: launch stand-in nodes instead of the components' real executables.
+        launch_dir: where launch files and their output go, kept after the watcher ends
+            (default: ``workdir``).
+        launches: the launch processes started and not yet stopped.
+        launched: the components launched since the master (re)started.
+        steps: how many launch files were written.
+    """
+
+    source: LiveSource
+    library: ComponentLibrary
+    schema: InteroperabilitySchema
+    workdir: Path
+    env: Mapping[str, str]
+    say: Say
+    stand_ins: bool = False
+    launch_dir: Path | None = None
+    launches: list[Background] = field(default_factory=list)
+    launched: set[str] = field(default_factory=set)
+    steps: int = 0
+    _exited: set[int] = field(default_factory=set)
+
+    @property
+    def directory(self) -> Path:
+        """Return where launch files and their output go."""
+        return self.launch_dir if self.launch_dir is not None else self.workdir
+
+    def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
+        """Start ``components`` of ``current`` with one launch process (or say what would run).
+
+        Returns whether a process was started.
+        """
+        self.steps += 1
+        self.directory.mkdir(parents=True, exist_ok=True)
+        version = self.source.ros_version
+        suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
+        launch = self.directory / f"step{self.steps}{suffix}"
+        text = launch_file(
+            self.library,
+            self.schema,
+            current,
+            version,
+            only=components,
+            stand_ins=self.stand_ins,
+        ).text
+        launch.write_text(text, encoding="utf-8")
+        pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
+        process = self.source.start(launch, self.env, pkg)
+        self.launched |= set(components)
+        command = " ".join(self.source.launch_command(launch))
+        if process is None:
+            self.say(
+                "would-launch",
+                f"no launcher here: would run '{command}' to start {', '.join(components)} "
+                f"({why}); wrote {launch}",
+                components=list(components),
+                launch_file=str(launch),
+                command=command,
+            )
+            return False
+        self.launches.append(process)
+        how = "stand-ins of " if self.stand_ins else ""
+        launcher = "roslaunch" if version is RosVersion.ROS1 else "ros2 launch"
+        self.say(
+            "launch",
+            f"{launcher} started {how}{', '.join(components)} ({why})",
+            components=list(components),
+            launch_file=str(launch),
+            output=str(launch.with_suffix(".log")),
+        )
+        return True
+
+    def check(self) -> bool:
+        """Hand on roslaunch's errors and exits; return whether the newest one has exited."""
+        for launch in self.launches:
+            files = self._files(launch)
+            for line in error_lines(launch.new_output()):
+                self.say("launch-error", f"roslaunch: {line} ({files})", **self._paths(launch))
+            code = launch.poll()
+            if code is not None and launch.process.pid not in self._exited:
+                self._exited.add(launch.process.pid)
+                self.say(
+                    "launch-exited",
+                    f"roslaunch exited with code {code} ({files})",
+                    returncode=code,
+                    **self._paths(launch),
+                )
+        return bool(self.launches) and self.launches[-1].process.poll() is not None
+
+    def stop(self) -> int:
+        """Stop every launch process started, and the nodes they run; return how many."""
+        n = len(self.launches)
+        if self.launches:
+            stop_all(self.launches)
+        self.launches.clear()
+        return n
+
+    def close(self) -> None:
+        """Stop every launch process, and say where the launch files are kept."""
+        n = self.stop()
+        if n:
+            self.say("stopped", f"stopped the {n} roslaunch process(es) started")
+        if self.steps and self.launch_dir is not None:
+            self.say(
+                "kept",
+                f"launch files and roslaunch's output are kept in {self.launch_dir}",
+                launch_dir=str(self.launch_dir),
+            )
+
+    @staticmethod
+    def _paths(launch: Background) -> dict[str, str]:
+        log = launch.log or Path("?")
+        return {"launch_file": str(log.with_suffix(".launch")), "output": str(log)}
+
+    def _files(self, launch: Background) -> str:
+        paths = self._paths(launch)
+        return f"launch file {paths['launch_file']}, its output {paths['output']}"
+
+
+_ERROR = re.compile(
+    r"error|exception|cannot|not found|no such|failed|has died|traceback", re.IGNORECASE
+)
+_ESCAPES = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)?|\x1b.")
+"""Terminal escape sequences (CSI colours, OSC window titles), which roslaunch writes."""
+
+
+def error_lines(output: str, limit: int = 10) -> list[str]:
+    """Return roslaunch's error lines from ``output``: escapes removed, the rest made printable."""
+    lines = [printable(_ESCAPES.sub("", line).strip()) for line in output.splitlines()]
+    return [line for line in lines if line and _ERROR.search(line)][:limit]
+
+
+def launch_log_dir(env: Mapping[str, str]) -> Path:
+    """Make a new directory for launch files and roslaunch's output, next to ROS's own logs.
+
+    ROS keeps its logs in ``$ROS_LOG_DIR``, else ``$ROS_HOME/log``, else ``~/.ros/log``;
+    the directory made there (``rosreconf-watch-<UTC time>-<random>``) is never an existing
+    one, so nothing of the user's is overwritten.
+
+    Raises:
+        OSError: the directory cannot be made.
+    """
+    if env.get("ROS_LOG_DIR"):
+        base = Path(env["ROS_LOG_DIR"])
+    elif env.get("ROS_HOME"):
+        base = Path(env["ROS_HOME"]) / "log"
+    else:
+        base = Path(os.path.expanduser("~")) / ".ros" / "log"
+    base.mkdir(parents=True, exist_ok=True)
+    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
+    return Path(tempfile.mkdtemp(prefix=f"rosreconf-watch-{stamp}-", dir=base))

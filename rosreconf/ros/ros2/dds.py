@@ -1,0 +1,129 @@
+"""Speak DDS through the ``cyclonedds`` wheel: its modules, rmw's discovery type, QoS in rmw terms.
+
+``cyclonedds`` is an optional extra (``rosreconf[ros2]``): ``load_dds`` imports it on first
+use and says how to install it. ``info_type`` builds rmw_dds_common's
+``ParticipantEntitiesInfo`` (the ``ros_discovery_info`` sample) for one Gid layout;
+``qos_from_dds`` turns a discovered endpoint's DDS QoS into the ``QosProfile`` the model
+checks, the way rmw_cyclonedds does. Nothing here joins a domain: ``discovery`` does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.model.qos import Durability, History, Liveliness, QosProfile, Reliability
+
+INFINITE_NS = 0x7FFFFFFFFFFFFFFF
+"""DDS_INFINITY, how discovery reports "no deadline" and "no lease"."""
+ALIVE = 16
+"""DDS_ALIVE_INSTANCE_STATE."""
+
+
+def load_dds() -> Modules:
+    """Import the cyclonedds modules used here, or say how to install them."""
+    try:
+        import cyclonedds.builtin as builtin
+        import cyclonedds.core as core
+        import cyclonedds.domain as domain
+        import cyclonedds.idl as idl
+        import cyclonedds.idl.types as types
+        import cyclonedds.qos as qos
+        import cyclonedds.sub as sub
+        import cyclonedds.topic as topic
+        import cyclonedds.util as util
+    except ImportError as exc:
+        raise ExternalToolError(
+            f"reading a ROS 2 graph needs the cyclonedds package ({exc}): "
+            "pip install 'rosreconf[ros2]'"
+        ) from None
+    return Modules(builtin, core, domain, idl, types, qos, sub, topic, util)
+
+
+@dataclass(frozen=True)
+class Modules:
+    """The cyclonedds modules, imported on first use (the extra is optional)."""
+
+    builtin: Any
+    core: Any
+    domain: Any
+    idl: Any
+    types: Any
+    qos: Any
+    sub: Any
+    topic: Any
+    util: Any
+
+
+def info_type(dds: Modules, size: int) -> Any:
+    """Build rmw_dds_common's ``ParticipantEntitiesInfo`` with a ``size``-byte Gid.
+
+    From ``rmw_dds_common/msg/*.msg``: ``Gid {char[N] data}``, ``NodeEntitiesInfo
+    {string<=256 node_namespace; string<=256 node_name; Gid[] reader_gid_seq; Gid[]
+    writer_gid_seq}``, ``ParticipantEntitiesInfo {Gid gid; NodeEntitiesInfo[]
+    node_entities_info_seq}``; ROS ``char`` is a uint8.
+    """
+    t, make = dds.types, dds.idl.make_idl_struct
+    gid = make(f"Gid{size}_", "rmw_dds_common::msg::dds_::Gid_", {"data": t.array[t.uint8, size]})
+    node = make(
+        f"NodeEntitiesInfo{size}_",
+        "rmw_dds_common::msg::dds_::NodeEntitiesInfo_",
+        {
+            "node_namespace": t.bounded_str[256],
+            "node_name": t.bounded_str[256],
+            "reader_gid_seq": t.sequence[gid],
+            "writer_gid_seq": t.sequence[gid],
+        },
+    )
+    return make(
+        f"ParticipantEntitiesInfo{size}_",
+        "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_",
+        {"gid": gid, "node_entities_info_seq": t.sequence[node]},
+    )
+
+
+def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
+    """Convert a discovered endpoint's DDS QoS to rmw terms, as rmw_cyclonedds does.
+
+    (``dds_qos_to_rmw_qos``: DDS infinity becomes "none"; TRANSIENT and PERSISTENT durability,
+    which ROS never sets, count as transient local; manual-by-participant liveliness, which
+    ROS never sets either, counts as automatic.)
+    """
+
+    def seconds(ns: int) -> float | None:
+        return None if ns >= INFINITE_NS else ns / 1e9
+
+    rel = qos[policy.Reliability]
+    dur = qos[policy.Durability]
+    deadline = qos[policy.Deadline]
+    live = qos[policy.Liveliness]
+    hist = qos[policy.History]
+    keep_all = hist is not None and hist == policy.History.KeepAll
+    return QosProfile(
+        reliability=(
+            Reliability.BEST_EFFORT
+            if rel == policy.Reliability.BestEffort
+            else Reliability.RELIABLE
+        ),
+        durability=(
+            Durability.VOLATILE
+            if dur is None or dur == policy.Durability.Volatile
+            else Durability.TRANSIENT_LOCAL
+        ),
+        deadline=None if deadline is None else seconds(deadline.deadline),
+        liveliness=(
+            Liveliness.MANUAL_BY_TOPIC
+            if isinstance(live, policy.Liveliness.ManualByTopic)
+            else Liveliness.AUTOMATIC
+        ),
+        lease_duration=None if live is None else seconds(live.lease_duration),
+        history=History.KEEP_ALL if keep_all else History.KEEP_LAST,
+        depth=0 if keep_all or hist is None else int(hist.depth),
+    )
+
+
+def user_data(qos: Any, policy: Any) -> bytes:
+    """Return an entity's USER_DATA bytes (empty when it has none)."""
+    data = qos[policy.Userdata]
+    return bytes(data.data) if data is not None else b""

@@ -1,0 +1,143 @@
+"""Join what DDS discovery announced into a ROS 2 live graph: nodes, their topics and services.
+
+A ROS participant's ``ros_discovery_info`` sample names its nodes and, for each, the GIDs of
+its readers and writers; the endpoints discovery announced carry each GID's DDS topic, type
+and QoS. ``build_graph`` joins the two (``rosreconf.ros.ros2.names`` turns DDS names into ROS
+names) into the ``LiveGraph`` every live command reads. Pure data: no DDS here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from datetime import datetime
+
+from rosreconf.model.qos import QosProfile
+from rosreconf.ros.livegraph import LiveGraph, LiveNode
+from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
+
+
+def graph_uri(domain: int) -> str:
+    """Return the ``master_uri`` a ROS 2 live graph of ``domain`` carries."""
+    return f"ros2://domain/{domain}"
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """One DDS reader or writer as discovery announced it.
+
+    Attributes:
+        guid: its 16-byte GUID (its GID, unpadded).
+        participant: its participant's GUID.
+        topic: the DDS topic name (``rt/chatter``).
+        type_name: the DDS type name.
+        writer: True for a writer (publication), False for a reader.
+        qos: its QoS in rmw terms.
+        user_data: its USER_DATA (``typehash=...;`` from Iron on).
+    """
+
+    guid: bytes
+    participant: bytes
+    topic: str
+    type_name: str
+    writer: bool
+    qos: QosProfile
+    user_data: bytes
+
+
+@dataclass(frozen=True)
+class NodeInfo:
+    """One node of a participant's ``ros_discovery_info`` sample."""
+
+    namespace: str
+    name: str
+    readers: tuple[bytes, ...]
+    writers: tuple[bytes, ...]
+
+    @property
+    def full_name(self) -> str:
+        """Return the node's global name (``/ns`` + ``name``)."""
+        ns = self.namespace.rstrip("/")
+        return f"{ns}/{self.name}"
+
+
+def build_graph(
+    domain: int,
+    taken_at: datetime,
+    ros_participants: Iterable[bytes],
+    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]],
+    endpoints: dict[bytes, Endpoint],
+) -> LiveGraph:
+    """Join the nodes of alive ROS participants with their endpoints into a live graph."""
+    topic_types: dict[str, str] = {}
+    service_types: dict[str, str] = {}
+    nodes: dict[str, LiveNode] = {}
+    for participant in sorted(ros_participants):
+        if participant not in infos:
+            continue
+        for info in infos[participant][1]:
+            node = _node(info, endpoints, topic_types, service_types)
+            if node.name in nodes:  # two contexts announce one name: ROS 2 allows it; merge
+                node = _merge(nodes[node.name], node)
+            nodes[node.name] = node
+    return LiveGraph(
+        graph_uri(domain),
+        taken_at,
+        tuple(nodes.values()),
+        topic_types,
+        ros_version=2,
+        service_types=service_types,
+    )
+
+
+def _node(
+    info: NodeInfo,
+    endpoints: dict[bytes, Endpoint],
+    topic_types: dict[str, str],
+    service_types: dict[str, str],
+) -> LiveNode:
+    """Build one live node from its discovery entry and the endpoints its GIDs name."""
+    pubs: dict[str, QosProfile] = {}
+    subs: dict[str, QosProfile] = {}
+    serves: set[str] = set()
+    clients: set[str] = set()
+    for gid in (*info.readers, *info.writers):
+        e = endpoints.get(gid)
+        if e is None:
+            continue  # not discovered (yet), or gone
+        named = ros_name(e.topic)
+        typ = ros_type(e.type_name)
+        if named is None or typ is None:
+            continue
+        channel, name = named
+        if channel is Channel.TOPIC:
+            (pubs if e.writer else subs).setdefault(name, e.qos)
+            topic_types.setdefault(name, typ)
+        else:
+            service_types.setdefault(name, typ)
+            server = (channel is Channel.REQUEST) != e.writer
+            (serves if server else clients).add(name)
+    return LiveNode(
+        name=info.full_name,
+        publishes=tuple(sorted(pubs)),
+        subscribes=tuple(sorted(subs)),
+        serves=tuple(sorted(serves)),
+        clients=tuple(sorted(clients)),
+        alive=True,
+        publish_qos=pubs,
+        subscribe_qos=subs,
+    )
+
+
+def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
+    """Join two announcements of one node name (ROS 2 does not forbid duplicates)."""
+    return LiveNode(
+        name=a.name,
+        publishes=tuple(sorted({*a.publishes, *b.publishes})),
+        subscribes=tuple(sorted({*a.subscribes, *b.subscribes})),
+        serves=tuple(sorted({*a.serves, *b.serves})),
+        clients=tuple(sorted({*a.clients, *b.clients})),
+        alive=True,
+        publish_qos={**b.publish_qos, **a.publish_qos},
+        subscribe_qos={**b.subscribe_qos, **a.subscribe_qos},
+    )
