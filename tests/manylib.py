@@ -2,8 +2,8 @@
 
 Four roles in a chain (sensor <- perception <- control <- actuator); the perception role
 has ``n`` candidates whose provisions, requirements and failure probabilities cycle through
-a few patterns, some requiring what only a component outside the schema provides (unusable), some excluding a
-sensor, a quarter without a failure probability (assumed never to fail).
+a few patterns: some require what only a component outside the schema provides (unusable),
+a few exclude a sensor, a quarter have no failure probability (assumed never to fail).
 """
 
 from __future__ import annotations

@@ -16,8 +16,8 @@ from manylib import write_many
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis import whatif
 from rosreconf.analysis.library import analyse
-from rosreconf.analysis.reliability import Twins, exact_probability, most_reliable
 from rosreconf.analysis.marginals import marginals
+from rosreconf.analysis.reliability import Twins, exact_probability, most_reliable
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
