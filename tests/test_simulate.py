@@ -269,3 +269,93 @@ def test_whatif_on_the_cluster_equals_local(
         remote = runner.invoke(app, [*args, "--cluster", cluster.scheduler_address])
     assert local.exit_code == remote.exit_code == 0, remote.stderr
     assert json.loads(remote.stdout) == json.loads(local.stdout)
+
+
+def test_the_table_shows_the_best_top_configurations(runner: CliRunner, tmp_path: Path) -> None:
+    code, out, _ = run(runner, tmp_path, "--only", "indoor_navigation", "--workers", "1")
+    assert code in (0, 1)
+    words = " ".join(out.split())
+    assert "the best 20 of 24 shown" in words
+    code, out, _ = run(
+        runner, tmp_path, "--only", "indoor_navigation", "--workers", "1", "--top", "3"
+    )
+    words = " ".join(out.split())
+    assert "the best 3 of 24 shown" in words
+    ranks = [line.split()[1] for line in out.splitlines() if line.startswith("│ ")]
+    assert [r for r in ranks if r.isdigit()] == ["1", "2", "3"]
+    code, out, _ = run(
+        runner, tmp_path, "--only", "indoor_navigation", "--workers", "1", "--top", "0"
+    )
+    assert "shown (--top" not in " ".join(out.split())
+
+
+STATE_SPACE_LIB = """\
+format: rosreconf/component-library
+version: 1
+name: ss
+components:
+  - name: PI
+    abstraction: controller
+    provides: [{topic: /cmd, type: std_msgs/Float64}]
+    requires: [{topic: /pos, type: std_msgs/Float64}]
+    dynamics: {transfer_function: {num: [2.0, 1.0], den: [1.0, 0.0]}}
+  - name: DRIVE
+    abstraction: actuator
+    requires: [{topic: /cmd, type: std_msgs/Float64}]
+    provides: [{topic: /pos, type: std_msgs/Float64}]
+    dynamics: DRIVE_MODEL
+"""
+
+STATE_SPACE_TASK = """\
+format: rosreconf/interoperability-schema
+version: 1
+name: hold
+skill: hold a position
+environment: a joint
+roles:
+  - {name: ctrl, abstraction: controller}
+  - {name: act, abstraction: actuator}
+edges:
+  - {consumer: ctrl, providers: [act]}
+  - {consumer: act, providers: [ctrl]}
+simulation:
+  duration: 20.0
+  requirements: {settling_time: 15.0}
+  loops:
+    - name: joint
+      forward: [ctrl, act]
+      plant: PLANT_MODEL
+"""
+
+# 2 / (s^2 + 3 s + 2) and 1 / (0.5 s + 1): as transfer functions and in state space.
+DRIVE_TF = "{transfer_function: {num: [2.0], den: [1.0, 3.0, 2.0]}, delay: 0.05}"
+DRIVE_SS = (
+    "{state_space: {A: [[0.0, 1.0], [-2.0, -3.0]], B: [[0.0], [1.0]], C: [[2.0, 0.0]], "
+    "D: [[0.0]]}, delay: 0.05}"
+)
+PLANT_TF = "{transfer_function: {num: [1.0], den: [0.5, 1.0]}}"
+PLANT_SS = "{state_space: {A: [[-2.0]], B: [[1.0]], C: [[2.0]], D: [[0.0]]}}"
+
+
+def test_state_space_models_simulate_as_their_transfer_functions(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    figures = []
+    for drive, plant in ((DRIVE_TF, PLANT_TF), (DRIVE_SS, PLANT_SS)):
+        where = tmp_path / ("ss" if "state_space" in drive else "tf")
+        (where / "libraries").mkdir(parents=True)
+        (where / "schemas").mkdir()
+        lib = STATE_SPACE_LIB.replace("DRIVE_MODEL", drive)
+        (where / "libraries" / "lib.yaml").write_text(lib)
+        task = STATE_SPACE_TASK.replace("PLANT_MODEL", plant)
+        (where / "schemas" / "task.yaml").write_text(task)
+        with pytest.MonkeyPatch.context() as mp:
+            mp.chdir(where)
+            checked = runner.invoke(app, ["validate"])
+        assert checked.exit_code == 0, checked.stdout
+        [config] = by_name(document(runner, where, "--workers", "1"), "hold")["configurations"]
+        figures.append(config["loops"][0])
+    tf, ss = figures
+    assert tf["stable"] and ss["stable"]
+    for key in ("settling_time", "steady_state_error", "overshoot", "final_value"):
+        assert ss[key] == pytest.approx(tf[key], rel=1e-6, abs=1e-9), key

@@ -10,6 +10,7 @@ that no process is left.
 from __future__ import annotations
 
 import time
+import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -70,6 +71,40 @@ def test_a_restarted_master_is_said_and_the_configuration_brought_back(
         assert watcher.current.mapping == dict(watcher.schema.nominal)
     finally:
         watcher.close()
+
+
+def test_a_master_read_before_roscore_sets_run_id_is_not_a_restart(
+    ros_master: ros_harness.Master, tmp_path: Path
+) -> None:
+    """roscore's master answers before ``/run_id`` is set: one master, read twice, not two.
+
+    Before the fix the watcher said "master-restarted" (and, with launches, stopped and
+    started them again) when a watch began in that gap; under load the gap is seconds long.
+    The gap is re-created on the real master by taking ``/run_id`` away and putting it back.
+    """
+    master = xmlrpc.client.ServerProxy(ros_master.uri)
+    deadline = time.monotonic() + 30  # the gap itself: roscore may not have set it yet
+    while (answer := master.getParam("/test", "/run_id"))[0] != 1 and time.monotonic() < deadline:
+        time.sleep(0.1)
+    code, _, run_id = answer
+    assert code == 1 and isinstance(run_id, str), answer
+    events: list[Event] = []
+    watcher = _watcher(ros_master, tmp_path, events)
+    watcher.apply = False
+    try:
+        master.deleteParam("/test", "/run_id")
+        watcher.step()
+        master.setParam("/test", "/run_id", run_id)
+        watcher.step()
+        master.setParam("/test", "/run_id", run_id + "-new")  # a real change of run: said
+        watcher.step()
+    finally:
+        master.setParam("/test", "/run_id", run_id)
+        watcher.close()
+    kinds = [e.kind for e in events]
+    assert kinds.count("master-restarted") == 1, kinds
+    said = next(e for e in events if e.kind == "master-restarted")
+    assert said.data["new_run_id"] == run_id + "-new", said.data
 
 
 def test_roslaunchs_error_is_shown_and_its_files_kept(

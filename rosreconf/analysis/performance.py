@@ -10,14 +10,15 @@ reference, negative-feedback loop (the paper's Fig. 2)::
 
 so the closed loop from the reference to the plant output ``y`` is
 ``F P / (1 + F P H)`` with ``F`` the product of the forward blocks and ``H`` the product of
-the feedback blocks. python-control builds it (``control.feedback``), finds its poles,
-simulates its step response and reads the step figures (``control.step_info``, 2 % band).
+the feedback blocks. ``rosreconf.analysis.lti`` closes it, finds its poles, simulates its
+step response and reads the step figures as python-control does (``control.feedback``,
+``control.step_info`` with its 2 % band), without importing python-control.
 
-Dead time is replaced by a Pade approximant of order ``PADE_ORDER`` (``control.pade``): a
-rational transfer function keeps the loop finite-dimensional, so stability is read from
-closed-loop poles and python-control can simulate it. The price is a small error near the
-delay itself (docs/simulation.md gives the measured figures; tests/test_performance.py checks
-them against an exact simulation of a delayed loop).
+Dead time is replaced by a Pade approximant of order ``lti.PADE_ORDER`` (as ``control.pade``):
+a rational transfer function keeps the loop finite-dimensional, so stability is read from
+closed-loop poles. The price is a small error near the delay itself (docs/simulation.md
+gives the measured figures; tests/test_performance.py checks them against an exact
+simulation of a delayed loop).
 
 Everything a worker needs is plain, hashable, picklable data (``LoopSpec``), so that equal
 loops are simulated once (``simulate_all`` keys its cache on the spec's content) and the same
@@ -31,19 +32,21 @@ import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass
-from typing import Any
 
-import control
 import numpy as np
-import scipy.linalg
 
+from rosreconf.analysis.lti import (
+    Array,
+    feedback,
+    is_stable,
+    series,
+    step_figures,
+    step_response,
+)
 from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
 
 SETTLING_BAND = 0.02
 """The settling band, relative to the final value (python-control's default, 2 %)."""
-
-PADE_ORDER = 5
-"""Order of the Pade approximant that stands in for dead time (numerator and denominator)."""
 
 SAMPLES = 1001
 """Points of the simulated step response, evenly spaced over the schema's ``duration``."""
@@ -99,163 +102,56 @@ class LoopResult:
         return math.inf if value is None else value
 
 
-def to_control(tf: TransferFunction) -> control.TransferFunction:
-    """Return ``tf`` as python-control's transfer function, dead time by Pade approximant."""
-    num, den = _polynomials((tf,))
-    return control.tf(num, den)
-
-
-@functools.lru_cache(maxsize=256)
-def _pade(delay: float) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
-    num, den = control.pade(delay, PADE_ORDER)
-    return np.asarray(num, dtype=float), np.asarray(den, dtype=float)
-
-
-def _polynomials(
-    blocks: Iterable[TransferFunction],
-) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
-    """Return the numerator and denominator of the blocks in series (dead time by Pade).
-
-    Plain polynomial products (numpy) rather than python-control's transfer-function
-    products: the same arithmetic, without building an object per factor, which made
-    assembling a loop cost more than simulating it.
-    """
-    num, den = np.array([1.0]), np.array([1.0])
-    for block in blocks:
-        num, den = np.polymul(num, block.num), np.polymul(den, block.den)
-        if block.delay > 0:
-            pade_num, pade_den = _pade(block.delay)
-            num, den = np.polymul(num, pade_num), np.polymul(den, pade_den)
-    return num, den
-
-
-def closed_loop(spec: LoopSpec) -> control.TransferFunction | None:
-    """Return the closed loop from the reference to the plant output (negative feedback).
+def closed_loop(spec: LoopSpec) -> tuple[Array, Array] | None:
+    """Return (num, den) of the closed loop from the reference to the plant output.
 
     The forward path (forward blocks, then the plant) and the feedback path are each one
-    transfer function; ``control.feedback`` closes the loop. Returns None when the loop is
-    ill-posed: proper blocks with direct feed-through can make ``1 + F P H`` vanish at
-    infinite frequency (an algebraic loop), leaving no proper closed loop to simulate. Such a
-    loop is reported unstable.
+    transfer function; negative feedback closes the loop (``lti.feedback``). Returns None when
+    the loop is ill-posed: proper blocks with direct feed-through can make ``1 + F P H``
+    vanish at infinite frequency (an algebraic loop), leaving no proper closed loop to
+    simulate. Such a loop is reported unstable.
     """
-    forward = control.tf(*_polynomials((*spec.forward, spec.plant)))
-    feedback = control.tf(*_polynomials(spec.feedback))
-    try:
-        sys = control.feedback(forward, feedback, sign=-1)
-    except ValueError:  # python-control: "zero denominator"
-        return None
-    num = np.trim_zeros(np.atleast_1d(sys.num[0][0]), "f")
-    den = np.trim_zeros(np.atleast_1d(sys.den[0][0]), "f")
-    return sys if len(den) > 0 and len(num) <= len(den) else None
+    num, den = feedback(series((*spec.forward, spec.plant)), series(spec.feedback))
+    return (num, den) if len(den) > 0 and len(num) <= len(den) else None
 
 
-def is_stable(poles: Sequence[complex] | np.ndarray[Any, Any]) -> bool:
-    """Tell whether every pole lies strictly in the left half-plane (a stable loop)."""
-    return bool(np.all(np.real(poles) < 0))
-
-
-def time_points(spec: LoopSpec) -> np.ndarray[Any, Any]:
+def time_points(spec: LoopSpec) -> Array:
     """Return the evenly spaced instants at which the step response is simulated."""
     return np.linspace(0.0, spec.duration, SAMPLES)
 
 
-def step_curve(spec: LoopSpec) -> tuple[np.ndarray[Any, Any], np.ndarray[Any, Any]]:
+def step_curve(spec: LoopSpec) -> tuple[Array, Array]:
     """Return (time, output) of the loop's response to its reference step (for plots).
 
     An ill-posed loop has no response; its output is NaN throughout (plots leave it out).
     """
     t = time_points(spec)
-    sys = closed_loop(spec)
-    if sys is None:
+    loop = closed_loop(spec)
+    if loop is None:
         return t, np.full_like(t, np.nan)
-    return t, spec.reference * step_response(sys, t)
-
-
-BLOCK = 32
-"""Samples computed per step of the blocked recursion in ``step_response``."""
-
-
-def step_response(sys: control.TransferFunction, t: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
-    """Return the unit-step response of ``sys`` at the evenly spaced instants ``t``.
-
-    python-control gives the state-space form; a zero-order hold discretises it (as
-    ``control.c2d`` does), which is exact for a step input at the sample instants. The
-    recursion ``x[k+1] = Ad x[k] + Bd`` is then run ``BLOCK`` samples at a time:
-    ``x[s+j] = Ad^j x[s] + (Ad^(j-1) + ... + I) Bd``, with the powers computed once, so
-    that a thousand samples take a few dozen array operations instead of a thousand Python
-    steps (``control.step_response`` runs one Python step per sample, which took most of a
-    loop's time). tests/test_performance.py holds the curves to scipy's and
-    python-control's.
-    """
-    ss = control.ss(sys)
-    n = ss.nstates
-    # Zero-order hold: expm([[A, B], [0, 0]] dt) = [[Ad, Bd], [0, 1]] (what control.c2d
-    # computes, without building a system object, which cost ten times the exponential).
-    augmented = np.zeros((n + 1, n + 1))
-    augmented[:n, :n] = np.asarray(ss.A, dtype=float)
-    augmented[:n, n] = np.asarray(ss.B, dtype=float)[:, 0]
-    held = scipy.linalg.expm(augmented * float(t[1] - t[0]))
-    a, b = held[:n, :n], held[:n, n]
-    c = np.asarray(ss.C, dtype=float)[0]
-    feedthrough = float(np.asarray(ss.D, dtype=float)[0, 0])
-    y = np.empty(len(t))
-    with np.errstate(over="ignore", invalid="ignore"):  # unstable curves (plots) may blow up
-        powers = np.empty((BLOCK, n, n))
-        sums = np.empty((BLOCK, n))
-        powers[0], sums[0] = np.eye(n), 0.0
-        for j in range(1, BLOCK):
-            powers[j] = a @ powers[j - 1]
-            sums[j] = a @ sums[j - 1] + b
-        step_a = a @ powers[-1]
-        step_b = a @ sums[-1] + b
-        c_powers = np.einsum("i,jik->jk", c, powers)  # row j: c Ad^j
-        c_sums = sums @ c + feedthrough
-        x = np.zeros(n)
-        for start in range(0, len(t), BLOCK):
-            block = c_powers @ x + c_sums
-            y[start : start + BLOCK] = block[: len(t) - start]
-            x = step_a @ x + step_b
-    return y
+    return t, spec.reference * step_response(*loop, t)
 
 
 def simulate_loop(spec: LoopSpec) -> LoopResult:
     """Simulate one loop's step response and read its figures.
 
     Stability comes from the closed-loop poles; the final value from the DC gain (exact for
-    a stable loop, whatever the duration); settling time and overshoot from python-control's
-    ``step_info`` over the simulated horizon, relative to that final value.
+    a stable loop, whatever the duration); settling time and overshoot as python-control's
+    ``step_info`` reads them over the simulated horizon, relative to that final value.
     """
-    sys = closed_loop(spec)
-    if sys is None or not is_stable(sys.poles()):
+    loop = closed_loop(spec)
+    if loop is None or not is_stable(np.roots(loop[1])):
         return LoopResult(False, None, None, None, None)
-    gain = float(np.real(sys.dcgain()))
+    num, den = loop
+    gain = float(np.polyval(num, 0.0) / np.polyval(den, 0.0))  # the DC gain, T(0)
     final = spec.reference * gain
     error = abs(1.0 - gain)
     if not math.isfinite(final) or abs(gain) < 1e-12:
         return LoopResult(True, None, error if math.isfinite(error) else None, None, final)
     t = time_points(spec)
-    y = spec.reference * step_response(sys, t)
-    settling, overshoot = step_figures(t, y, final)
+    y = spec.reference * step_response(num, den, t)
+    settling, overshoot = step_figures(t, y, final, SETTLING_BAND)
     return LoopResult(True, settling, error, overshoot, final)
-
-
-def step_figures(
-    t: np.ndarray[Any, Any], y: np.ndarray[Any, Any], final: float
-) -> tuple[float | None, float | None]:
-    """Return (settling time, overshoot %) of a step response by python-control's step_info.
-
-    ``step_info`` fails when the output never reaches 90 % of its final value (it looks for
-    a rise time); such a response has not settled within the horizon and has not overshot.
-    """
-    if not np.any(np.sign(final) * (y - 0.9 * final) >= 0):
-        return None, 0.0
-    info = control.step_info(y, t, yfinal=final, SettlingTimeThreshold=SETTLING_BAND)
-    settling = float(info["SettlingTime"])
-    overshoot = float(info["Overshoot"])
-    return (
-        settling if math.isfinite(settling) else None,
-        overshoot if math.isfinite(overshoot) else None,
-    )
 
 
 @functools.cache

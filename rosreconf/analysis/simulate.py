@@ -22,16 +22,17 @@ from collections.abc import Collection, Iterable, Mapping, Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
+import numpy as np
+
+from rosreconf.analysis.lti import transfer_function
 from rosreconf.analysis.performance import (
     LoopResult,
     LoopSpec,
     Progress,
     meets,
-    pareto_front,
-    rank_key,
     simulate_all,
-    worst,
 )
+from rosreconf.analysis.ranking import LoopOutcome, Performance, SchemaSimulation, judge
 from rosreconf.analysis.workers import executor
 from rosreconf.errors import UsageError
 from rosreconf.model import (
@@ -45,70 +46,25 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import METRICS, UNITY
 from rosreconf.solve.solver import configurations
 
+__all__ = [
+    "Cache",
+    "Choice",
+    "LoopOutcome",
+    "Performance",
+    "SchemaSimulation",
+    "Sweep",
+    "check_metrics",
+    "choose",
+    "loop_spec",
+    "performance_of",
+    "shortfall",
+    "simulate_schema",
+    "simulation_of",
+    "sweep",
+]
+
 Cache = dict[LoopSpec, LoopResult]
 """Simulated loops by content: shared across schemas, configurations and commands."""
-
-
-@dataclass(frozen=True)
-class LoopOutcome:
-    """One loop of one configuration, simulated.
-
-    Attributes:
-        loop: the loop's name.
-        result: its figures.
-        unity: the loop's roles whose component has no dynamics (simulated as unity gain).
-        meets_requirements: the loop is stable and meets every requirement of the schema.
-    """
-
-    loop: str
-    result: LoopResult
-    unity: tuple[str, ...]
-    meets_requirements: bool
-
-
-@dataclass(frozen=True)
-class Performance:
-    """How one configuration performs.
-
-    Attributes:
-        configuration: the configuration.
-        loops: its loops, in the schema's order.
-        figures: metric -> the worst figure over its loops (+inf when undefined), plus the
-            library's metrics summed over its components.
-        meets_requirements: every loop is stable and meets every requirement.
-    """
-
-    configuration: Configuration
-    loops: tuple[LoopOutcome, ...]
-    figures: Mapping[str, float]
-    meets_requirements: bool
-
-    @property
-    def stable(self) -> bool:
-        """Tell whether every loop is stable."""
-        return all(o.result.stable for o in self.loops)
-
-
-@dataclass
-class SchemaSimulation:
-    """Every valid configuration of one schema, simulated and ranked.
-
-    Attributes:
-        schema: the schema.
-        ranked: the configurations, best first (``performance.rank_key``).
-        loops_simulated: distinct loops simulated for this schema (the rest came from the
-            cache).
-        distinct_loops: distinct loops among this schema's configurations.
-        pareto: indices into ``ranked`` of the Pareto front over ``pareto_metrics``.
-        pareto_metrics: the metrics of the front (empty when none was asked for).
-    """
-
-    schema: InteroperabilitySchema
-    ranked: list[Performance] = field(default_factory=list)
-    loops_simulated: int = 0
-    distinct_loops: int = 0
-    pareto: list[int] = field(default_factory=list)
-    pareto_metrics: tuple[str, ...] = ()
 
 
 def simulation_of(schema: InteroperabilitySchema) -> Simulation:
@@ -136,11 +92,12 @@ def loop_spec(
         if dyn is None:
             unity.append(role)
             return UNITY
-        return dyn
+        return transfer_function(dyn)
 
     forward = tuple(block(r) for r in loop.forward)
     feedback = tuple(block(r) for r in loop.feedback)
-    spec = LoopSpec(forward, loop.plant, feedback, sim.reference, sim.duration)
+    plant = transfer_function(loop.plant)
+    spec = LoopSpec(forward, plant, feedback, sim.reference, sim.duration)
     return spec, tuple(unity)
 
 
@@ -176,80 +133,49 @@ def simulate_schema(
 ) -> SchemaSimulation:
     """Simulate every valid configuration of ``schema`` (at most ``limit``) and rank them.
 
+    Each configuration becomes one row of indices, per loop, into that loop's distinct
+    assignments of components to its roles; only those distinct loops are simulated, and
+    the configurations are judged by table lookup (``ranking.judge``).
+
     Raises:
         UsageError: the schema has no simulation block, or a ``pareto`` metric is unknown.
     """
     sim = simulation_of(schema)
     metrics = check_metrics(library, pareto)
     cache = {} if cache is None else cache
-    configs = list(configurations(library, schema, failed, limit))
-    # Configurations that agree on a loop's roles share its spec: key by component names
-    # (cheap to hash) and build each spec once.
     index = {r.name: i for i, r in enumerate(schema.graph.roles)}
     positions = [tuple(index[r] for r in loop.roles) for loop in sim.loops]
-    specs: dict[tuple[int, tuple[str, ...]], tuple[LoopSpec, tuple[str, ...]]] = {}
-    keys: list[tuple[tuple[int, tuple[str, ...]], ...]] = []
-    for config in configs:
-        names = config.components
-        row: list[tuple[int, tuple[str, ...]]] = []
-        for i, (loop, pos) in enumerate(zip(sim.loops, positions, strict=True)):
-            key = (i, tuple(names[p] for p in pos))
-            if key not in specs:
-                specs[key] = loop_spec(library, sim, loop, config.mapping)
-            row.append(key)
-        keys.append(tuple(row))
-    distinct = {spec for spec, _ in specs.values()}
+    # Per loop: the components in its roles -> index of that assignment; and the
+    # assignments' specs with their unity-gain roles, in first-seen order.
+    seen: list[dict[tuple[str, ...], int]] = [{} for _ in sim.loops]
+    assigned: list[list[tuple[LoopSpec, tuple[str, ...]]]] = [[] for _ in sim.loops]
+    report = SchemaSimulation(schema)
+    rows: list[int] = []
+    for config in configurations(library, schema, failed, limit):
+        names = [c for _, c in config.assignment]
+        for i, pos in enumerate(positions):
+            key = tuple(names[p] for p in pos)
+            found = seen[i].get(key)
+            if found is None:
+                found = seen[i][key] = len(assigned[i])
+                assigned[i].append(loop_spec(library, sim, sim.loops[i], config.mapping))
+            rows.append(found)
+        report.configurations.append(config)
+    distinct = {spec for per_loop in assigned for spec, _ in per_loop}
     before = len(cache)
     simulate_all(distinct, cache, executor, progress=progress)
-    report = SchemaSimulation(
-        schema, loops_simulated=len(cache) - before, distinct_loops=len(distinct)
-    )
-    judged: dict[tuple[tuple[int, tuple[str, ...]], ...], Performance] = {}
-    done = []
-    for config, loop_keys in zip(configs, keys, strict=True):
-        if loop_keys not in judged:
-            judged[loop_keys] = _performance(
-                library,
-                sim,
-                config,
-                [(specs[k][0], cache[specs[k][0]], specs[k][1]) for k in loop_keys],
-            )
-        same = judged[loop_keys]
-        done.append(
-            Performance(
-                config,
-                same.loops,
-                {**_library_figures(library, config), **worst(o.result for o in same.loops)},
-                same.meets_requirements,
-            )
-        )
-    order = sorted(
-        range(len(done)), key=lambda i: (*rank_key(done[i].meets_requirements, done[i].figures), i)
-    )
-    report.ranked = [done[i] for i in order]
-    if metrics:
-        points = [tuple(p.figures.get(m, 0.0) for m in metrics) for p in report.ranked]
-        report.pareto = pareto_front(points)
-        report.pareto_metrics = metrics
+    report.loops_simulated = len(cache) - before
+    report.distinct_loops = len(distinct)
+    report.outcomes = [
+        [
+            LoopOutcome(loop.name, cache[spec], unity, meets(sim.requirements, cache[spec]))
+            for spec, unity in per_loop
+        ]
+        for loop, per_loop in zip(sim.loops, assigned, strict=True)
+    ]
+    report.rows = np.array(rows, dtype=np.int64).reshape(len(report.configurations), len(sim.loops))
+    judge(report, library, metrics)
     return report
-
-
-def _performance(
-    library: ComponentLibrary,
-    sim: Simulation,
-    config: Configuration,
-    loops: Sequence[tuple[LoopSpec, LoopResult, tuple[str, ...]]],
-) -> Performance:
-    outcomes = tuple(
-        LoopOutcome(loop.name, result, unity, meets(sim.requirements, result))
-        for loop, (_, result, unity) in zip(sim.loops, loops, strict=True)
-    )
-    figures: dict[str, float] = {
-        **_library_figures(library, config),
-        **worst(o.result for o in outcomes),  # a simulated figure wins over a library metric
-    }
-    ok = all(o.meets_requirements for o in outcomes)
-    return Performance(config, outcomes, figures, ok)
 
 
 @dataclass
@@ -319,16 +245,6 @@ def sweep(
     return out
 
 
-def _library_figures(library: ComponentLibrary, config: Configuration) -> dict[str, float]:
-    """Return the library's metrics (not simulated ones) summed over ``config``'s components."""
-    out: dict[str, float] = {}
-    for name in config.components:
-        for metric, value in library[name].metrics.items():
-            if metric not in METRICS:
-                out[metric] = out.get(metric, 0.0) + value
-    return out
-
-
 def performance_of(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -340,7 +256,17 @@ def performance_of(
     cache = {} if cache is None else cache
     per = [loop_spec(library, sim, loop, config.mapping) for loop in sim.loops]
     simulate_all((spec for spec, _ in per), cache)
-    return _performance(library, sim, config, [(s, cache[s], u) for s, u in per])
+    report = SchemaSimulation(
+        schema,
+        configurations=[config],
+        outcomes=[
+            [LoopOutcome(loop.name, cache[spec], unity, meets(sim.requirements, cache[spec]))]
+            for loop, (spec, unity) in zip(sim.loops, per, strict=True)
+        ],
+        rows=np.zeros((1, len(sim.loops)), dtype=np.int64),
+    )
+    judge(report, library)
+    return report.performance(0)
 
 
 @dataclass(frozen=True)
@@ -388,21 +314,23 @@ def choose(
         return Choice(fewest, first)
     report = simulate_schema(library, schema, failed, cache=cache)
 
-    def score(p: Performance) -> tuple[int, float]:
-        changes = sum(1 for r, c in p.configuration.assignment if r in current and current[r] != c)
-        metric = sum(w * p.figures.get(m, 0.0) for m, w in weights.items() if w)
+    def score(index: int) -> tuple[int, float]:
+        assignment = report.configurations[index].assignment
+        changes = sum(1 for r, c in assignment if r in current and current[r] != c)
+        figures = report.figure_map(index)
+        metric = sum(w * figures.get(m, 0.0) for m, w in weights.items() if w)
         return changes, (metric if math.isfinite(metric) else math.inf)
 
-    good = [p for p in report.ranked if p.meets_requirements]
-    order = {c.configuration: i for i, c in enumerate(report.ranked)}
-    best = min(good, key=lambda p: (*score(p), order[p.configuration]), default=None)
+    good = [int(i) for i in report.order if report.meets[i]]  # in rank order
+    at = min(range(len(good)), key=lambda k: (*score(good[k]), k), default=None)
+    best = None if at is None else report.performance(good[at])
     passed = None if first.meets_requirements else first
     return Choice(
         best.configuration if best else None,
         best,
         passed.configuration if passed else None,
         passed,
-        len(report.ranked),
+        len(report.configurations),
     )
 
 

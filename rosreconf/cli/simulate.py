@@ -18,6 +18,10 @@ from rosreconf.cli.common import (
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
 
+TOP = 20
+"""Rows of the text table by default (rosreconf.render.reports.simulate.TOP, not imported
+here so that --help does not import the report's dependencies)."""
+
 
 def simulate_command(
     library: LibraryOption = None,
@@ -52,10 +56,16 @@ def simulate_command(
         str | None,
         typer.Option(help="Simulate on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
     ] = None,
+    top: Annotated[
+        int,
+        typer.Option(
+            min=0, help="Rows of the table: the best N configurations (0: all). JSON lists all."
+        ),
+    ] = TOP,
     as_json: JsonOption = False,
 ) -> None:
     """Simulate every valid configuration's control loops; rank by settling time and error."""
-    from rosreconf.analysis.simulate import sweep  # imports python-control: only when run
+    from rosreconf.analysis.simulate import sweep  # imports numpy: only when run
     from rosreconf.render.reports.simulate import document, table
 
     sel = select(library, schema, fail, only)
@@ -73,6 +83,6 @@ def simulate_command(
         for note in result.notes:
             stderr.print(f"rosreconf: {note}", markup=False)
         for report in result.reports:
-            stdout.print(table(report))
-    ok = all(any(p.meets_requirements for p in r.ranked) for r in result.reports)
+            stdout.print(table(report, top))
+    ok = all(r.any_meets() for r in result.reports)
     raise typer.Exit(ExitCode.OK if ok else ExitCode.FAILED)

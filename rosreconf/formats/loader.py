@@ -40,10 +40,12 @@ from rosreconf.model import (
     RosLaunch,
     Simulation,
     Span,
+    StateSpace,
     Substitution,
     SystemGraph,
     TransferFunction,
 )
+from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 from rosreconf.outfiles import special_kind
 from rosreconf.resources import Bundle, bundled
@@ -402,13 +404,32 @@ def _number(node: ys.YNode | None, default: float) -> float:
     return default
 
 
-def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> TransferFunction | None:
-    """Build a transfer function and record where its values are (keys under ``key``)."""
+def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> Dynamics | None:
+    """Build a transfer function or state-space model; record where its values are."""
     if node is None:
         return None
     items = _map(node)
-    tf = _map(items["transfer_function"])
     where[key] = node.span
+    if "delay" in items:
+        where[f"{key}.delay"] = items["delay"].span
+    delay = _number(items.get("delay"), 0.0)
+    if "state_space" in items:
+        ss = _map(items["state_space"])
+        where[f"{key}.state_space"] = items["state_space"].span
+        matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
+        for part in ("A", "B", "C", "D"):
+            path = f"{key}.state_space.{part}"
+            where[path] = ss[part].span
+            rows = []
+            for i, row in enumerate(_seq(ss[part])):
+                where[f"{path}.{i}"] = row.span
+                cells = _seq(row)
+                for j, n in enumerate(cells):
+                    where[f"{path}.{i}.{j}"] = n.span
+                rows.append(tuple(_number(n, 0.0) for n in cells))
+            matrices[part] = tuple(rows)
+        return StateSpace(matrices["A"], matrices["B"], matrices["C"], matrices["D"], delay)
+    tf = _map(items["transfer_function"])
     coefficients: dict[str, tuple[float, ...]] = {}
     for part in ("num", "den"):
         where[f"{key}.{part}"] = tf[part].span
@@ -416,11 +437,7 @@ def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> Transf
         for i, n in enumerate(values):
             where[f"{key}.{part}.{i}"] = n.span
         coefficients[part] = tuple(_number(n, 0.0) for n in values)
-    if "delay" in items:
-        where[f"{key}.delay"] = items["delay"].span
-    return TransferFunction(
-        coefficients["num"], coefficients["den"], _number(items.get("delay"), 0.0)
-    )
+    return TransferFunction(coefficients["num"], coefficients["den"], delay)
 
 
 def _simulation(node: ys.YNode | None, where: dict[str, Span]) -> Simulation | None:

@@ -4,8 +4,9 @@ The JSON Schema already holds their shape (lists of numbers, a non-negative dela
 durations); what it cannot say is checked here, each problem at the offending value: numbers
 YAML reads as infinite or NaN (``.inf``, ``.nan``), denominators that are all zero, models
 whose numerator has a higher order than their denominator (improper: not realisable, and
-python-control cannot simulate them), loops naming roles the schema does not have, and a
-role in both the forward and the feedback path (it would sit twice in one loop).
+python-control cannot simulate them), state-space models whose matrices do not fit one input
+and one output around a square A, loops naming roles the schema does not have, and a role in
+both the forward and the feedback path (it would sit twice in one loop).
 """
 
 from __future__ import annotations
@@ -14,15 +15,14 @@ import math
 from collections.abc import Callable, Iterator
 
 from rosreconf.errors import Problem
-from rosreconf.model import Component, InteroperabilitySchema, Span, TransferFunction
+from rosreconf.model import Component, InteroperabilitySchema, Span, StateSpace, TransferFunction
+from rosreconf.model.dynamics import Dynamics
 
 
 def component_problems(c: Component) -> Iterator[Problem]:
     """Yield the problems of ``c``'s dynamics (none when it has no dynamics)."""
     if c.dynamics is not None:
-        yield from _transfer_function(
-            c.dynamics, "dynamics", c.at, f"the dynamics of component '{c.name}'"
-        )
+        yield from _model(c.dynamics, "dynamics", c.at, f"the dynamics of component '{c.name}'")
 
 
 def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
@@ -69,9 +69,81 @@ def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
                     "a role's component sits in one place of a loop: keep it in one path",
                     code="role-in-both-paths",
                 )
-        yield from _transfer_function(
-            loop.plant, f"{key}.plant", s.at, f"the plant of loop '{loop.name}'"
-        )
+        yield from _model(loop.plant, f"{key}.plant", s.at, f"the plant of loop '{loop.name}'")
+
+
+def _model(model: Dynamics, key: str, at: Callable[[str], Span], what: str) -> Iterator[Problem]:
+    """Yield the problems of a transfer function or a state-space model."""
+    if isinstance(model, StateSpace):
+        yield from _state_space(model, key, at, what)
+    else:
+        yield from _transfer_function(model, key, at, what)
+
+
+def _shape(part: str, n: int) -> tuple[int, int]:
+    """Return (rows, columns) of matrix ``part`` of a SISO state-space model of order n."""
+    return {"A": (n, n), "B": (n, 1), "C": (1, n), "D": (1, 1)}[part]
+
+
+def _state_space(
+    ss: StateSpace, key: str, at: Callable[[str], Span], what: str
+) -> Iterator[Problem]:
+    """Check a state-space model: finite numbers, SISO shapes against A's order, delay.
+
+    The order n is A's number of rows. Each matrix's rows must all have its width; a
+    matrix of the wrong size is reported at the matrix (too many or too few rows) or at
+    the first row of the wrong width, saying what single-input single-output needs.
+    """
+    key = f"{key}.state_space"
+    n = len(ss.a)
+    finite = True
+    for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
+        for i, row in enumerate(matrix):
+            for j, value in enumerate(row):
+                if not math.isfinite(value):
+                    finite = False
+                    yield _not_finite(
+                        at(f"{key}.{part}.{i}.{j}"), f"{part}[{i + 1}][{j + 1}] of {what}"
+                    )
+    if not math.isfinite(ss.delay):
+        finite = False
+        yield _not_finite(at(f"{key[: -len('.state_space')]}.delay"), f"the delay of {what}")
+    if not finite:
+        return
+    for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
+        rows, cols = _shape(part, n)
+        need = f"{part} must be {rows} x {cols}"
+        why = "single input, single output" if part != "A" else "square"
+        if len(matrix) != rows:
+            yield Problem(
+                at(f"{key}.{part}"),
+                f"{what}: {part} has {len(matrix)} row(s), {need} ({why}; A is {n} x {n})",
+                _shape_hint(part, rows, cols),
+                code="state-space-shape",
+            )
+            continue
+        for i, row in enumerate(matrix):
+            if len(row) != cols:
+                yield Problem(
+                    at(f"{key}.{part}.{i}"),
+                    f"{what}: row {i + 1} of {part} has {len(row)} number(s), {need} ({why}; "
+                    f"A is {n} x {n})",
+                    _shape_hint(part, rows, cols),
+                    code="state-space-shape",
+                )
+                break
+
+
+def _shape_hint(part: str, rows: int, cols: int) -> str:
+    if part == "B" and cols == 1:
+        example = ", ".join(["[0.0]"] * (rows - 1) + ["[1.0]"])
+        return f"write B as {rows} row(s) of one number, e.g. [{example}] (one input)"
+    if part == "C" and rows == 1:
+        example = ", ".join(["1.0"] + ["0.0"] * (cols - 1))
+        return f"write C as one row of {cols} number(s), e.g. [[{example}]] (one output)"
+    if part == "D":
+        return "write D as [[d]], the direct feed-through (one input, one output)"
+    return f"write A as {rows} row(s) of {cols} number(s) each"
 
 
 def _transfer_function(

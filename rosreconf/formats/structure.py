@@ -176,6 +176,10 @@ def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) ->
         )
     if validator == "uniqueItems":
         return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
+    if validator == "oneOf":  # with no failing branch to blame: several branches matched
+        return Problem(
+            span, f"{where} gives more than one of its alternatives", hint, code="one-of"
+        )
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 

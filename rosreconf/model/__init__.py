@@ -20,7 +20,7 @@ How the paper's names map onto this module::
     configuration library C (Def. 8)       ConfigurationLibrary (orthogonality: analysis)
     ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
     configuration                          Configuration (role -> component)
-    M-solution: a component's model        Component.dynamics (TransferFunction)
+    M-solution: a component's model        Component.dynamics (TransferFunction | StateSpace)
     M-solution: environment, loops         InteroperabilitySchema.simulation (Simulation)
 """
 
@@ -29,8 +29,10 @@ from typing import TYPE_CHECKING, Any
 
 from rosreconf.model.dynamics import (
     ControlLoop,
+    Dynamics,
     PerformanceRequirements,
     Simulation,
+    StateSpace,
     TransferFunction,
 )
 from rosreconf.model.library import (
@@ -76,6 +78,7 @@ __all__ = [
     "Configuration",
     "ConfigurationLibrary",
     "ControlLoop",
+    "Dynamics",
     "Edge",
     "Interface",
     "InterfaceKind",
@@ -87,6 +90,7 @@ __all__ = [
     "RosLaunch",
     "Simulation",
     "Span",
+    "StateSpace",
     "Substitution",
     "SystemGraph",
     "TransferFunction",

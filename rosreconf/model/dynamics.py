@@ -40,6 +40,37 @@ class TransferFunction:
         return f"{text} e^(-{self.delay:g} s)" if self.delay else text
 
 
+Matrix = tuple[tuple[float, ...], ...]
+"""A matrix as its rows."""
+
+
+@dataclass(frozen=True)
+class StateSpace:
+    """A linear model in state-space form with optional dead time, single input and output.
+
+    ``x' = A x + B u``, ``y = C x + D u`` (python-control's ``ss(A, B, C, D)``), delayed by
+    ``delay``. Validation (``formats.simchecks``) holds the shapes: ``A`` n x n, ``B`` n x 1,
+    ``C`` 1 x n, ``D`` 1 x 1; simulation uses its transfer function (``analysis.lti.ss2tf``).
+
+    Attributes:
+        a, b, c, d: the matrices, each as its rows.
+        delay: dead time in seconds (>= 0).
+    """
+
+    a: Matrix
+    b: Matrix
+    c: Matrix
+    d: Matrix
+    delay: float = 0.0
+
+    def __str__(self) -> str:
+        text = f"state space of order {len(self.a)}"
+        return f"{text} e^(-{self.delay:g} s)" if self.delay else text
+
+
+Dynamics = TransferFunction | StateSpace
+"""A component's or plant's model: either form."""
+
 UNITY = TransferFunction((1.0,), (1.0,))
 """The block of a role whose component has no dynamics: it passes its input through."""
 
@@ -71,7 +102,7 @@ class ControlLoop:
 
     name: str
     forward: tuple[str, ...]
-    plant: TransferFunction
+    plant: Dynamics
     feedback: tuple[str, ...] = ()
 
     @property

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import NamedTuple
 
-from rosreconf.model.dynamics import TransferFunction
+from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
 
@@ -178,7 +178,7 @@ class Component:
     launch: RosLaunch | None = None
     metrics: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
     qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
-    dynamics: TransferFunction | None = None
+    dynamics: Dynamics | None = None
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)

@@ -257,6 +257,31 @@ def master_identity(
     return (pid if pid_ok else None), (printable(run_id, 80) if isinstance(run_id, str) else None)
 
 
+def restarted(before: tuple[int | None, str | None], now: tuple[int | None, str | None]) -> bool:
+    """Tell a new master from the same one seen more fully.
+
+    roscore's master answers before roslaunch sets ``/run_id``, so one master can be read first
+    without a ``/run_id`` and then with one; only a value that differs from a known value (a
+    new pid, or a new ``/run_id``) means the master restarted.
+    """
+    (pid0, run0), (pid1, run1) = before, now
+    if pid0 is not None and pid1 is not None and pid0 != pid1:
+        return True
+    return run0 is not None and run1 is not None and run0 != run1
+
+
+def known_identity(
+    before: tuple[int | None, str | None] | None, now: tuple[int | None, str | None] | None
+) -> tuple[int | None, str | None] | None:
+    """Return ``now``, keeping what ``before`` knew that ``now`` did not read (same master)."""
+    if before is None or now is None or restarted(before, now):
+        return now
+    return (
+        now[0] if now[0] is not None else before[0],
+        now[1] if now[1] is not None else before[1],
+    )
+
+
 def read_live(
     master: str | None,
     snapshot: Path | None,

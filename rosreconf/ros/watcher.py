@@ -45,6 +45,7 @@ from rosreconf.ros.conformance import Conformance, compare, node_live_name
 from rosreconf.ros.launcher import Launcher
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.rosmaster import known_identity, restarted
 from rosreconf.ros.sources import LiveSource, lifecycle_steps
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.solver import why_not
@@ -183,8 +184,8 @@ class Watcher:
     def _check_master(self) -> None:
         """Notice a restarted master, and start over from what the new one lists."""
         now = self.source.identity()
-        before, self._master = self._master, now
-        if before is None or now is None or before == now:
+        before, self._master = self._master, known_identity(self._master, now)
+        if before is None or now is None or not restarted(before, now):
             return
         what = f"pid {before[0]} -> {now[0]}" if before[0] != now[0] else "new /run_id"
         self._say(
@@ -226,7 +227,7 @@ class Watcher:
 
         Says so when the fewest-change configuration was passed over for failing them.
         """
-        from rosreconf.analysis.simulate import choose, shortfall  # imports python-control
+        from rosreconf.analysis.simulate import choose, shortfall  # imports numpy, scipy
 
         choice = choose(self.library, self.schema, fewest, self.current.mapping, {}, failed)
         if choice.passed_over is not None and choice.passed_over_performance is not None:

@@ -26,11 +26,21 @@ def _fmt(value: float | None, unit: str = "") -> str:
     return f"{value:.3g}{unit}"
 
 
-def table(report: SchemaSimulation) -> Table:
-    """Return one schema's ranked configurations as a rich table (the front with --pareto)."""
+TOP = 20
+"""Rows of the text table by default: the best-ranked configurations (``simulate --top``)."""
+
+
+def table(report: SchemaSimulation, top: int = TOP) -> Table:
+    """Return one schema's best ``top`` configurations as a rich table (0: all of them).
+
+    With --pareto, the front's. A table of every configuration of a large sweep is unread
+    and slow (14,096 rows took 22 CPU seconds to lay out); the caption says how many were
+    left out, and ``--json`` lists them all.
+    """
     schema = report.schema
     assert schema.simulation is not None
-    shown = report.pareto if report.pareto_metrics else range(len(report.ranked))
+    listed = report.pareto if report.pareto_metrics else range(len(report.ranked))
+    shown = listed if top == 0 else listed[:top]
     loop_roles = [r for loop in schema.simulation.loops for r in loop.roles]
     title = f"{schema.display_name} ({schema.name}): {len(report.ranked)} configuration(s)"
     if report.pareto_metrics:
@@ -59,69 +69,112 @@ def table(report: SchemaSimulation) -> Table:
         )
     limits = schema.simulation.requirements.limits()
     caption = ["requirements: " + (", ".join(f"{m} <= {v:g}" for m, v in limits.items()) or "none")]
-    unity = sorted({r for p in report.ranked for o in p.loops for r in o.unity})
+    unity = report.unity_roles()
     if unity:
         caption.append("unity gain (no dynamics): " + ", ".join(unity))
     caption.append(
         f"{report.distinct_loops} distinct loop(s), {report.loops_simulated} simulated "
         "(each distinct loop once)"
     )
+    if len(shown) < len(listed):
+        caption.append(
+            f"the best {len(shown)} of {len(listed)} shown (--top N, --top 0 for all, --json)"
+        )
     out.caption = "; ".join(caption)
     out.caption_justify = "left"
     return out
 
 
 def document(result: Sweep) -> str:
-    """Return the JSON document (output-simulate.schema.json), newline included."""
+    """Return the JSON document (output-simulate.schema.json), newline included.
+
+    A sweep can list tens of thousands of configurations that share a few hundred loops, so
+    each loop's entry is encoded once and each configuration is one line of encoded pieces
+    (every piece by ``json.dumps`` with ``allow_nan=False``, so the whole is valid JSON).
+    """
     schemas = []
     for report in result.reports:
         sim = report.schema.simulation
         assert sim is not None
-        front = set(report.pareto)
-        configs = []
-        shown = report.pareto if report.pareto_metrics else range(len(report.ranked))
-        for i in shown:
-            p = report.ranked[i]
-            configs.append(
+        head = {
+            "name": report.schema.name,
+            "title": report.schema.display_name,
+            "reference": sim.reference,
+            "duration": sim.duration,
+            "requirements": sim.requirements.limits(),
+            "configurations_simulated": len(report.configurations),
+            "distinct_loops": report.distinct_loops,
+            "loops_simulated": report.loops_simulated,
+            "pareto_metrics": list(report.pareto_metrics),
+        }
+        configs = ",".join(_configurations(report))
+        schemas.append(_dumps(head)[:-1] + f', "configurations": [{configs}]}}')
+    failed = _dumps(list(result.failed))
+    skipped = _dumps([{"name": n, "reason": why} for n, why in result.skipped])
+    return f'{{"failed": {failed}, "schemas": [{", ".join(schemas)}], "skipped": {skipped}}}\n'
+
+
+_ENCODER = json.JSONEncoder(allow_nan=False)
+
+
+def _dumps(value: object) -> str:
+    return _ENCODER.encode(value)
+
+
+def _float(value: float) -> str:
+    """Encode a figure as json does (``float.__repr__``); null when undefined or non-finite."""
+    return repr(value) if math.isfinite(value) else "null"
+
+
+def _configurations(report: SchemaSimulation) -> list[str]:
+    """Return each shown configuration's JSON object, by rank."""
+    loops = [
+        [
+            _dumps(
                 {
-                    "rank": i + 1,
-                    "assignment": p.configuration.mapping,
-                    "meets_requirements": p.meets_requirements,
-                    "stable": p.stable,
-                    "pareto": i in front if report.pareto_metrics else None,
-                    "figures": {m: _number(v) for m, v in sorted(p.figures.items())},
-                    "loops": [
-                        {
-                            "name": o.loop,
-                            "stable": o.result.stable,
-                            "settling_time": _number(o.result.settling_time),
-                            "steady_state_error": _number(o.result.steady_state_error),
-                            "overshoot": _number(o.result.overshoot),
-                            "final_value": _number(o.result.final_value),
-                            "meets_requirements": o.meets_requirements,
-                            "unity_gain_roles": list(o.unity),
-                        }
-                        for o in p.loops
-                    ],
+                    "name": o.loop,
+                    "stable": o.result.stable,
+                    "settling_time": _number(o.result.settling_time),
+                    "steady_state_error": _number(o.result.steady_state_error),
+                    "overshoot": _number(o.result.overshoot),
+                    "final_value": _number(o.result.final_value),
+                    "meets_requirements": o.meets_requirements,
+                    "unity_gain_roles": list(o.unity),
                 }
             )
-        schemas.append(
-            {
-                "name": report.schema.name,
-                "title": report.schema.display_name,
-                "reference": sim.reference,
-                "duration": sim.duration,
-                "requirements": sim.requirements.limits(),
-                "configurations_simulated": len(report.ranked),
-                "distinct_loops": report.distinct_loops,
-                "loops_simulated": report.loops_simulated,
-                "pareto_metrics": list(report.pareto_metrics),
-                "configurations": configs,
-            }
+            for o in outcomes
+        ]
+        for outcomes in report.outcomes
+    ]
+    stable = [[o.result.stable for o in outcomes] for outcomes in report.outcomes]
+    order = sorted(range(len(report.metrics)), key=lambda k: report.metrics[k])
+    names = [_dumps(report.metrics[k]) + ": " for k in order]
+    pairs: dict[tuple[str, str], str] = {}  # (role, component) -> '"role": "component"'
+    front = set(report.pareto)
+    shown = report.pareto if report.pareto_metrics else range(len(report.order))
+    figures_of = report.figures.tolist()
+    rows_of = report.rows.tolist()
+    out = []
+    for rank in shown:
+        i = int(report.order[rank])
+        row = rows_of[i]
+        values = figures_of[i]
+        figures = ", ".join(
+            name + _float(values[k])
+            for name, k in zip(names, order, strict=True)
+            if not math.isnan(values[k])
         )
-    doc = {
-        "failed": list(result.failed),
-        "schemas": schemas,
-        "skipped": [{"name": n, "reason": why} for n, why in result.skipped],
-    }
-    return json.dumps(doc, allow_nan=False) + "\n"
+        assignment = ", ".join(
+            pairs.get(pair) or pairs.setdefault(pair, f"{_dumps(pair[0])}: {_dumps(pair[1])}")
+            for pair in report.configurations[i].assignment
+        )
+        pareto = ("true" if rank in front else "false") if report.pareto_metrics else "null"
+        is_stable = all(s[j] for s, j in zip(stable, row, strict=True))
+        out.append(
+            f'{{"rank": {rank + 1}, "assignment": {{{assignment}}}, '
+            f'"meets_requirements": {"true" if report.meets[i] else "false"}, '
+            f'"stable": {"true" if is_stable else "false"}, "pareto": {pareto}, '
+            f'"figures": {{{figures}}}, '
+            f'"loops": [{", ".join(per[j] for per, j in zip(loops, row, strict=True))}]}}'
+        )
+    return out
