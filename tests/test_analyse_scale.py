@@ -17,7 +17,7 @@ from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis import whatif
 from rosreconf.analysis.library import analyse
 from rosreconf.analysis.marginals import marginals
-from rosreconf.analysis.reliability import Twins, exact_probability, most_reliable
+from rosreconf.analysis.reliability import Twins, exact_probability, grouped_exact, most_reliable
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
@@ -62,6 +62,30 @@ def test_analyse_on_many_candidates_equals_listing_every_configuration(
     assert sampled.reliability is not None
     assert sampled.reliability.method.startswith("Monte Carlo")
     assert sampled.reliability.low <= exact <= sampled.reliability.high
+
+
+def test_reliability_over_groups_of_interchangeable_components_is_the_listed_exact(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Too many configurations to list, few group configurations: still exact, and equal."""
+    library, schema = _many(tmp_path, MID)
+    configs = [
+        frozenset(c.components)
+        for c in ClingoEngine().configurations(compile_instance(library, schema))
+    ]
+    p = {c.name: c.failure_probability or 0.0 for c in library}
+    limit = 200
+    assert len(configs) > limit
+    monkeypatch.setattr(library_analysis, "EXACT_LIMIT", limit)
+    result = analyse(library, schema)
+    assert result.reliability is not None
+    assert "groups of interchangeable components" in result.reliability.method
+    assert result.reliability.probability == pytest.approx(exact_probability(configs, p), abs=1e-12)
+    failed = frozenset({"SEN_C0", "CTL_C2"})  # under failures too
+    left = [c for c in configs if not c & failed]
+    grouped = grouped_exact(library, schema, failed, p, limit)
+    assert grouped is not None
+    assert grouped[0] == pytest.approx(exact_probability(left, p), abs=1e-12)
 
 
 def test_marginals_equal_per_candidate_counts_of_the_listing(tmp_path: Path) -> None:

@@ -13,6 +13,7 @@ from randomlib import IFACES, brute_force, problems
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis.library import analyse, exact_probability
 from rosreconf.analysis.marginals import marginals
+from rosreconf.analysis.reliability import grouped_exact
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -115,6 +116,9 @@ def test_probability_equals_brute_force_over_failure_states(
     if configs:
         assert result.reliability is not None
         assert math.isclose(result.reliability.probability, total, abs_tol=1e-12)
+        grouped = grouped_exact(library, schema, frozenset(), p, 10**6)
+        assert grouped is not None
+        assert math.isclose(grouped[0], total, abs_tol=1e-12)
 
 
 @PROPS

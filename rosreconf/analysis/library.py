@@ -20,7 +20,12 @@ from collections.abc import Collection
 from dataclasses import dataclass, field
 
 from rosreconf.analysis.marginals import marginals
-from rosreconf.analysis.reliability import Reliability, exact_probability, monte_carlo
+from rosreconf.analysis.reliability import (
+    Reliability,
+    exact_probability,
+    grouped_exact,
+    monte_carlo,
+)
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
 from rosreconf.solve.factors import paused_gc
@@ -155,6 +160,13 @@ def analyse(
         result.reliability = Reliability(
             exact, f"exact (factoring over {len(configs)} configurations)", exact, exact, assumed
         )
+    elif grouped := grouped_exact(library, schema, dead, p, EXACT_LIMIT):
+        exact, n, groups = grouped
+        method = (
+            f"exact (factoring over {n} configurations of {groups} groups of "
+            "interchangeable components)"
+        )
+        result.reliability = Reliability(exact, method, exact, exact, assumed)
     else:
         result.reliability = monte_carlo(
             library, schema, dead, p, samples, seed, assumed, relevant=relevant

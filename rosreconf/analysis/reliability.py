@@ -19,6 +19,7 @@ from functools import cache
 import numpy
 
 from rosreconf.model import Component, ComponentLibrary, InteroperabilitySchema
+from rosreconf.solve.counting import count
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.optimum import minimise
@@ -166,6 +167,57 @@ class Twins:
             keep.update(working[: max(1, self.room[members[0].abstraction])])
         kept = tuple(c for c in self.library if c.name in keep)
         return ComponentLibrary(self.library.name, kept)
+
+    def grouped(
+        self, failed: frozenset[str], p: dict[str, float]
+    ) -> tuple[ComponentLibrary, dict[str, float]]:
+        """Return one component per group, failing only when all its working members do.
+
+        Independent failures make "some member works" a single event of probability
+        1 - prod(p); a group whose label has more than one role in the schema keeps its
+        members (two of them may be needed at once).
+        """
+        keep: list[Component] = []
+        q: dict[str, float] = {}
+        for members in self.groups:
+            working = [c for c in members if c.name not in failed]
+            if not working:
+                continue
+            if self.room[members[0].abstraction] > 1:
+                keep.extend(working)
+                q.update((c.name, p[c.name]) for c in working)
+                continue
+            keep.append(working[0])
+            q[working[0].name] = math.prod(p[c.name] for c in working)
+        order = {c.name: i for i, c in enumerate(self.library)}
+        keep.sort(key=lambda c: order[c.name])
+        return ComponentLibrary(self.library.name, tuple(keep)), q
+
+
+def grouped_exact(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    dead: frozenset[str],
+    p: dict[str, float],
+    limit: int,
+) -> tuple[float, int, int] | None:
+    """Return the exact probability over groups of interchangeable components, if few enough.
+
+    With one component per group (``Twins.grouped``) the configurations are those of the
+    groups; when at most ``limit`` of them remain, factoring over them is exact. Returns the
+    probability, the number of group configurations and of groups; None when there are
+    more than ``limit`` (or the system graph is too dense to count them).
+    """
+    small, q = Twins(library, schema).grouped(dead, p)
+    with paused_gc():
+        inst = compile_instance(small, schema, dead)
+    try:
+        if count(inst) > limit:
+            return None
+    except TooHard:
+        return None
+    configs = [frozenset(c.components) for c in ClingoEngine().configurations(inst)]
+    return exact_probability(configs, q), len(configs), len(small)
 
 
 def _behaviour(c: Component) -> tuple[object, ...]:
