@@ -108,6 +108,31 @@ def test_a_file_over_the_limit_is_not_read_whole(
     assert f"file is {200 * 1024 * 1024} bytes" in loaded.problems[0].message
 
 
+def _bytes_read() -> int:
+    """Return the bytes this process has read through read() calls so far (Linux)."""
+    for line in Path("/proc/self/io").read_text().splitlines():
+        if line.startswith("rchar:"):
+            return int(line.split()[1])
+    raise AssertionError("/proc/self/io has no rchar line")
+
+
+def test_the_size_is_checked_before_the_file_is_read(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A sparse 5 GB file costs at most the limit in reads: reading it whole would cost 5 GB."""
+    monkeypatch.setattr(yamlsource, "MAX_BYTES", 1000)
+    big = tmp_path / "big.yaml"
+    size = 5 * 1024**3
+    with big.open("wb") as f:
+        f.truncate(size)  # sparse: no disk used, but read() would return 5 GB of zeros
+    before = _bytes_read()
+    loaded = load_paths([big])
+    read = _bytes_read() - before
+    assert [p.code for p in loaded.problems] == ["too-large"]
+    assert f"file is {size} bytes" in loaded.problems[0].message
+    assert read < 1024 * 1024, f"read {read} bytes of a {size}-byte file"
+
+
 def test_generated_libraries_stay_loadable_at_the_loader_limit(tmp_path: Path) -> None:
     generated = generate(10_000, 10, 0.2, 0)
     assert len(generated.library.encode()) <= yamlsource.MAX_BYTES

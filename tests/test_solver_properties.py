@@ -6,18 +6,61 @@ import itertools
 import math
 
 from conftest import examples
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from randomlib import brute_force, problems
+from randomlib import IFACES, brute_force, problems
 
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis.library import analyse, exact_probability
-from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+from rosreconf.analysis.marginals import marginals
+from rosreconf.analysis.reliability import grouped_exact
+from rosreconf.model import (
+    Component,
+    ComponentLibrary,
+    Interface,
+    InteroperabilitySchema,
+    Role,
+    SystemGraph,
+)
+from rosreconf.model.validity import type_clash
 from rosreconf.solve.counting import count
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.solver import ClingoEngine, Objective
 
 PROPS = settings(max_examples=examples(120))
+
+A, _, _, A2 = IFACES  # topic "a" with type m/A, and topic "a" with type m/A2
+
+
+def _problem(
+    provides: list[frozenset[Interface]],
+) -> tuple[ComponentLibrary, InteroperabilitySchema]:
+    """Return one component per role (role i, label li) providing ``provides[i]``, no edges."""
+    roles = tuple(Role(f"r{i}", f"l{i}") for i in range(len(provides)))
+    comps = tuple(
+        Component(f"C{i}_0", f"l{i}", provides=p, failure_probability=0.0)
+        for i, p in enumerate(provides)
+    )
+    schema = InteroperabilitySchema("s", SystemGraph(roles, ()), "skill", "env")
+    return ComponentLibrary("random", comps), schema
+
+
+SELF_CLASH = _problem([frozenset(), frozenset({A2, IFACES[1]}), frozenset({A, A2})])
+"""Found by ``make explore``: C2_0 provides topic a with two types, C1_0 provides a as m/A2.
+
+The definition (``validity.type_clash``) kept one provision per label of C2_0, so whether it
+saw the clash with C1_0 depended on set order (the hash seed): the brute force then found a
+configuration that the solvers, which see every provision, rightly refuse.
+"""
+
+
+def test_a_type_clash_is_seen_whichever_type_the_other_also_provides() -> None:
+    """Both types of a two-typed provider clash with the other's; neither order hides it."""
+    both = Component("both", "l", provides=frozenset({A, A2}))
+    for one in (A, A2):
+        single = Component("single", "l", provides=frozenset({one}))
+        assert type_clash(single, both) is not None
+        assert type_clash(both, single) is not None
 
 
 @PROPS
@@ -54,6 +97,7 @@ def test_best_is_optimal(problem: tuple[ComponentLibrary, InteroperabilitySchema
 
 @settings(max_examples=examples(60))
 @given(problem=problems())
+@example(problem=SELF_CLASH)
 def test_probability_equals_brute_force_over_failure_states(
     problem: tuple[ComponentLibrary, InteroperabilitySchema],
 ) -> None:
@@ -72,6 +116,9 @@ def test_probability_equals_brute_force_over_failure_states(
     if configs:
         assert result.reliability is not None
         assert math.isclose(result.reliability.probability, total, abs_tol=1e-12)
+        grouped = grouped_exact(library, schema, frozenset(), p, 10**6)
+        assert grouped is not None
+        assert math.isclose(grouped[0], total, abs_tol=1e-12)
 
 
 @PROPS
@@ -113,3 +160,22 @@ def test_single_points_of_failure_are_exactly_the_parts_of_every_configuration(
         library_analysis.EXACT_LIMIT = limit
     expected = sorted(frozenset.intersection(*valid)) if valid else []
     assert result.single_points_of_failure == expected
+
+
+@PROPS
+@given(problem=problems(), data=st.data())
+def test_marginals_are_brute_force_counts_per_role_and_candidate(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema], data: st.DataObject
+) -> None:
+    """The two-pass elimination counts, per role and candidate, what listing counts."""
+    library, schema = problem
+    failed = frozenset(data.draw(st.sets(st.sampled_from([c.name for c in library]), max_size=2)))
+    inst = compile_instance(library, schema, failed)
+    expected = [dict.fromkeys((c.name for c in dom), 0) for dom in inst.domains]
+    configs = brute_force(library, schema, failed)
+    for config in configs:
+        for u, (_, comp) in enumerate(config.assignment):
+            expected[u][comp] += 1
+    marg = marginals(inst)
+    assert marg.total == len(configs)
+    assert marg.per_role == expected

@@ -108,7 +108,11 @@ def test_watch_passes_over_the_fewest_change_configuration_that_does_not_perform
             library, schema, Configuration.of(SCHEMA, fewest, schema.graph.roles)
         ).meets_requirements
         # What watch chose instead: the servo arm on camera 2, which performs; and it runs.
-        new = events[kinds.index("replanned")]["configuration"]
+        replanned = events[kinds.index("replanned")]
+        # Not "the fewest possible": the fewest possible was passed over.
+        assert "fewest possible" not in replanned["message"], replanned["message"]
+        assert "fewest among the configurations that meet" in replanned["message"]
+        new = replanned["configuration"]
         assert new["shoulder_joint"] == "NSM2" and new["camera"] == "NCA2", new
         chosen = Configuration.of(SCHEMA, new, schema.graph.roles)
         assert performance_of(library, schema, chosen).meets_requirements

@@ -16,13 +16,19 @@ from __future__ import annotations
 
 import itertools
 import math
-import random
-from collections.abc import Collection, Iterable
+from collections.abc import Collection
 from dataclasses import dataclass, field
-from functools import cache
 
+from rosreconf.analysis.marginals import marginals
+from rosreconf.analysis.reliability import (
+    Reliability,
+    exact_probability,
+    grouped_exact,
+    monte_carlo,
+)
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
+from rosreconf.solve.factors import paused_gc
 from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.solver import ClingoEngine
 
@@ -68,25 +74,6 @@ class RoleRedundancy:
     usable: tuple[str, ...] | None
 
 
-@dataclass(frozen=True)
-class Reliability:
-    """The reconfigurability probability of a schema.
-
-    Attributes:
-        probability: P(at least one valid configuration has every component working).
-        method: ``exact (factoring over N configurations)`` or ``Monte Carlo (N samples)``.
-        low: lower end of the 95 % interval (equal to ``probability`` when exact).
-        high: upper end of the 95 % interval.
-        assumed_reliable: components without a failure probability (taken as never failing).
-    """
-
-    probability: float
-    method: str
-    low: float
-    high: float
-    assumed_reliable: tuple[str, ...] = ()
-
-
 @dataclass
 class SchemaAnalysis:
     """Everything ``rosreconf analyse`` says about one schema."""
@@ -113,10 +100,17 @@ def analyse(
     samples: int = 20_000,
     seed: int = 0,
 ) -> SchemaAnalysis:
-    """Analyse ``schema`` over ``library`` with ``failed`` components already gone."""
-    inst = compile_instance(library, schema, failed)
+    """Analyse ``schema`` over ``library`` with ``failed`` components already gone.
+
+    Usable candidates and single points of failure come from counting's marginals (one
+    two-pass elimination, ``rosreconf.analysis.marginals``), not one count per component, so
+    they scale with the library as counting does.
+    """
+    with paused_gc():  # compiling allocates many small tuples; collections would find none
+        inst = compile_instance(library, schema, failed)
     substitutions = _substitutions(inst)
-    valid = count(inst)
+    marg = marginals(inst)
+    valid = marg.total
     result = SchemaAnalysis(
         schema=schema.name,
         title=schema.display_name,
@@ -134,18 +128,14 @@ def analyse(
         )
     result.unusable = unusable
     result.counterexamples_complete = complete
-    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
-    configs = [frozenset(c.components) for c in listed]
-    used: list[set[str]] = [set() for _ in inst.roles]
-    for cfg in listed:
-        for u, (_, comp) in enumerate(cfg.assignment):
-            used[u].add(comp)
     for u, role in enumerate(inst.roles):
         candidates = tuple(c.name for c in inst.domains[u])
-        usable = tuple(c for c in candidates if c in used[u]) if listed or valid == 0 else None
+        usable = tuple(c for c in candidates if marg.per_role[u].get(c, 0))
         result.redundancy.append(RoleRedundancy(role.name, role.abstraction, candidates, usable))
     if valid == 0:
         return result
+    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
+    configs = [frozenset(c.components) for c in listed]
     dead = frozenset(failed)
 
     def kills(failures: frozenset[str]) -> bool:
@@ -155,11 +145,9 @@ def analyse(
             return all(cfg & failures for cfg in configs)
         return count(compile_instance(library, schema, dead | failures)) == 0
 
-    relevant = sorted(set().union(*configs)) if configs else _relevant(inst)
-    # A single point of failure is in every configuration, so in any one of them: only the
-    # components of one witness need the check (R counts, not one per candidate).
-    first = configs[0] if configs else _first(inst)
-    result.single_points_of_failure = [c for c in relevant if c in first and kills(frozenset({c}))]
+    relevant = sorted(marg.usable())
+    # In every configuration: its marginal count is the total (a component fills one role).
+    result.single_points_of_failure = marg.in_every()
     survivors = [c for c in relevant if c not in result.single_points_of_failure]
     if len(survivors) <= PAIR_LIMIT:
         result.critical_pairs = [
@@ -172,8 +160,17 @@ def analyse(
         result.reliability = Reliability(
             exact, f"exact (factoring over {len(configs)} configurations)", exact, exact, assumed
         )
+    elif grouped := grouped_exact(library, schema, dead, p, EXACT_LIMIT):
+        exact, n, groups = grouped
+        method = (
+            f"exact (factoring over {n} configurations of {groups} groups of "
+            "interchangeable components)"
+        )
+        result.reliability = Reliability(exact, method, exact, exact, assumed)
     else:
-        result.reliability = monte_carlo(library, schema, dead, p, samples, seed, assumed)
+        result.reliability = monte_carlo(
+            library, schema, dead, p, samples, seed, assumed, relevant=relevant
+        )
     return result
 
 
@@ -187,16 +184,6 @@ def _substitutions(inst: Instance) -> int:
         return math.prod(len(d) for d in inst.domains)
     names = [[c.name for c in d] for d in inst.domains]
     return sum(1 for combo in itertools.product(*names) if len(set(combo)) == len(combo))
-
-
-def _first(inst: Instance) -> frozenset[str]:
-    """Return the components of one valid configuration (the instance has one)."""
-    found = ClingoEngine().first(inst)
-    return frozenset(found.components) if found is not None else frozenset()
-
-
-def _relevant(inst: Instance) -> list[str]:
-    return sorted({c.name for dom in inst.domains for c in dom})
 
 
 def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
@@ -269,10 +256,10 @@ def requirement_counterexamples(
                     unusable.setdefault(
                         c.name, f"{c.name} needs {need}, which can fill no other role"
                     )
-    for (u, name, i), meeting in sorted(inst.meets.items()):
+    for (_u, name, i), meeting in sorted(inst.meets.items()):
         if name in unusable:
             continue
-        component = next(c for c in inst.domains[u] if c.name == name)
+        component = inst.library[name]  # by name: a scan of the role was K^2 in all
         wanted = " or ".join(o.label for o in component.requires[i].options)
         roles = {v for v, _ in meeting}
         if not roles:
@@ -299,84 +286,3 @@ def requirement_counterexamples(
 
 def _key(a: str, b: str) -> tuple[str, str]:
     return (a, b) if a <= b else (b, a)
-
-
-def _absorb(configs: Iterable[frozenset[str]]) -> frozenset[frozenset[str]]:
-    """Drop configurations that are supersets of others (they never add to survival)."""
-    ordered = sorted(set(configs), key=len)
-    kept: list[frozenset[str]] = []
-    for c in ordered:
-        if not any(k <= c for k in kept):
-            kept.append(c)
-    return frozenset(kept)
-
-
-def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) -> float:
-    """Return P(some configuration has all its components working), exactly.
-
-    Shannon expansion on the most frequent component: P = p_x * P(x failed) +
-    (1 - p_x) * P(x works), where "x failed" drops every configuration using x and "x works"
-    removes x from them; memoised on the (absorbed) set of configurations.
-    """
-
-    @cache
-    def works(state: frozenset[frozenset[str]]) -> float:
-        if not state:
-            return 0.0
-        if frozenset() in state:
-            return 1.0
-        freq: dict[str, int] = {}
-        for cfg in state:
-            for c in cfg:
-                freq[c] = freq.get(c, 0) + 1
-        x = max(sorted(freq), key=lambda c: freq[c])
-        if_failed = _absorb(cfg for cfg in state if x not in cfg)
-        if_works = _absorb(cfg - {x} for cfg in state)
-        return p[x] * works(if_failed) + (1 - p[x]) * works(if_works)
-
-    return works(_absorb(configs))
-
-
-def monte_carlo(
-    library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    dead: frozenset[str],
-    p: dict[str, float],
-    samples: int,
-    seed: int,
-    assumed: tuple[str, ...],
-) -> Reliability:
-    """Estimate the probability by sampling failure states (seeded, so reproducible)."""
-    rng = random.Random(seed)
-    names = sorted(p)
-    engine = ClingoEngine()
-    hits = 0
-    seen: dict[frozenset[str], bool] = {}
-    witnesses: list[frozenset[str]] = []  # configurations found so far
-    for _ in range(samples):
-        failed = frozenset(n for n in names if rng.random() < p[n]) | dead
-        if failed not in seen:
-            # A state that misses every component of a known configuration survives with it:
-            # no compile, no solver call (most samples of a large library are such states).
-            if any(not (w & failed) for w in witnesses):
-                seen[failed] = True
-            else:
-                found = engine.first(compile_instance(library, schema, failed))
-                if found is not None:
-                    witnesses.append(frozenset(found.components))
-                seen[failed] = found is not None
-        hits += seen[failed]
-    est = hits / samples
-    low, high = wilson(hits, samples)
-    return Reliability(est, f"Monte Carlo ({samples} samples, seed {seed})", low, high, assumed)
-
-
-def wilson(hits: int, n: int, z: float = 1.959964) -> tuple[float, float]:
-    """Return the 95 % Wilson score interval of a binomial proportion."""
-    if n == 0:
-        return 0.0, 1.0
-    phat = hits / n
-    denom = 1 + z * z / n
-    centre = (phat + z * z / (2 * n)) / denom
-    half = z * math.sqrt(phat * (1 - phat) / n + z * z / (4 * n * n)) / denom
-    return max(0.0, centre - half), min(1.0, centre + half)

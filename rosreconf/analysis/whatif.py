@@ -24,10 +24,12 @@ from dataclasses import dataclass, field
 
 import clingo
 
+from rosreconf.analysis.marginals import Marginals, marginals
 from rosreconf.analysis.workers import executor as open_executor
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import PROGRAM, _facts
+from rosreconf.solve.solver import PROGRAM, _facts, first_configuration
 
 
 @dataclass(frozen=True)
@@ -166,18 +168,20 @@ class SchemaReport:
 
     @property
     def critical_pairs(self) -> list[tuple[str, str]]:
-        """Return the pairs that kill the schema although neither failure alone does."""
+        """Return the pairs that kill the schema although neither failure alone does.
+
+        Read from the decided pairs, not from every pair of relevant components (with 7,500
+        relevant components that loop alone was 28 million sets even at one failure).
+        """
+        rank = {c: i for i, c in enumerate(self.relevant)}
         pairs = []
-        for a, b in itertools.combinations(self.relevant, 2):
-            key = frozenset((a, b))
-            if (
-                key in self.outcomes
-                and not self.outcomes[key].survives
-                and self._survives(frozenset((a,)))
-                and self._survives(frozenset((b,)))
-            ):
+        for key, outcome in self.outcomes.items():
+            if len(key) != 2 or outcome.survives:
+                continue
+            a, b = sorted(key, key=rank.__getitem__)
+            if self._survives(frozenset((a,))) and self._survives(frozenset((b,))):
                 pairs.append((a, b))
-        return pairs
+        return sorted(pairs, key=lambda ab: (rank[ab[0]], rank[ab[1]]))
 
     def _survives(self, failed: frozenset[str]) -> bool:
         outcome = self.outcomes.get(failed)
@@ -206,12 +210,31 @@ def analyse(
     progress: Progress | None = None,
     chunk_size: int = 64,
 ) -> SchemaReport:
-    """Decide every failure set of up to ``max_failures`` relevant components of ``schema``."""
-    task = make_task(library, schema)
-    relevant = relevant_components(task)
+    """Decide every failure set of up to ``max_failures`` relevant components of ``schema``.
+
+    The relevant components, the first configuration and which single failures kill the
+    schema come from counting's marginals (``rosreconf.analysis.marginals``) when the system
+    graph is sparse enough to eliminate; clingo is grounded only if some set is left to
+    solve (a surviving single failure of the first configuration needs its witness).
+    """
+    with paused_gc():
+        inst = compile_instance(library, schema)
+    try:
+        marg: Marginals | None = marginals(inst)
+    except TooHard:
+        marg = None
+    task: Task | None = None
+    if marg is None:
+        task = make_task(library, schema)
+        relevant = relevant_components(task)
+        base = evaluate(task, ())
+    else:
+        relevant = frozenset(marg.usable())
+        first = first_configuration(inst) if marg.total else None
+        base = Outcome((), None if first is None else first.components)
+    in_every = frozenset(marg.in_every()) if marg is not None else frozenset()
     order = tuple(c.name for c in library.components if c.name in relevant)
     report = SchemaReport(schema.name, len(library), order)
-    base = evaluate(task, ())
     report.outcomes[frozenset()] = base
     report.solver_calls = 1
     if not base.survives:
@@ -220,16 +243,24 @@ def analyse(
         pending: list[tuple[str, ...]] = []
         for failed in itertools.combinations(order, k):
             decided = _prune(report.outcomes, failed)
+            if decided is None and k == 1 and failed[0] in in_every:
+                decided = Outcome(failed, None, solved=False)
             if decided is None:
                 pending.append(failed)
             else:
                 report.outcomes[frozenset(failed)] = decided
+        if pending and task is None:
+            task = make_task(library, schema)
         if progress:
             progress(math.comb(len(order), k) - len(pending))
-        chunks = [
-            Chunk(task, tuple(pending[i : i + chunk_size]))
-            for i in range(0, len(pending), chunk_size)
-        ]
+        chunks = (
+            []
+            if task is None
+            else [
+                Chunk(task, tuple(pending[i : i + chunk_size]))
+                for i in range(0, len(pending), chunk_size)
+            ]
+        )
         for outcomes in _run(chunks, executor):
             for outcome in outcomes:
                 report.outcomes[frozenset(outcome.failed)] = outcome

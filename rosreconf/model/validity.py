@@ -76,11 +76,14 @@ def type_clash(a: Component, b: Component) -> tuple[Interface, Interface] | None
     A ROS name carries one message type, so two such components cannot run together even
     when the library allows both (rule ``one-type-per-label``).
     """
-    theirs = {(i.kind, i.label): i for i in b.provides}
+    # Every provision of b with the label, not one: a component may itself provide one label
+    # with two types, and keeping one of them per label (a dict) missed the other depending on
+    # set iteration order, which the string hash seed changes from run to run.
+    theirs = sorted(b.provides)
     for mine in sorted(a.provides):
-        other = theirs.get((mine.kind, mine.label))
-        if other is not None and other.type != mine.type:
-            return mine, other
+        for other in theirs:
+            if (other.kind, other.label) == (mine.kind, mine.label) and other.type != mine.type:
+                return mine, other
     return None
 
 

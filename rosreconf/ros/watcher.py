@@ -251,8 +251,14 @@ class Watcher:
             return False
         new = nearest_valid(self.library, self.schema, failed, self.current)
         why = why_not(self.library, self.schema, failed) if new is None else ""
+        fewest = "the fewest possible (exact optimum)"
         if new is not None and self.schema.simulation is not None:
+            nearest = new
             new, why = self._performing(new, failed)
+            if new is not None and new != nearest:
+                fewest = (
+                    "the fewest among the configurations that meet the performance requirements"
+                )
         if new is None:
             self._say(
                 "no-configuration",
@@ -267,7 +273,7 @@ class Watcher:
         self._say(
             "replanned",
             f"replanned without {', '.join(sorted(failed))}: "
-            f"{len(changes)} change(s), the fewest possible (exact optimum): {text}",
+            f"{len(changes)} change(s), {fewest}: {text}",
             failed=sorted(failed),
             configuration=new.mapping,
             changes=[{"role": r, "from": a, "to": b} for r, a, b in changes],

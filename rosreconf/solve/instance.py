@@ -171,14 +171,18 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
         alive_sets = [set(a) for a in alive]
         anywhere = set().union(*alive_sets) if alive_sets else set()
         for u in range(len(inst.roles)):
-            for name in list(alive[u]):
+            kept = []
+            for name in alive[u]:
                 reason = _dead_reason(inst, support, u, name, alive_sets, anywhere)
                 if reason:
-                    alive[u].remove(name)
                     why[u][name] = reason
                     changed = True
-                    if not alive[u]:
-                        emptied.append(u)
+                else:
+                    kept.append(name)
+            if len(kept) != len(alive[u]):  # rebuilt, not list.remove: K removals cost K^2
+                alive[u] = kept
+                if not kept:
+                    emptied.append(u)
     return alive, why, emptied
 
 

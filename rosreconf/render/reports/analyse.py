@@ -58,6 +58,10 @@ def _text(a: SchemaAnalysis) -> str:
         )
         for un in a.unusable[:12]:
             lines.append(f"    {un.component} (in no configuration): {un.reason}")
+        if len(a.unusable) > 12:
+            lines.append(
+                f"    ... and {len(a.unusable) - 12} more components in no configuration (--json)"
+            )
         for ip in a.incompatible[:12]:
             lines.append(f"    {ip.first} x {ip.second}: {ip.reason}")
         if len(a.incompatible) > 12:
@@ -71,7 +75,7 @@ def _text(a: SchemaAnalysis) -> str:
     for r in a.redundancy:
         usable = "?" if r.usable is None else str(len(r.usable))
         lines.append(
-            f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {', '.join(r.candidates)}"
+            f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {_few(r.candidates)}"
         )
     if a.valid == 0:
         lines.append("  single points of failure: not applicable (no configuration to lose)")
@@ -93,12 +97,24 @@ def _text(a: SchemaAnalysis) -> str:
         lines.append(f"    method: {rel.method}")
         if rel.assumed_reliable:
             lines.append(
-                "    assumed never to fail (no failure_probability): "
-                + ", ".join(rel.assumed_reliable)
+                "    assumed never to fail (no failure_probability): " + _few(rel.assumed_reliable)
             )
     else:
         lines.append("  reconfigurability probability: 0 (no configuration)")
     return "\n".join(lines) + "\n\n"
+
+
+FEW = 10
+"""Names a text line shows of a long list before it says how many more (the JSON has all)."""
+
+
+def _few(names: Sequence[str]) -> str:
+    """Join up to ``FEW`` names; say how many more there are and where to get them all."""
+    if len(names) <= FEW:
+        return ", ".join(names)
+    return (
+        ", ".join(names[:FEW]) + f" ... and {len(names) - FEW} more ({len(names)} in all; --json)"
+    )
 
 
 def _spof(a: SchemaAnalysis) -> str:
