@@ -31,6 +31,9 @@ import time
 from pathlib import Path
 from typing import Any
 
+from loading import loading  # benchmarks/loading.py: this folder is the script's sys.path[0]
+from loading import markdown as loading_markdown
+
 HERE = Path(__file__).resolve().parent
 FULL = [(r, k) for r in (10, 50, 200, 1000) for k in (2, 10)]
 QUICK = [(8, 2), (12, 3)]
@@ -527,11 +530,15 @@ def main() -> None:
     from rich.console import Console
     from rich.table import Table
 
+    load_start = os.getloadavg()  # the machine is shared: say how busy it was
     grid = QUICK if args.quick else FULL
     rows = []
     kinds = ["count", "first", "optimal", "clingo_optimal", "clingo", "whatif"]
     with tempfile.TemporaryDirectory() as tmp:
         wholes = whole_process(Path(tmp), args.quick)
+        size = (12, 3) if args.quick else (1000, 10)  # whole_process's generated library
+        stages = loading(Path(tmp) / f"whole{size[0]}x{size[1]}", 1 if args.quick else 3)
+        stages["instance"] = f"{size[0]} x {size[1]}"
         grown = growth(Path(tmp), args.quick, 600.0)
         watch_cmd = [
             sys.executable,
@@ -564,8 +571,9 @@ def main() -> None:
             }
             rows.append(row)
         # Streaming: peak RSS after listing few vs many configurations of one instance must be
-        # (nearly) the same. 50x5 has millions of configurations of 50 components each.
-        where = (50, 5) if (50, 5) in grid else grid[-1]
+        # (nearly) the same. 50x10 has millions of configurations of 50 components each
+        # (1000x10 took over 120 s to list 100,000 configurations of 1000 components).
+        where = (50, 10) if (50, 10) in grid else grid[-1]
         stream = Path(tmp) / f"{where[0]}x{where[1]}"
         counts = (10, 1000) if args.quick else (1000, 100_000)
         flat = {n: measure(f"list{n}", stream, 1, args.timeout) for n in counts}
@@ -578,7 +586,8 @@ def main() -> None:
         simulate["instance"] = f"{r}x{k}"
     floor = import_floor(3 if args.quick else 5)
     doc = {
-        "machine": machine(),
+        "machine": {**machine(), "load_average": {"start": load_start, "end": os.getloadavg()}},
+        "loading": stages,
         "whole_process": wholes,
         "growth": grown,
         "watch": watched,
@@ -665,6 +674,8 @@ def markdown(doc: dict[str, Any]) -> str:
         f"{fits[k]:.2f}" if fits[k] is not None else "n/a" for k in ("count", "first", "optimal")
     ]
     out.append(f"| fitted exponent | {' | '.join(cells)} | |")
+    if "loading" in doc:
+        out += ["", loading_markdown(doc["loading"])]
     w = doc["watch"]
     out += [
         "",
@@ -808,8 +819,6 @@ def update_simulate(path: Path, timeout: float) -> None:
 
 def machine() -> dict[str, Any]:
     """Describe the machine: cores, CPU model, Python."""
-    import os
-
     model = ""
     cpuinfo = Path("/proc/cpuinfo")
     if cpuinfo.exists():

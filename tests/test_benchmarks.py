@@ -26,6 +26,11 @@ def test_quick_grid_writes_table_and_json(tmp_path: Path) -> None:
     assert [(r["roles"], r["candidates"]) for r in doc["grid"]] == [(8, 2), (12, 3)]
     assert all(r["count"]["status"] == "ok" for r in doc["grid"])
     assert doc["machine"]["cores"] >= 1
+    assert set(doc["machine"]["load_average"]) == {"start", "end"}
+    stages = doc["loading"]  # where reading and checking a library goes, stage by stage
+    assert stages["scope"] == "in-process" and stages["bytes"] > 0
+    assert stages["seconds"]["parse"] > 0
+    assert stages["seconds"]["total"] >= max(stages["seconds"].values()) - 1e-9
     sim = doc["simulate"]  # the M-solution sweep, whole process
     assert sim["status"] == "ok", sim
     assert 0 < sim["loops_simulated"] == sim["distinct_loops"] <= sim["configurations"]

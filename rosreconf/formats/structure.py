@@ -18,6 +18,7 @@ from __future__ import annotations
 import difflib
 import enum
 import json
+import re
 from collections.abc import Callable, Iterator, Sequence
 from functools import cache
 from typing import TYPE_CHECKING, Any
@@ -98,14 +99,105 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
 
 @cache
 def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
-    """Return ``kind``'s JSON Schema compiled by fastjsonschema (raises on invalid data)."""
-    validate: Callable[[Any], Any] = fastjsonschema.compile(json_schema(kind))
+    """Return ``kind``'s JSON Schema compiled by fastjsonschema (raises on invalid data).
+
+    The code fastjsonschema writes (``compile_to_code``, its documented way to keep a
+    validator as a module) names each list item for its messages before validating it, as
+    ``"...[{x}]".format(**locals())``: a dict of every local variable per item, about a third
+    of the check on a thousand-role library. Only the verdict of this validator is used
+    (jsonschema words the messages), so each item is given its parent's name instead.
+    """
+    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
+    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
+    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
+    assert entry is not None, "fastjsonschema wrote no validation function"
+    namespace: dict[str, Any] = {}
+    exec(compile(code, f"<fastjsonschema: {kind.value}>", "exec"), namespace)
+    validate: Callable[[Any], Any] = namespace[entry.group(1)]
     return validate
 
 
-def structure_problems(tree: ys.YNode, kind: DocumentKind) -> Iterator[Problem]:
-    """Yield every structural problem of ``tree`` against ``kind``'s JSON Schema."""
-    plain = ys.to_plain(tree)
+_ITEM_NAME = re.compile(r'\(name_prefix or "data"\) \+ "[^"\n]*"\.format\(\*\*locals\(\)\)')
+"""How fastjsonschema's code names a list item for a message (see ``fast_validator``)."""
+
+
+EXCLUSIVE_ONE_OF = {
+    "/$defs/requirement": "an interface has no 'any_of' key, an any_of object no other key",
+    "/$defs/component/properties/ros/properties/parameters/additionalProperties": (
+        "a scalar is not an object"
+    ),
+}
+"""The ``oneOf``s whose branches no value can satisfy together, and why: ``anyOf`` says the
+same there. fastjsonschema's ``oneOf`` tries every branch and builds an exception with its
+message for each failing one (most of the structure check's time on a large library);
+``anyOf`` stops at the first branch that holds."""
+
+
+def without_one_of(schema: dict[str, Any]) -> dict[str, Any]:
+    """Return a copy of the JSON Schema with the same verdicts and no ``oneOf`` on hot paths.
+
+    Two kinds are rewritten: those listed in ``EXCLUSIVE_ONE_OF`` become ``anyOf``; and a
+    ``oneOf`` of single required keys (``{required: [topic]}``, ``{required: [service]}``:
+    exactly one of them) becomes their ``anyOf`` (at least one) with each key forbidding the
+    others (``dependencies``: at most one). Only for the fast validator: jsonschema keeps the
+    published Schema for its messages. Every other ``oneOf`` stays as it is;
+    tests/test_fast_paths.py holds the two validators to the same verdicts.
+    """
+    fast: dict[str, Any] = json.loads(json.dumps(schema))
+    for pointer in EXCLUSIVE_ONE_OF:
+        node = _at(fast, pointer)
+        if node is not None and "oneOf" in node:
+            node["anyOf"] = node.pop("oneOf")
+    stack: list[Any] = [fast]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, list):
+            stack.extend(node)
+            continue
+        if not isinstance(node, dict):
+            continue
+        stack.extend(node.values())
+        keys = _single_required_keys(node.get("oneOf"))
+        if keys and "dependencies" not in node:
+            node["anyOf"] = node.pop("oneOf")
+            node["dependencies"] = {
+                k: {"properties": {other: False for other in keys if other != k}} for k in keys
+            }
+    return fast
+
+
+def _single_required_keys(branches: Any) -> list[str] | None:
+    """Return the keys of a ``oneOf`` whose every branch is ``{required: [one key]}``."""
+    if not isinstance(branches, list) or len(branches) < 2:
+        return None
+    keys = []
+    for branch in branches:
+        if not (isinstance(branch, dict) and list(branch) == ["required"]):
+            return None
+        required = branch["required"]
+        if not (isinstance(required, list) and len(required) == 1):
+            return None
+        keys.append(str(required[0]))
+    return keys if len(set(keys)) == len(keys) else None
+
+
+def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
+    """Return the sub-schema at a JSON pointer (``/a/b``), or None when it is not there."""
+    node: Any = schema
+    for step in pointer.strip("/").split("/"):
+        node = node.get(step) if isinstance(node, dict) else None
+    return node if isinstance(node, dict) else None
+
+
+def structure_problems(
+    tree: ys.YNode, kind: DocumentKind, plain: ys.Plain | None = None
+) -> Iterator[Problem]:
+    """Yield every structural problem of ``tree`` against ``kind``'s JSON Schema.
+
+    ``plain`` is the tree as plain data when the reader already built it (``parse_plain``).
+    """
+    if plain is None:
+        plain = ys.to_plain(tree)
     try:
         fast_validator(kind)(plain)
         return

@@ -13,121 +13,67 @@ rosreconf promises:
 * plain scalars are resolved with YAML 1.2's core schema: only ``true``/``false`` are
   booleans, so ``no``, ``on`` and ``yes`` stay strings; the written text is always kept
   (``raw``) so a value such as ``0755`` can be reported exactly as the user wrote it.
+
+Three modules do the work: ``yamltree`` (the tree and the YAML 1.2 resolver), ``yamlfast``
+(one flat loop over libyaml's events for clean files, declining anything to report or that
+libyaml might read differently) and ``yamlbuilder`` (PyYAML's pure parser, the reader of
+record, with every message). ``parse`` tries the first and falls back to the second, so
+answers never depend on whether libyaml is installed.
 """
 
 from __future__ import annotations
 
-import math
-import re
-from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
-from typing import Any, TypeAlias
+import gc
 
 import yaml
 
 from rosreconf.errors import InvalidInputError, Problem
+from rosreconf.formats.yamlbuilder import offset_span, read_pure
+from rosreconf.formats.yamlfast import Declined, fast_read
+from rosreconf.formats.yamltree import (
+    MAX_DEPTH,
+    Plain,
+    Scalar,
+    YMapping,
+    YNode,
+    YScalar,
+    YSequence,
+    key_span,
+    lookup,
+    resolve_plain,
+    to_plain,
+    walk,
+)
 from rosreconf.model import Span
+
+__all__ = [
+    "FAST_LOADER",
+    "MAX_BYTES",
+    "MAX_DEPTH",
+    "Plain",
+    "Scalar",
+    "YMapping",
+    "YNode",
+    "YScalar",
+    "YSequence",
+    "key_span",
+    "lookup",
+    "parse",
+    "parse_plain",
+    "resolve_plain",
+    "to_plain",
+    "too_large",
+    "walk",
+]
 
 MAX_BYTES = 64 * 1024 * 1024
 """Largest YAML file rosreconf reads: room for a 10,000-role, 10-candidate library (27 MB as
 ``rosreconf generate`` writes it); the loader reads no more than this of any file."""
 
-MAX_DEPTH = 32
-"""Deepest nesting accepted; rosreconf's formats need 6 levels."""
-
 FAST_LOADER: type[yaml.CSafeLoader] | None = (
     yaml.CSafeLoader if getattr(yaml, "__with_libyaml__", False) else None
 )
 """libyaml's parser when PyYAML was built with it (the wheels are), else None."""
-
-Scalar: TypeAlias = str | int | float | bool | None
-Plain: TypeAlias = "Scalar | dict[str, Plain] | list[Plain]"
-
-_STR_TAGS = {"tag:yaml.org,2002:str", "!"}
-_INT = re.compile(r"[-+]?[0-9]+\Z")
-_OCT = re.compile(r"0o[0-7]+\Z")
-_HEX = re.compile(r"0x[0-9a-fA-F]+\Z")
-_FLOAT = re.compile(r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?\Z")
-_INF = re.compile(r"[-+]?\.(inf|Inf|INF)\Z")
-_MAX_INT_DIGITS = 4000
-"""Longer integers read as infinite (out of every range, so refused where a number goes)."""
-_NAN = re.compile(r"\.(nan|NaN|NAN)\Z")
-
-
-@dataclass(slots=True)
-class YNode:
-    """A value in the tree and where it starts."""
-
-    span: Span
-
-
-@dataclass(slots=True)
-class YScalar(YNode):
-    """A scalar: its resolved value, the text as written, and whether it was plain."""
-
-    value: Scalar
-    raw: str
-    plain: bool
-
-
-@dataclass(slots=True)
-class YMapping(YNode):
-    """A mapping with string keys, in file order; ``key_spans`` says where each key is."""
-
-    items: dict[str, YNode] = field(default_factory=dict)
-    key_spans: dict[str, Span] = field(default_factory=dict)
-
-
-@dataclass(slots=True)
-class YSequence(YNode):
-    """A sequence of values, in file order."""
-
-    items: list[YNode] = field(default_factory=list)
-
-
-_MAY_BE_NON_TEXT = frozenset("~nNtTfF0123456789+-.")
-"""First characters of every YAML 1.2 core null, boolean, integer and float."""
-
-
-def resolve_plain(text: str) -> Scalar:
-    """Resolve a plain scalar with YAML 1.2's core schema (never ``no`` -> False)."""
-    if text and text[0] not in _MAY_BE_NON_TEXT:
-        return text  # most names: no pattern can match, skip them all
-    if text in ("", "~", "null", "Null", "NULL"):
-        return None
-    if text in ("true", "True", "TRUE"):
-        return True
-    if text in ("false", "False", "FALSE"):
-        return False
-    if _INT.match(text):
-        if len(text) > _MAX_INT_DIGITS:  # int() refuses more digits; no count of ours is text
-            return -math.inf if text.startswith("-") else math.inf
-        return int(text)
-    if _OCT.match(text):
-        return int(text[2:], 8)
-    if _HEX.match(text):
-        return int(text[2:], 16)
-    if _FLOAT.match(text):
-        return float(text)
-    if _INF.match(text):
-        return -math.inf if text.startswith("-") else math.inf
-    if _NAN.match(text):
-        return math.nan
-    return text
-
-
-def _span(file: str, mark: Any) -> Span:
-    """Turn a PyYAML mark (0-based, pure-Python or C variant) into a 1-based Span."""
-    if mark is None:
-        return Span(file, 1, 1)
-    return Span(file, mark.line + 1, mark.column + 1)
-
-
-def _offset_span(file: str, text: str, offset: int) -> Span:
-    before = text[:offset]
-    line = before.count("\n") + 1
-    column = offset - (before.rfind("\n") + 1) + 1
-    return Span(file, line, column)
 
 
 def too_large(file: str, size: int) -> Problem:
@@ -147,6 +93,18 @@ def parse(data: bytes, file: str) -> YNode | None:
         InvalidInputError: with every structural problem found (the YAML syntax errors stop
             parsing at the first one, because nothing after it can be trusted).
     """
+    return parse_plain(data, file)[0]
+
+
+def parse_plain(data: bytes, file: str) -> tuple[YNode | None, Plain]:
+    """Parse like ``parse`` and also return the tree as plain data (``to_plain``'s answer).
+
+    The fast reader builds both in one pass over libyaml's events, which saves walking a
+    large library's tree a second time for its JSON Schema check.
+
+    Raises:
+        InvalidInputError: as ``parse``.
+    """
     if len(data) > MAX_BYTES:
         raise InvalidInputError([too_large(file, len(data))])
     try:
@@ -156,321 +114,24 @@ def parse(data: bytes, file: str) -> YNode | None:
         raise InvalidInputError(
             [
                 Problem(
-                    _offset_span(file, good, len(good)),
+                    offset_span(file, good, len(good)),
                     "file is not valid UTF-8 text",
                     "save it as UTF-8",
                     code="encoding",
                 )
             ]
         ) from None
-    if FAST_LOADER is not None and _fast_path_safe(text):
-        # libyaml parses about six times faster. On any problem, and wherever libyaml might read
-        # the text differently, the pure-Python parser reads the file again, so that trees,
-        # messages and positions never depend on which parser is installed.
-        fast = _Builder(file)
+    if FAST_LOADER is not None:
+        # libyaml reads about six times faster. On any problem, and wherever libyaml might
+        # read the text differently, the pure reader reads the file again (``yamlfast``).
+        collecting = gc.isenabled()
+        gc.disable()  # the tree only grows: collections would walk all of it, finding nothing
         try:
-            for event in _libyaml_events(text, FAST_LOADER):
-                fast.feed(event)
-            clean = not fast.problems
-        except (_StopParsing, _ParsersMayDiffer, yaml.YAMLError):
-            clean = False
-        if clean:
-            return fast.root
-    builder = _Builder(file)
-    try:
-        for event in yaml.parse(text, Loader=yaml.SafeLoader):
-            builder.feed(event)
-    except _StopParsing:
-        pass
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        what = " ".join(p for p in (exc.context, exc.problem) if p)
-        builder.problems.append(
-            Problem(
-                _span(file, mark),
-                f"YAML syntax error: {what}",
-                "check the indentation, and quote values that contain ': ' or start with a symbol",
-                code="syntax",
-            )
-        )
-    except yaml.reader.ReaderError as exc:
-        builder.problems.append(
-            Problem(
-                _offset_span(file, text, exc.position),
-                f"character U+{_codepoint(exc.character):04X} is not allowed in YAML",
-                "remove control characters; rosreconf reads text files only",
-                code="syntax",
-            )
-        )
-    except yaml.YAMLError as exc:  # pragma: no cover - PyYAML raises marked errors
-        builder.problems.append(Problem(Span(file, 1, 1), f"YAML error: {exc}", code="syntax"))
-    if builder.problems:
-        raise InvalidInputError(builder.problems)
-    return builder.root
-
-
-def _fast_path_safe(text: str) -> bool:
-    """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would.
-
-    libyaml 0.2.5 and PyYAML 6's pure parser differ, on text alone, where:
-
-    * a tab separates tokens or sits in a plain scalar (libyaml accepts it, PyYAML does not);
-    * a character PyYAML's reader refuses is present;
-    * a byte order mark is present: libyaml skips one at the start of every line, PyYAML only
-      at the start of the file, and PyYAML does not count it as a column.
-
-    Such text takes the pure path; ``_libyaml_events`` checks the rest while parsing.
-    tests/test_fast_paths.py searches for other differences (``make explore`` searches longer).
-    """
-    return (
-        FAST_LOADER is not None
-        and "\t" not in text
-        and "\ufeff" not in text
-        and not yaml.reader.Reader.NON_PRINTABLE.search(text)
-    )
-
-
-_BLOCK_HEADER_THEN_COMMENT = re.compile(r"[|>](?:[-+][1-9]?|[1-9][-+]?)?#")
-"""A block scalar header with a ``#`` right after it: libyaml reads a comment, PyYAML an error."""
-
-
-class _ParsersMayDiffer(Exception):
-    """libyaml produced an event that PyYAML's pure parser might not produce the same way."""
-
-
-def _libyaml_events(text: str, loader: type[yaml.CSafeLoader]) -> Iterator[yaml.Event]:
-    """Yield libyaml's events for ``text``; raise ``_ParsersMayDiffer`` where PyYAML may differ.
-
-    Besides what ``_fast_path_safe`` rules out, the two parsers differ on:
-
-    * ``?`` inside a plain scalar in a flow collection: libyaml keeps it in the scalar (as YAML
-      1.2 allows), PyYAML ends the scalar there and reads ``?`` as a key indicator, which is
-      then a syntax error (``{type: r?obot}``: "expected ',' or '}', but got '?'");
-    * where an empty value in a flow collection is (``{a: }``): libyaml puts it at the next
-      token, PyYAML right after the ``:``;
-    * where an empty value at the end of the text is (``? a`` with no line break after it):
-      libyaml ends the stream on a line of its own, PyYAML where the text ends;
-    * characters allowed in tags (``,``, ``[`` and ``]``), so any tag takes the pure path;
-    * a ``#`` right after a block scalar's header (``|#``), a comment to libyaml only.
-
-    Raises:
-        _ParsersMayDiffer: so that the caller reads the text again with PyYAML's pure parser.
-        yaml.YAMLError: libyaml's own syntax errors (the pure parser then gives the message).
-    """
-    flow = 0  # depth of flow collections; nothing inside one can be a block collection
-    end = len(text)
-    for event in yaml.parse(text, Loader=loader):
-        if type(event) is yaml.ScalarEvent:  # most events: the exact type is the cheaper test
-            if event.tag is not None:
-                raise _ParsersMayDiffer
-            style = event.style
-            if not style:  # plain: "" from libyaml
-                value = event.value
-                if flow and (not value or "?" in value):
-                    raise _ParsersMayDiffer
-                if not value and (event.start_mark is None or event.start_mark.index >= end):
-                    raise _ParsersMayDiffer
-            elif style == "|" or style == ">":
-                start = event.start_mark  # libyaml gives every event one
-                if start is None or _BLOCK_HEADER_THEN_COMMENT.match(text, start.index):
-                    raise _ParsersMayDiffer
-        elif isinstance(event, yaml.MappingStartEvent | yaml.SequenceStartEvent):
-            if event.tag is not None:
-                raise _ParsersMayDiffer
-            if flow or event.flow_style:
-                flow += 1
-        elif flow and isinstance(event, yaml.MappingEndEvent | yaml.SequenceEndEvent):
-            flow -= 1
-        yield event
-
-
-class _StopParsing(Exception):
-    """Stop reading events once a limit is hit (the problem is already recorded)."""
-
-
-def _codepoint(character: str | int) -> int:
-    return character if isinstance(character, int) else ord(character)
-
-
-class _Builder:
-    """Turn PyYAML events into YNodes without recursion, collecting problems."""
-
-    def __init__(self, file: str) -> None:
-        self.file = file
-        self.root: YNode | None = None
-        self.stack: list[YMapping | YSequence] = []
-        self.pending_key: list[tuple[str, Span] | None] = []
-        self.problems: list[Problem] = []
-        self.documents = 0
-
-    def feed(self, event: yaml.Event) -> None:
-        """Consume one event."""
-        span = _span(self.file, event.start_mark)
-        if isinstance(event, yaml.DocumentStartEvent):
-            self.documents += 1
-            if self.documents > 1:
-                self.problems.append(
-                    Problem(
-                        span,
-                        "file holds more than one YAML document",
-                        "keep one library or one schema per file",
-                        code="multi-document",
-                    )
-                )
-            return
-        if isinstance(event, yaml.AliasEvent):
-            self.problems.append(
-                Problem(
-                    span,
-                    f"alias '*{event.anchor}' is not allowed",
-                    "write the value out in full; rosreconf rejects anchors and aliases",
-                    code="alias",
-                )
-            )
-            self._attach(YScalar(span, None, "", True), span)
-            return
-        if isinstance(event, yaml.NodeEvent) and event.anchor is not None:
-            self.problems.append(
-                Problem(
-                    span,
-                    f"anchor '&{event.anchor}' is not allowed",
-                    "write the value out in full; rosreconf rejects anchors and aliases",
-                    code="alias",
-                )
-            )
-        if isinstance(event, yaml.ScalarEvent):
-            self._attach(self._scalar(event, span), span)
-        elif isinstance(event, yaml.MappingStartEvent | yaml.SequenceStartEvent):
-            self._check_tag(event.tag, span, collection=True)
-            node: YMapping | YSequence = (
-                YMapping(span) if isinstance(event, yaml.MappingStartEvent) else YSequence(span)
-            )
-            if len(self.stack) >= MAX_DEPTH:
-                self.problems.append(
-                    Problem(
-                        span,
-                        f"nesting is deeper than {MAX_DEPTH} levels",
-                        "rosreconf's formats need far fewer; check the indentation",
-                        code="too-deep",
-                    )
-                )
-                raise _StopParsing  # reported above; nothing deeper is read
-            self._attach(node, span)
-            self.stack.append(node)
-            self.pending_key.append(None)
-        elif isinstance(event, yaml.MappingEndEvent | yaml.SequenceEndEvent):
-            self.stack.pop()
-            self.pending_key.pop()
-
-    def _check_tag(self, tag: str | None, span: Span, *, collection: bool) -> bool:
-        if tag is None or (not collection and tag in _STR_TAGS):
-            return True
-        self.problems.append(
-            Problem(
-                span,
-                f"YAML tag '{tag}' is not allowed",
-                "remove the tag; quote the value if you mean a string",
-                code="tag",
-            )
-        )
-        return False
-
-    def _scalar(self, event: yaml.ScalarEvent, span: Span) -> YScalar:
-        # A plain scalar has no style: None from PyYAML's parser, "" from libyaml's.
-        plain = not event.style and event.implicit[0]
-        if event.tag is not None and not self._check_tag(event.tag, span, collection=False):
-            return YScalar(span, event.value, event.value, False)
-        value: Scalar = resolve_plain(event.value) if plain and event.tag is None else event.value
-        return YScalar(span, value, event.value, bool(plain and event.tag is None))
-
-    def _attach(self, node: YNode, span: Span) -> None:
-        if not self.stack:
-            self.root = node
-            return
-        parent = self.stack[-1]
-        if isinstance(parent, YSequence):
-            parent.items.append(node)
-            return
-        key = self.pending_key[-1]
-        if key is None:
-            self.pending_key[-1] = (self._key_text(node), span)
-            return
-        name, key_span = key
-        self.pending_key[-1] = None
-        if name in parent.items:
-            first = parent.key_spans[name]
-            self.problems.append(
-                Problem(
-                    key_span,
-                    f"duplicate key '{name}' (first written at line {first.line})",
-                    "remove or rename one of the two",
-                    code="duplicate-key",
-                )
-            )
-            return
-        parent.items[name] = node
-        parent.key_spans[name] = key_span
-
-    def _key_text(self, node: YNode) -> str:
-        if isinstance(node, YScalar):
-            return node.raw
-        self.problems.append(
-            Problem(
-                node.span,
-                "a mapping key must be a plain value, not a list or mapping",
-                code="complex-key",
-            )
-        )
-        return f"<complex key at {node.span.line}:{node.span.column}>"
-
-
-def to_plain(node: YNode | None) -> Plain:
-    """Return the tree as plain Python values (for JSON Schema validation).
-
-    Recursion is safe here: ``parse`` has already refused anything deeper than ``MAX_DEPTH``.
-    """
-    if node is None:
-        return None
-    if isinstance(node, YScalar):
-        return node.value
-    if isinstance(node, YMapping):
-        return {k: to_plain(v) for k, v in node.items.items()}
-    assert isinstance(node, YSequence)
-    return [to_plain(v) for v in node.items]
-
-
-def lookup(node: YNode | None, path: Sequence[str | int]) -> YNode | None:
-    """Return the node at ``path`` (keys and indices), or the deepest one that exists."""
-    cur = node
-    for step in path:
-        child: YNode | None = None
-        if isinstance(cur, YMapping) and isinstance(step, str):
-            child = cur.items.get(step)
-        elif isinstance(cur, YSequence) and isinstance(step, int) and step < len(cur.items):
-            child = cur.items[step]
-        if child is None:
-            break
-        cur = child
-    return cur
-
-
-def key_span(node: YNode | None, path: Sequence[str | int]) -> Span | None:
-    """Return where the last key of ``path`` is written, when ``path`` ends in a key."""
-    if not path or not isinstance(path[-1], str):
-        return None
-    parent = lookup(node, path[:-1])
-    if isinstance(parent, YMapping):
-        return parent.key_spans.get(path[-1])
-    return None
-
-
-def walk(node: YNode | None) -> Iterator[YNode]:
-    """Yield every node of the tree, parents before children."""
-    stack = [node] if node is not None else []
-    while stack:
-        cur = stack.pop()
-        yield cur
-        if isinstance(cur, YMapping):
-            stack.extend(reversed(list(cur.items.values())))
-        elif isinstance(cur, YSequence):
-            stack.extend(reversed(cur.items))
+            fast = fast_read(text, file, FAST_LOADER)
+        finally:
+            if collecting:
+                gc.enable()
+        if not isinstance(fast, Declined):
+            return fast
+    tree = read_pure(text, file)
+    return tree, to_plain(tree)

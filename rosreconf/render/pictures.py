@@ -24,19 +24,21 @@ import enum
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rosreconf.model import (
     Component,
     ComponentLibrary,
     Configuration,
     InteroperabilitySchema,
-    RosGraph,
     VertexKind,
 )
 from rosreconf.model.validity import ros_graph
 from rosreconf.outfiles import output_target, write_atomic
 from rosreconf.render.dot import DOT_TIMEOUT, DotGraph, Html, format_for, html, render
+
+if TYPE_CHECKING:  # networkx (0.2 s to import) only when a picture is drawn, not for enumerate
+    from rosreconf.model import RosGraph
 
 
 class View(enum.StrEnum):

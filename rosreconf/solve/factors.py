@@ -214,12 +214,20 @@ def elimination_order(scopes: list[tuple[int, ...]], n: int) -> list[int]:
 
 
 def eliminate(
-    factors: list[Factor], order: list[int], times: Times, marginal: Marginal, max_rows: int
+    factors: list[Factor],
+    order: list[int],
+    times: Times,
+    marginal: Marginal,
+    max_rows: int,
+    unary: Callable[[int], Factor] | None = None,
 ) -> tuple[list[int], list[int]] | None:
     """Eliminate the roles in ``order``; return the leftover scalars and the free roles.
 
     A free role is in no table (any candidate will do). None means some table lost its last
-    row: there is no valid configuration.
+    row: there is no valid configuration. ``unary(var)``, when given, is a table over ``var``
+    alone, joined when ``var`` is eliminated and made only then: the first configuration's
+    unary costs are integers of thousands of digits at 10,000 roles, and holding all of them
+    from the start took more memory than the loaded library.
 
     Raises:
         TooHard: a joined table would exceed ``max_rows`` rows.
@@ -236,10 +244,12 @@ def eliminate(
     next_id = len(factors)
     for var in order:
         ids = sorted(by_var.pop(var, ()))
-        if not ids:
+        mine = [pool.pop(k) for k in ids]
+        if unary is not None:
+            mine.append(unary(var))
+        if not mine:
             free.append(var)
             continue
-        mine = [pool.pop(k) for k in ids]
         reduced = marginal(_join_all(mine, times, max_rows), var)
         if not reduced.rows:
             return None

@@ -17,7 +17,7 @@ levels can reach, which keeps the order lexicographic and the arithmetic exact.
 from __future__ import annotations
 
 import operator
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 from rosreconf.model import Configuration
 from rosreconf.solve.factors import (
@@ -58,7 +58,7 @@ def minimise(
         if any(not a for a in alive):
             return None
         packed, unpack = _pack(alive, costs)
-        found = _minimise(inst, alive, packed, max_rows)
+        found = _minimise(inst, alive, packed.__getitem__, max_rows)
     return None if found is None else (found[0], unpack(found[1]))
 
 
@@ -80,47 +80,65 @@ def first(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Configuration | No
         if any(not a for a in alive):
             return None
         base = max(len(d) for d in inst.domains) + 1 if inst.domains else 1
-        n = len(alive)
-        packed = []
-        weight = 1
-        for r in range(n - 1, -1, -1):  # the last role weighs 1, each earlier one base times more
+        last = len(alive) - 1
+
+        def packed(r: int) -> dict[str, int]:
+            """Weigh role r's candidates: the last role 1, each earlier one base times more."""
+            weight = base ** (last - r)
             position = {c.name: j for j, c in enumerate(inst.domains[r])}
-            packed.append({c: position[c] * weight for c in alive[r]})
-            weight *= base
-        packed.reverse()
+            return {c: position[c] * weight for c in alive[r]}
+
         found = _minimise(inst, alive, packed, max_rows)
     return None if found is None else found[0]
 
 
 def _minimise(
-    inst: Instance, alive: list[list[str]], packed: list[dict[str, int]], max_rows: int
+    inst: Instance,
+    alive: list[list[str]],
+    packed: Callable[[int], Mapping[str, int]],
+    max_rows: int,
 ) -> tuple[Configuration, int] | None:
-    """Minimise the packed unary costs over the constraint tables; the answer and its total."""
+    """Minimise the packed unary costs over the constraint tables; the answer and its total.
+
+    ``packed(r)`` gives role r's candidates' costs; it is asked once, when r is eliminated.
+    """
     factors = constraint_factors(inst, alive, 0, max_rows)
     order = elimination_order([f.scope for f in factors], len(inst.roles))
-    factors.extend(Factor((r,), {(c,): w for c, w in packed[r].items()}) for r in range(len(alive)))
     rank = {c.name: i for i, c in enumerate(inst.library.components)}
+
+    def unary(r: int) -> Factor:
+        return Factor((r,), {(c,): w for c, w in packed(r).items()})
+
     trace: Trace = []
 
-    def min_out(f: Factor, var: int) -> Factor:
-        return _min_out(f, var, rank, trace)
+    offsets: list[int] = []
 
-    done = eliminate(factors, order, operator.add, min_out, max_rows)
+    def min_out(f: Factor, var: int) -> Factor:
+        return _min_out(f, var, rank, trace, offsets)
+
+    done = eliminate(factors, order, operator.add, min_out, max_rows, unary)
     if done is None:
         return None
-    scalars, free = done
+    scalars, _ = done  # no role is free: each has its unary table
     chosen: dict[int, str] = {}
-    for var in free:  # pragma: no cover - every role has its unary table
-        chosen[var] = alive[var][0]
     for var, scope, arg in reversed(trace):
         chosen[var] = arg[tuple(chosen[v] for v in scope)]
     mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
-    return config, sum(scalars)
+    return config, sum(scalars) + sum(offsets)
 
 
-def _min_out(f: Factor, var: int, rank: Mapping[str, int], trace: Trace) -> Factor:
-    """Minimise ``var`` out of ``f``, recording the cheapest candidate per remaining row."""
+def _min_out(
+    f: Factor, var: int, rank: Mapping[str, int], trace: Trace, offsets: list[int]
+) -> Factor:
+    """Minimise ``var`` out of ``f``, recording the cheapest candidate per remaining row.
+
+    The table's least value is taken out of every row and kept in ``offsets`` (the total is
+    their sum plus what is left at the end): rows then hold only how much worse than the
+    best they are. The first configuration's costs weigh each role ``base ** (R - 1 - r)``,
+    integers of thousands of digits at 10,000 roles; their differences are mostly 0, so the
+    tables stay small integers instead of holding thousands of digits per row.
+    """
     pos = f.scope.index(var)
     rest = key_of([i for i in range(len(f.scope)) if i != pos])
     best: dict[tuple[str, ...], int] = {}
@@ -133,6 +151,10 @@ def _min_out(f: Factor, var: int, rank: Mapping[str, int], trace: Trace) -> Fact
             arg[k] = row[pos]
     scope = f.scope[:pos] + f.scope[pos + 1 :]
     trace.append((var, scope, arg))
+    low = min(best.values(), default=0)
+    if low:
+        offsets.append(low)
+        best = {k: w - low for k, w in best.items()}
     return Factor(scope, best)
 
 

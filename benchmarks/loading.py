@@ -1,0 +1,132 @@
+"""Measure where reading and checking a large library goes, stage by stage (in-process).
+
+Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read and checked in
+at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
+that process (``time.process_time``), every stage the loader runs: YAML into the positioned
+tree and plain data, the JSON Schema check, the value checks, model building, the semantic
+checks. Imports are excluded (the whole-process rows of ``run.py`` include them).
+
+``python benchmarks/loading.py --json benchmarks/results.json`` measures and replaces the
+``loading`` entry of the results; ``run.py`` calls ``loading`` in a full run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+STAGES = ("read", "parse", "structure", "values", "build", "check")
+
+
+def child(folder: str) -> dict[str, float]:
+    """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU)."""
+    import gc
+
+    from rosreconf.formats import loader
+    from rosreconf.formats import yamlsource as ys
+    from rosreconf.formats.build import build_library, build_schema
+    from rosreconf.formats.checks import check
+    from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+    from rosreconf.formats.values import value_problems
+
+    d = Path(folder)
+    seconds = dict.fromkeys(STAGES, 0.0)
+    clock = time.process_time
+    gc.disable()  # as the loader does (loader._paused_gc)
+    t = clock()
+    sources = loader.read_sources(loader.discover([d / "libraries", d / "schemas"]))
+    seconds["read"] = clock() - t
+    libraries, schemas, problems = [], [], []
+    for src in sources:
+        t = clock()
+        tree, plain = ys.parse_plain(src.data, src.name)
+        seconds["parse"] += clock() - t
+        t = clock()
+        kind, _ = kind_of(tree, src.name)
+        assert kind is not None and isinstance(tree, ys.YMapping)
+        problems += structure_problems(tree, kind, plain)
+        seconds["structure"] += clock() - t
+        t = clock()
+        if kind is DocumentKind.LIBRARY:
+            problems += value_problems(tree)
+        seconds["values"] += clock() - t
+        t = clock()
+        if kind is DocumentKind.LIBRARY:
+            libraries.append(build_library(tree, src.name))
+        else:
+            schemas.append(build_schema(tree, src.name))
+        seconds["build"] += clock() - t
+    t = clock()
+    problems += check(libraries, schemas, library_complete=True)
+    seconds["check"] = clock() - t
+    assert not problems, problems[:3]
+    seconds["total"] = sum(seconds[s] for s in STAGES)
+    seconds["bytes"] = float(sum(len(s.data) for s in sources))
+    return seconds
+
+
+def loading(folder: Path, runs: int) -> dict[str, Any]:
+    """Return the median CPU seconds of each stage over ``runs`` fresh children."""
+    results = []
+    for _ in range(runs):
+        cmd = [sys.executable, str(Path(__file__)), "--child", str(folder)]
+        out = subprocess.run(cmd, capture_output=True, text=True, check=True, timeout=600)
+        results.append(json.loads(out.stdout))
+    medians = {k: statistics.median(r[k] for r in results) for k in (*STAGES, "total")}
+    return {
+        "scope": "in-process",
+        "clock": "CPU seconds of the child (time.process_time), imports excluded",
+        "runs": runs,
+        "bytes": int(results[0]["bytes"]),
+        "seconds": medians,
+        "goal_seconds": 1.0,
+        "met": medians["total"] <= 1.0,
+    }
+
+
+def markdown(doc: dict[str, Any]) -> str:
+    """Render a ``loading`` entry as a Markdown table (one row per stage)."""
+    s = doc["seconds"]
+    rows = ["| stage (in-process, CPU s) | " + " | ".join(STAGES) + " | total |"]
+    rows.append("| --- " * (len(STAGES) + 2) + "|")
+    rows.append(
+        f"| {doc['instance']} ({doc['bytes'] / 1e6:.1f} MB) | "
+        + " | ".join(f"{s[k]:.3f}" for k in STAGES)
+        + f" | {s['total']:.3f} |"
+    )
+    return "\n".join(rows)
+
+
+def main() -> None:
+    """Measure the loading stages on a generated library and update the results' entry."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--child")
+    ap.add_argument("--json", type=Path, default=Path(__file__).resolve().parent / "results.json")
+    ap.add_argument("--roles", type=int, default=1000)
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    if args.child:
+        print(json.dumps(child(args.child)))
+        return
+    run = Path(__file__).resolve().parent / "run.py"
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / "lib"
+        split = [sys.executable, str(run), "--child", f"split-{args.roles}x10", str(folder)]
+        subprocess.run(split, check=True, capture_output=True)
+        result = loading(folder, args.runs)
+    result["instance"] = f"{args.roles} x 10"
+    doc = json.loads(args.json.read_text(encoding="utf-8")) if args.json.exists() else {}
+    doc["loading"] = result
+    args.json.write_text(json.dumps(doc, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    print(markdown(result))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,197 @@
+"""Read a clean YAML file at libyaml's speed, or decline it for the reader of record.
+
+A thousand-role library is 380,000 libyaml events. This module turns them into the
+positioned tree *and* the plain data the JSON Schema check needs, in one flat loop: no
+per-event method calls, no problem list, plain scalars resolved once per distinct text.
+It never reports anything itself: whatever the pure reader (``yamlbuilder``) would report
+(a second document, an anchor or alias, a tag, a duplicate or complex key, nesting deeper
+than ``MAX_DEPTH``, a syntax error) and wherever libyaml might read the text differently
+from PyYAML's pure parser, it returns ``DECLINED`` and ``yamlsource.parse`` reads the file
+again with the pure reader, so that trees, messages and positions never depend on whether
+libyaml is installed. tests/test_fast_paths.py holds both paths to identical answers.
+
+libyaml 0.2.5 and PyYAML 6's pure parser read the same text differently where:
+
+* a tab separates tokens or sits in a plain scalar (libyaml accepts it, PyYAML does not);
+* a character PyYAML's reader refuses is present;
+* a byte order mark is present: libyaml skips one at the start of every line, PyYAML only
+  at the start of the file, and PyYAML does not count it as a column;
+* ``?`` is inside a plain scalar in a flow collection: libyaml keeps it in the scalar (as
+  YAML 1.2 allows), PyYAML ends the scalar there and reads ``?`` as a key indicator, which
+  is then a syntax error (``{type: r?obot}``, ``{e?lbow: x}``: "expected ',' or '}'");
+* an empty value in a flow collection (``{a: }``): libyaml puts it at the next token,
+  PyYAML right after the ``:``;
+* an empty value at the end of the text (``? a`` with no line break after it): libyaml ends
+  the stream on a line of its own, PyYAML where the text ends;
+* characters allowed in tags (``,``, ``[`` and ``]``), so any tag is declined;
+* a ``#`` right after a block scalar's header (``|#``), a comment to libyaml only.
+
+The first three are seen in the text alone (``fast_path_safe``); the loop checks the rest.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any, Final
+
+import yaml
+
+from rosreconf.formats.yamltree import (
+    MAX_DEPTH,
+    Plain,
+    Scalar,
+    YMapping,
+    YNode,
+    YScalar,
+    YSequence,
+    resolve_plain,
+)
+from rosreconf.model import Span
+
+
+class Declined:
+    """The type of ``DECLINED``."""
+
+
+DECLINED: Final = Declined()
+"""What ``fast_read`` returns for a file that the pure reader must read."""
+
+_BLOCK_HEADER_THEN_COMMENT = re.compile(r"[|>](?:[-+][1-9]?|[1-9][-+]?)?#")
+"""A block scalar header with a ``#`` right after it: libyaml reads a comment, PyYAML an error."""
+
+
+def fast_path_safe(text: str) -> bool:
+    """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would."""
+    return (
+        "\t" not in text
+        and "\ufeff" not in text
+        and not yaml.reader.Reader.NON_PRINTABLE.search(text)
+    )
+
+
+def fast_read(
+    text: str, file: str, loader: type[yaml.CSafeLoader]
+) -> tuple[YNode | None, Plain] | Declined:
+    """Return the tree and its plain data for ``text``, or ``DECLINED`` (see the module doc).
+
+    The cyclic garbage collector must be paused by the caller for speed: the tree only grows
+    here, and every collection would walk all of it.
+    """
+    if not fast_path_safe(text):
+        return DECLINED
+    parser = loader(text)
+    try:
+        return _events(parser.get_event, file, len(text), text)
+    except yaml.YAMLError:
+        return DECLINED  # libyaml's own syntax error: the pure reader gives the message
+    finally:
+        parser.dispose()
+
+
+def _events(get: Any, file: str, end: int, text: str) -> tuple[YNode | None, Plain] | Declined:
+    """Consume libyaml's events from ``get`` into a tree and plain data; one flat loop.
+
+    The open collection's containers live in local variables (saved on ``stack`` while a
+    child is open), and a mapping key becomes no node at all, only its text and position:
+    this loop runs once per event, 380,000 times for a thousand-role library.
+    """
+    scalar_event, alias_event = yaml.ScalarEvent, yaml.AliasEvent
+    map_start, seq_start = yaml.MappingStartEvent, yaml.SequenceStartEvent
+    map_end, seq_end = yaml.MappingEndEvent, yaml.SequenceEndEvent
+    doc_start, stream_end = yaml.DocumentStartEvent, yaml.StreamEndEvent
+    header_comment = _BLOCK_HEADER_THEN_COMMENT.match
+    new_span = tuple.__new__
+    resolved: dict[str, Scalar] = {}
+    root: YNode | None = None
+    root_plain: Plain = None
+    stack: list[tuple[Any, ...]] = []  # the enclosing collections' state, innermost last
+    # The open collection: a mapping's items, key positions and plain dict, or a sequence's
+    # items and plain list (spans None); the key read and waiting for its value.
+    items: Any = None
+    spans: dict[str, Span] | None = None
+    plains: Any = None
+    key: str | None = None
+    key_span: Span | None = None
+    flow = 0  # depth of flow collections; nothing inside one can be a block collection
+    documents = 0
+    while True:
+        event = get()
+        cls = type(event)
+        node: YNode
+        plain: Plain
+        if cls is scalar_event:  # most events: the exact type is the cheapest test
+            if event.anchor is not None or event.tag is not None:
+                return DECLINED
+            mark = event.start_mark
+            value = event.value
+            style = event.style
+            if not style:  # plain: "" from libyaml
+                if flow and (not value or "?" in value):
+                    return DECLINED
+                if not value and mark.index >= end:
+                    return DECLINED
+            elif (style == "|" or style == ">") and header_comment(text, mark.index):
+                return DECLINED
+            span = new_span(Span, (file, mark.line + 1, mark.column + 1))
+            if spans is not None and key is None:  # a mapping's key: its text, as written
+                key, key_span = value, span
+                continue
+            if not style and event.implicit[0]:
+                if value in resolved:
+                    plain = resolved[value]
+                else:
+                    plain = resolved[value] = resolve_plain(value)
+                node = YScalar(span, plain, value, True)
+            else:
+                plain = value
+                node = YScalar(span, value, value, False)
+        elif cls is map_start or cls is seq_start:
+            if event.anchor is not None or event.tag is not None or len(stack) >= MAX_DEPTH:
+                return DECLINED
+            if spans is not None and key is None:
+                return DECLINED  # a complex key
+            if flow or event.flow_style:
+                flow += 1
+            mark = event.start_mark
+            span = new_span(Span, (file, mark.line + 1, mark.column + 1))
+            if cls is map_start:
+                node, plain = YMapping(span), {}
+            else:
+                node, plain = YSequence(span), []
+        elif cls is map_end or cls is seq_end:
+            items, spans, plains, key, key_span = stack.pop()
+            if flow:
+                flow -= 1
+            continue
+        elif cls is doc_start:
+            documents += 1
+            if documents > 1:
+                return DECLINED
+            continue
+        elif cls is stream_end:
+            return root, root_plain
+        elif cls is alias_event:
+            return DECLINED
+        else:
+            continue  # stream start and document end
+        if spans is not None:  # a value in a mapping
+            assert key is not None and key_span is not None
+            if key in items:
+                return DECLINED  # a duplicate key
+            items[key] = node
+            spans[key] = key_span
+            plains[key] = plain
+            key = None
+        elif items is not None:  # an item in a sequence
+            items.append(node)
+            plains.append(plain)
+        else:
+            root, root_plain = node, plain
+        if cls is not scalar_event:  # a collection opens: its children come next
+            stack.append((items, spans, plains, key, key_span))
+            if type(node) is YMapping:
+                items, spans, plains = node.items, node.key_spans, plain
+            else:
+                assert isinstance(node, YSequence)
+                items, spans, plains = node.items, None, plain
+            key = key_span = None
