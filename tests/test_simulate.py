@@ -178,7 +178,7 @@ def cluster() -> Any:
     """Start a real Dask LocalCluster (two worker processes) on the loopback interface."""
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-        dashboard_address=None,
+        dashboard_address=":0",  # a free port: concurrent runs must not share 8787
     ) as local:  # fmt: skip
         yield local
 
