@@ -415,3 +415,44 @@ def test_balance_refuses_nan_as_scipy_does() -> None:
         matfuncs.balance(bad)
     with pytest.raises(ValueError):
         scipy.linalg.matrix_balance(bad, permute=False, separate=True)
+
+
+THREADS_PROBE = """
+import json, sys
+from rosreconf.analysis.performance import LoopSpec, simulate_chunk
+from rosreconf.model.dynamics import TransferFunction
+from threadpoolctl import threadpool_info
+before = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+spec = LoopSpec((TransferFunction((2.0,), (0.5, 1.0)),), TransferFunction((1.0,), (1.0, 1.0)), ())
+simulate_chunk([spec])
+after = [(i["num_threads"], i["filepath"]) for i in threadpool_info() if i["user_api"] == "blas"]
+print(json.dumps({"before": before, "after": after, "scipy": "scipy" in sys.modules}))
+"""
+
+
+def test_simulating_limits_numpys_blas_to_one_thread_without_scipy() -> None:
+    """``simulate_chunk`` limits every BLAS loaded, numpy's own OpenBLAS included.
+
+    The limit once had to be set after scipy.linalg was imported (scipy's OpenBLAS is a
+    second library); now numpy's is the only one, loaded with numpy before the limit.
+    """
+    import json
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    done = subprocess.run(
+        [sys.executable, "-c", THREADS_PROBE],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=120,
+        env=env,
+    )
+    report = json.loads(done.stdout)
+    assert not report["scipy"]
+    assert report["after"], "no BLAS loaded: the probe would prove nothing"
+    assert all(threads == 1 for threads, _ in report["after"]), report
+    if (os.cpu_count() or 1) > 1:
+        assert max(report["before"]) > 1  # the limit, not the default, made it one

@@ -162,7 +162,10 @@ def single_threaded_blas() -> None:
     adds synchronisation: on a busy two-core machine a 9x9 matrix exponential took 32 ms
     with OpenBLAS's threads and 0.2 ms with one. Parallelism comes from the worker
     processes instead (``--workers``, ``--cluster``), and every process computes the same
-    way (Dask workers run single-threaded BLAS by default too).
+    way (Dask workers run single-threaded BLAS by default too). The limit covers the BLAS
+    libraries loaded when it is set: numpy's OpenBLAS, the only one since the loops are
+    computed on numpy alone (``matfuncs``; scipy.linalg brought a second one), and numpy is
+    imported before this runs. tests/test_lti.py checks every loaded BLAS ends at one thread.
     """
     from threadpoolctl import threadpool_limits
 
