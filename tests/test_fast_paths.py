@@ -22,7 +22,13 @@ from hypothesis import strategies as st
 
 from rosreconf.errors import InvalidInputError
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.structure import DocumentKind, fast_validator, json_schema, without_one_of
+from rosreconf.formats.structure import (
+    DocumentKind,
+    fast_validator,
+    fast_validator_code,
+    json_schema,
+    without_one_of,
+)
 from rosreconf.formats.yamlfast import Declined, fast_read
 
 REPO = Path(__file__).resolve().parent.parent
@@ -370,6 +376,16 @@ def test_the_fast_validator_has_no_one_of_left(kind: DocumentKind) -> None:
     # A new oneOf in a published Schema stays a oneOf (correct, but slow): add it to
     # structure.EXCLUSIVE_ONE_OF when its branches cannot both hold.
     assert '"oneOf"' not in json.dumps(without_one_of(json_schema(kind)))
+
+
+@pytest.mark.parametrize("kind", list(DocumentKind))
+def test_the_fast_validator_carries_no_copy_of_the_json_schema(kind: DocumentKind) -> None:
+    # Every raise of fastjsonschema's code carries the JSON Schema part it checks, which only
+    # a message would use; structure._DEFINITION drops them so that Python compiles a third of
+    # the code. A raise written some other way by a new fastjsonschema keeps its copy here.
+    code = fast_validator_code(kind)
+    assert "definition={" not in code
+    assert "definition=None" in code
 
 
 SCHEMA_DOCS = [

@@ -106,9 +106,13 @@ def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
     ``"...[{x}]".format(**locals())``: a dict of every local variable per item, about a third
     of the check on a thousand-role library. Only the verdict of this validator is used
     (jsonschema words the messages), so each item is given its parent's name instead.
+
+    For the same reason every ``raise`` loses its ``definition=`` argument: a literal copy
+    of the JSON Schema's part it checks (two thirds of the code), which Python had to compile
+    in every process, 0.06 CPU s of the 0.1 s compile (``detailed_exceptions=False``, made
+    for this, fails on a ``const`` in fastjsonschema 2.22).
     """
-    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
-    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
+    code = fast_validator_code(kind)
     entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
     assert entry is not None, "fastjsonschema wrote no validation function"
     namespace: dict[str, Any] = {}
@@ -117,8 +121,19 @@ def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
     return validate
 
 
+def fast_validator_code(kind: DocumentKind) -> str:
+    """Return the Python code of ``fast_validator`` (fastjsonschema's, trimmed as it says)."""
+    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
+    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
+    return _DEFINITION.sub(r"\1None\2", code)
+
+
 _ITEM_NAME = re.compile(r'\(name_prefix or "data"\) \+ "[^"\n]*"\.format\(\*\*locals\(\)\)')
 """How fastjsonschema's code names a list item for a message (see ``fast_validator``)."""
+
+_DEFINITION = re.compile(r"(, definition=).*(, rule='\w+'\)$)", re.MULTILINE)
+"""The literal JSON Schema part a ``raise`` of fastjsonschema's code carries (its last
+arguments on its one line; see ``fast_validator``)."""
 
 
 EXCLUSIVE_ONE_OF = {
