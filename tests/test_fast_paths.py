@@ -8,6 +8,7 @@ reference paths to identical trees, positions and verdicts.
 from __future__ import annotations
 
 import copy
+import importlib
 import json
 from pathlib import Path
 from typing import Any
@@ -23,9 +24,11 @@ from hypothesis import strategies as st
 from rosreconf.errors import InvalidInputError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.structure import (
+    FAST_MODULES,
     DocumentKind,
     fast_validator,
     fast_validator_code,
+    fast_validator_module,
     json_schema,
     without_one_of,
 )
@@ -386,6 +389,33 @@ def test_the_fast_validator_carries_no_copy_of_the_json_schema(kind: DocumentKin
     code = fast_validator_code(kind)
     assert "definition={" not in code
     assert "definition=None" in code
+
+
+@pytest.mark.parametrize("kind", list(DocumentKind))
+def test_the_shipped_fast_validator_is_the_one_written_now(kind: DocumentKind) -> None:
+    # rosreconf/formats/fastschema_*.py save writing and compiling fastjsonschema's code in
+    # every process. After changing a JSON Schema: python scripts/fast_validators.py
+    shipped = REPO / "rosreconf" / "formats" / f"{FAST_MODULES[kind]}.py"
+    assert shipped.read_text(encoding="utf-8") == fast_validator_module(kind)
+    fast_validator.cache_clear()
+    validate = fast_validator(kind)
+    assert validate is importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}").VALIDATE
+
+
+def test_a_stale_shipped_validator_is_not_used(monkeypatch: pytest.MonkeyPatch) -> None:
+    # A module written for another JSON Schema (SOURCE differs) must not decide verdicts.
+    kind = DocumentKind.LIBRARY
+    module = importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}")
+    monkeypatch.setattr(module, "SOURCE", "written for another JSON Schema")
+    fast_validator.cache_clear()
+    try:
+        validate = fast_validator(kind)
+        assert validate is not module.VALIDATE
+        validate(PLAIN_LIBRARY)
+        with pytest.raises(fastjsonschema.JsonSchemaException):
+            validate({**PLAIN_LIBRARY, "version": 2})
+    finally:
+        fast_validator.cache_clear()
 
 
 SCHEMA_DOCS = [
