@@ -258,6 +258,9 @@ def _nominal(
 ) -> Iterator[Problem]:
     if not s.nominal:
         return
+    needs: dict[str, str] = {}  # each role's label, as graph.role() (a scan: n^2 here) gives
+    for r in s.graph.roles:
+        needs.setdefault(r.name, r.abstraction)
     for role, comp in s.nominal.items():
         span = s.at(f"nominal.{role}")
         if role not in roles:
@@ -275,11 +278,11 @@ def _nominal(
                 _closest("components", comp, set(by_name)),
                 code="unknown-component",
             )
-        elif by_name and by_name[comp].abstraction != s.graph.role(role).abstraction:
+        elif by_name and by_name[comp].abstraction != needs[role]:
             yield Problem(
                 span,
                 f"nominal configuration puts {comp} ({by_name[comp].abstraction}) in role "
-                f"'{role}', which needs {s.graph.role(role).abstraction}",
+                f"'{role}', which needs {needs[role]}",
                 "choose a component with the role's abstraction label",
                 code="wrong-abstraction",
             )
