@@ -13,11 +13,10 @@ import difflib
 from collections.abc import Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import simchecks
+from rosreconf.formats import interfacechecks, simchecks
 from rosreconf.model import (
     Component,
     ComponentLibrary,
-    Interface,
     InterfaceKind,
     InteroperabilitySchema,
     Span,
@@ -45,8 +44,8 @@ def check(
     if components:
         library = ComponentLibrary.merge(libraries)
         problems.extend(_couplings(library))
-        problems.extend(_interfaces(components))
-        problems.extend(_requirements(components))
+        problems.extend(interfacechecks.interface_problems(components))
+        problems.extend(interfacechecks.requirement_problems(components))
         problems.extend(_launch_args(components))
     problems.extend(_schema_names(schemas))
     known = components if library_complete else []
@@ -109,64 +108,6 @@ def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
                 f"{c.name} both needs and excludes '{name}'",
                 "keep it in one list only",
                 code="contradictory-coupling",
-            )
-
-
-def _all_interfaces(c: Component) -> Iterator[tuple[Interface, Span]]:
-    for i, iface in enumerate(sorted(c.provides)):
-        yield iface, c.at(f"provides.{i}")
-    for i, req in enumerate(c.requires):
-        for iface in req.options:
-            yield iface, req.span if req.span.line else c.at(f"requires.{i}")
-
-
-def _interfaces(components: Sequence[Component]) -> Iterator[Problem]:
-    types: dict[tuple[InterfaceKind, str], tuple[str, str, Span]] = {}
-    kinds: dict[str, tuple[InterfaceKind, str]] = {}
-    for c in components:
-        for iface, span in _all_interfaces(c):
-            key = (iface.kind, iface.label)
-            first = types.get(key)
-            if first is None:
-                types[key] = (iface.type, c.name, span)
-            elif first[0] != iface.type:
-                same = first[1] == c.name
-                yield Problem(
-                    span,
-                    f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
-                    f"{first[0]} in {first[1]} ({first[2]})",
-                    "one component cannot use one label with two message classes; rename one"
-                    if same
-                    else "allowed for alternatives (raw and compressed images): no "
-                    "configuration chooses providers of both; rename one if they are one thing",
-                    code="type-conflict",
-                    severity=Severity.ERROR if same else Severity.WARNING,
-                )
-            other = kinds.get(iface.label)
-            if other is None:
-                kinds[iface.label] = (iface.kind, c.name)
-            elif other[0] != iface.kind:
-                yield Problem(
-                    span,
-                    f"'{iface.label}' is a {iface.kind} in {c.name} but a {other[0]} in {other[1]}",
-                    "use different labels for a topic and a service",
-                    code="kind-conflict",
-                    severity=Severity.WARNING,
-                )
-
-
-def _requirements(components: Sequence[Component]) -> Iterator[Problem]:
-    provided = {iface for c in components for iface in c.provides}
-    for c in components:
-        for i, req in enumerate(c.requires):
-            if any(o in provided for o in req.options):
-                continue
-            verb = "calls" if req.options[0].kind is InterfaceKind.SERVICE else "subscribes to"
-            yield Problem(
-                req.span if req.span.line else c.at(f"requires.{i}"),
-                f"{c.name} {verb} {req}, which no component in the library provides",
-                "add a component that provides it, or fix the label or type",
-                code="unmet-requirement",
             )
 
 
