@@ -279,3 +279,22 @@ def announce(ros2_domain: int, tmp_path: Path) -> Iterator[Announce]:
 
     yield start
     ros2_harness.stop(started)
+
+
+# The arm on DC-motor joints and camera 1: a valid Object Repositioning configuration whose
+# fewest-change repair after NCA1 fails does not meet the schema's performance requirements.
+DC_CAMERA_1 = {
+    "base_joint": "NDC1",
+    "shoulder_joint": "NDC2",
+    "elbow_joint": "NDC3",
+    "wrist_joint": "NDC4",
+    "gripper_joint": "NDC5",
+    "camera": "NCA1",
+    "gripper_sensor": "NCO1",
+    "perception": "NVP1",
+    "positioning": "NFB11",
+    "grasping": "NFB12",
+    "carrying": "NFB13",
+    "placing": "NFB14",
+    "reasoner": "NREA",
+}

@@ -232,21 +232,13 @@ def test_each_known_difference_is_real_and_takes_the_pure_path(text: str) -> Non
         assert _parse(text.encode(), True, mp) == _parse(text.encode(), False, mp)
 
 
-def test_question_mark_in_a_flow_mapping_is_the_syntax_error_at_the_question_mark() -> None:
-    data = (LIBRARY[:R_OBOT] + "?" + LIBRARY[R_OBOT:]).encode()
-    line = LIBRARY[:R_OBOT].count("\n") + 1
-    column = R_OBOT - LIBRARY.rindex("\n", 0, R_OBOT)
-    with pytest.raises(InvalidInputError) as caught:
-        ys.parse(data, "robot_arms.yaml")
-    [problem] = caught.value.problems
-    assert (problem.span.line, problem.span.column) == (line, column)
-    assert "expected ',' or '}', but got '?'" in problem.message
-
-
-def test_question_mark_in_a_flow_key_is_the_syntax_error_at_the_question_mark() -> None:
-    data = (LIBRARY[:E_LBOW] + "?" + LIBRARY[E_LBOW:]).encode()
-    line = LIBRARY[:E_LBOW].count("\n") + 1
-    column = E_LBOW - LIBRARY.rindex("\n", 0, E_LBOW)
+@pytest.mark.parametrize("at", [R_OBOT, E_LBOW], ids=["in-a-flow-mapping-value", "in-a-flow-key"])
+def test_question_mark_in_a_flow_collection_is_the_syntax_error_at_the_question_mark(
+    at: int,
+) -> None:
+    data = (LIBRARY[:at] + "?" + LIBRARY[at:]).encode()
+    line = LIBRARY[:at].count("\n") + 1
+    column = at - LIBRARY.rindex("\n", 0, at)
     with pytest.raises(InvalidInputError) as caught:
         ys.parse(data, "robot_arms.yaml")
     [problem] = caught.value.problems

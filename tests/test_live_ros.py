@@ -119,12 +119,9 @@ def test_import_inspect_and_self_repair(
         err.close()
     ros_master.remember_children()
     ours = {n.process.pid for n in nodes.values()} | ros_master.pids | {ros_master.process.pid}
-    left = {p: _cmdline(p) for p in ros_harness.processes_using(ros_master.home) if p not in ours}
+    left = {
+        p: ros_harness.cmdline(p)
+        for p in ros_harness.processes_using(ros_master.home)
+        if p not in ours
+    }
     assert not left, f"watch left processes behind: {left}"
-
-
-def _cmdline(pid: int) -> str:
-    try:
-        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
-    except OSError:
-        return "?"

@@ -10,6 +10,7 @@ from typing import Any
 
 import distributed
 import pytest
+from conftest import DC_CAMERA_1
 from typer.testing import CliRunner
 
 from rosreconf.analysis.simulate import choose, performance_of, shortfall, simulate_schema
@@ -178,7 +179,7 @@ def cluster() -> Any:
     """Start a real Dask LocalCluster (two worker processes) on the loopback interface."""
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-        dashboard_address=None,
+        dashboard_address=":0",  # a free port: concurrent runs must not share 8787
     ) as local:  # fmt: skip
         yield local
 
@@ -189,23 +190,6 @@ def test_cluster_answers_equal_local_ones(runner: CliRunner, tmp_path: Path, clu
     remote = document(runner, tmp_path, "--cluster", cluster.scheduler_address)
     assert same(remote, local)
     assert cluster.scheduler.transition_counter > before  # the scheduler handed out the work
-
-
-DC_CAMERA_1 = {
-    "base_joint": "NDC1",
-    "shoulder_joint": "NDC2",
-    "elbow_joint": "NDC3",
-    "wrist_joint": "NDC4",
-    "gripper_joint": "NDC5",
-    "camera": "NCA1",
-    "gripper_sensor": "NCO1",
-    "perception": "NVP1",
-    "positioning": "NFB11",
-    "grasping": "NFB12",
-    "carrying": "NFB13",
-    "placing": "NFB14",
-    "reasoner": "NREA",
-}
 
 
 def test_choose_passes_over_the_fewest_change_configuration_that_does_not_perform() -> None:

@@ -19,7 +19,7 @@ from typing import Any
 
 import pytest
 import ros_harness
-from conftest import StartStandIn
+from conftest import DC_CAMERA_1, StartStandIn
 
 from rosreconf.analysis.simulate import performance_of
 from rosreconf.formats.configfile import render_configurations
@@ -31,22 +31,6 @@ pytestmark = pytest.mark.ros
 
 SCHEMA = "object_repositioning"
 RECONFIGURE_TIMEOUT = 60.0
-
-DC_CAMERA_1 = {
-    "base_joint": "NDC1",
-    "shoulder_joint": "NDC2",
-    "elbow_joint": "NDC3",
-    "wrist_joint": "NDC4",
-    "gripper_joint": "NDC5",
-    "camera": "NCA1",
-    "gripper_sensor": "NCO1",
-    "perception": "NVP1",
-    "positioning": "NFB11",
-    "grasping": "NFB12",
-    "carrying": "NFB13",
-    "placing": "NFB14",
-    "reasoner": "NREA",
-}
 
 
 def _events(path: Path) -> list[dict[str, Any]]:
