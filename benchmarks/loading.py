@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -69,12 +70,39 @@ def child(folder: str) -> dict[str, float]:
     assert not problems, problems[:3]
     seconds["total"] = sum(seconds[s] for s in STAGES)
     seconds["bytes"] = float(sum(len(s.data) for s in sources))
+    seconds.update(floors([s.data.decode("utf-8") for s in sources]))
     return seconds
+
+
+FLOORS = ("libyaml", "pyyaml_events")
+
+
+def floors(texts: list[str]) -> dict[str, float]:
+    """Time what any reader over PyYAML's C binding pays before building anything.
+
+    ``libyaml``: libyaml parsing the texts with no Python object per event
+    (``CParser.raw_parse``); ``pyyaml_events``: PyYAML's event objects, fetched and dropped.
+    The parse stage can shrink towards the second, never below it, in a Python loop.
+    """
+    import yaml
+
+    clock = time.process_time
+    t = clock()
+    for text in texts:
+        yaml.CSafeLoader(text).raw_parse()
+    raw = clock() - t
+    t = clock()
+    for text in texts:
+        get = yaml.CSafeLoader(text).get_event
+        while get() is not None:
+            pass
+    return {"libyaml": raw, "pyyaml_events": clock() - t}
 
 
 def loading(folder: Path, runs: int) -> dict[str, Any]:
     """Return the median CPU seconds of each stage over ``runs`` fresh children."""
     results = []
+    load_start = os.getloadavg()
     for _ in range(runs):
         cmd = [sys.executable, str(Path(__file__)), "--child", str(folder)]
         out = subprocess.run(cmd, capture_output=True, text=True, check=True, timeout=600)
@@ -86,8 +114,11 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "runs": runs,
         "bytes": int(results[0]["bytes"]),
         "seconds": medians,
+        "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
+        "floors": "libyaml: CParser.raw_parse (no Python objects); pyyaml_events: get_event only",
         "goal_seconds": 1.0,
         "met": medians["total"] <= 1.0,
+        "load_average": {"start": list(load_start), "end": list(os.getloadavg())},
     }
 
 

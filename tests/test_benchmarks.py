@@ -31,6 +31,9 @@ def test_quick_grid_writes_table_and_json(tmp_path: Path) -> None:
     assert stages["scope"] == "in-process" and stages["bytes"] > 0
     assert stages["seconds"]["parse"] > 0
     assert stages["seconds"]["total"] >= max(stages["seconds"].values()) - 1e-9
+    floors = stages["floor_seconds"]  # what any reader over PyYAML's C binding pays
+    assert set(floors) == {"libyaml", "pyyaml_events"} and min(floors.values()) > 0
+    assert set(stages["load_average"]) == {"start", "end"}
     sim = doc["simulate"]  # the M-solution sweep, whole process
     assert sim["status"] == "ok", sim
     assert 0 < sim["loops_simulated"] == sim["distinct_loops"] <= sim["configurations"]

@@ -118,3 +118,20 @@ def test_plan_with_graph_does_import_the_drawing(tmp_path: Path) -> None:
     assert done.returncode in (0, 1), done.stdout + done.stderr
     assert "rosreconf.render.pictures" in names
     assert (tmp_path / "g.svg").stat().st_size > 0
+
+
+def test_piped_enumerate_imports_no_picture_or_progress_module(tmp_path: Path) -> None:
+    """Piped, enumerate shows no live counter and draws nothing: neither module is loaded."""
+    names, done = imported(["enumerate"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rosreconf.render.pictures" not in names
+    assert "rich.progress" not in names
+    assert "rich._emoji_codes" not in names  # the consoles never turn ':name:' into emoji
+
+
+def test_enumerate_graph_still_draws(tmp_path: Path) -> None:
+    """--graph imports the picture module where it is needed and writes the picture."""
+    names, done = imported(["enumerate", "--only", "disc_loading", "--graph", "g.dot"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rosreconf.render.pictures" in names
+    assert (tmp_path / "g.dot").read_text().startswith("digraph")

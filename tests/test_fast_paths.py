@@ -8,6 +8,7 @@ reference paths to identical trees, positions and verdicts.
 from __future__ import annotations
 
 import copy
+import importlib
 import json
 from pathlib import Path
 from typing import Any
@@ -22,7 +23,15 @@ from hypothesis import strategies as st
 
 from rosreconf.errors import InvalidInputError
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.structure import DocumentKind, fast_validator, json_schema, without_one_of
+from rosreconf.formats.structure import (
+    FAST_MODULES,
+    DocumentKind,
+    fast_validator,
+    fast_validator_code,
+    fast_validator_module,
+    json_schema,
+    without_one_of,
+)
 from rosreconf.formats.yamlfast import Declined, fast_read
 
 REPO = Path(__file__).resolve().parent.parent
@@ -362,6 +371,43 @@ def test_the_fast_validator_has_no_one_of_left(kind: DocumentKind) -> None:
     # A new oneOf in a published Schema stays a oneOf (correct, but slow): add it to
     # structure.EXCLUSIVE_ONE_OF when its branches cannot both hold.
     assert '"oneOf"' not in json.dumps(without_one_of(json_schema(kind)))
+
+
+@pytest.mark.parametrize("kind", list(DocumentKind))
+def test_the_fast_validator_carries_no_copy_of_the_json_schema(kind: DocumentKind) -> None:
+    # Every raise of fastjsonschema's code carries the JSON Schema part it checks, which only
+    # a message would use; structure._DEFINITION drops them so that Python compiles a third of
+    # the code. A raise written some other way by a new fastjsonschema keeps its copy here.
+    code = fast_validator_code(kind)
+    assert "definition={" not in code
+    assert "definition=None" in code
+
+
+@pytest.mark.parametrize("kind", list(DocumentKind))
+def test_the_shipped_fast_validator_is_the_one_written_now(kind: DocumentKind) -> None:
+    # rosreconf/formats/fastschema_*.py save writing and compiling fastjsonschema's code in
+    # every process. After changing a JSON Schema: python scripts/fast_validators.py
+    shipped = REPO / "rosreconf" / "formats" / f"{FAST_MODULES[kind]}.py"
+    assert shipped.read_text(encoding="utf-8") == fast_validator_module(kind)
+    fast_validator.cache_clear()
+    validate = fast_validator(kind)
+    assert validate is importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}").VALIDATE
+
+
+def test_a_stale_shipped_validator_is_not_used(monkeypatch: pytest.MonkeyPatch) -> None:
+    # A module written for another JSON Schema (SOURCE differs) must not decide verdicts.
+    kind = DocumentKind.LIBRARY
+    module = importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}")
+    monkeypatch.setattr(module, "SOURCE", "written for another JSON Schema")
+    fast_validator.cache_clear()
+    try:
+        validate = fast_validator(kind)
+        assert validate is not module.VALIDATE
+        validate(PLAIN_LIBRARY)
+        with pytest.raises(fastjsonschema.JsonSchemaException):
+            validate({**PLAIN_LIBRARY, "version": 2})
+    finally:
+        fast_validator.cache_clear()
 
 
 SCHEMA_DOCS = [

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 from types import MappingProxyType
+from typing import TypeAlias
 
 from rosreconf.formats import yamlsource as ys
 from rosreconf.model import (
@@ -67,17 +68,30 @@ def _names(node: ys.YNode | None) -> frozenset[str]:
     return frozenset(_text(n) for n in items) if items else _NO_NAMES
 
 
-def _interface(node: ys.YNode) -> Interface:
+Interfaces: TypeAlias = dict[tuple[bool, str, str], Interface]
+"""The interfaces built so far for one library, by (is a service, label, type): a large
+library writes each of its few distinct interfaces many times, and one shared, equal
+(frozen) object per distinct interface saves building and hashing a new one each time."""
+
+
+def _interface(node: ys.YNode, seen: Interfaces) -> Interface:
     items = _map(node)
-    kind = InterfaceKind.SERVICE if "service" in items else InterfaceKind.TOPIC
-    return Interface(kind, _text(items[kind.value]), _text(items["type"]))
+    service = "service" in items
+    label = _text(items["service" if service else "topic"])
+    key = (service, label, _text(items["type"]))
+    found = seen.get(key)
+    if found is None:
+        kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
+        found = seen[key] = Interface(kind, label, key[2])
+    return found
 
 
-def _requirement(node: ys.YNode) -> Requirement:
+def _requirement(node: ys.YNode, seen: Interfaces) -> Requirement:
     items = _map(node)
     if "any_of" in items:
-        return Requirement(tuple(_interface(o) for o in _seq(items["any_of"])), node.span)
-    return Requirement((_interface(node),), node.span)
+        options = tuple(_interface(o, seen) for o in _seq(items["any_of"]))
+        return Requirement(options, node.span)
+    return Requirement((_interface(node, seen),), node.span)
 
 
 def _launch(node: ys.YNode | None) -> RosLaunch | None:
@@ -186,47 +200,60 @@ def _simulation(node: ys.YNode | None, where: dict[str, Span]) -> Simulation | N
     )
 
 
-def _component(node: ys.YNode) -> Component:
+_LIST_KEYS = {
+    key: [sys.intern(f"{key}.{i}") for i in range(64)] for key in ("provides", "requires")
+}
+"""The ``where`` keys of a component's first provisions and requirements: one string per key
+for the whole library, not one per component."""
+
+
+def _component(node: ys.YNode, seen: Interfaces) -> Component:
     items = _map(node)
-    fp = items.get("failure_probability")
+    get = items.get
+    fp = get("failure_probability")
     metrics: dict[str, float] = {}
-    for key, value in _map(items.get("metrics")).items():
+    for key, value in _map(get("metrics")).items():
         assert isinstance(value, ys.YScalar) and isinstance(value.value, int | float)
         metrics[key] = float(value.value)
     where = {"name": items["name"].span, "abstraction": items["abstraction"].span}
     for key in ("needs", "excludes", "schemas"):
-        for n in _seq(items.get(key)):
-            where[f"{key}.{_text(n)}"] = n.span
-    for key in ("provides", "requires"):
-        for i, n in enumerate(_seq(items.get(key))):
-            where[sys.intern(f"{key}.{i}")] = n.span  # one string per key, not per component
+        if key in items:
+            for n in _seq(items[key]):
+                where[f"{key}.{_text(n)}"] = n.span
+    provides, requires = _seq(get("provides")), _seq(get("requires"))
+    for key, listed in (("provides", provides), ("requires", requires)):
+        names = _LIST_KEYS[key]
+        for i, n in enumerate(listed):
+            where[names[i] if i < len(names) else sys.intern(f"{key}.{i}")] = n.span
     qos: dict[str, QosProfile] = {}
-    for n in [*_seq(items.get("provides")), *_seq(items.get("requires"))]:
+    for n in (*provides, *requires):
         for option in _seq(_map(n).get("any_of")) or [n]:
             spec = _map(option).get("qos")
             if spec is not None:
                 label = _text(_map(option).get("topic", _map(option).get("service")))
                 qos[label] = QosProfile.from_dict(_plain(spec))
                 where[f"qos.{label}"] = spec.span
-    for i, n in enumerate(_seq(_map(items.get("ros")).get("args"))):
-        where[f"ros.args.{i}"] = n.span
-    dynamics = _dynamics(items.get("dynamics"), "dynamics", where)
+    ros = get("ros")
+    if ros is not None:
+        for i, n in enumerate(_seq(_map(ros).get("args"))):
+            where[f"ros.args.{i}"] = n.span
+    dynamics = _dynamics(get("dynamics"), "dynamics", where)
     return Component(
         name=_text(items["name"]),
         abstraction=_text(items["abstraction"]),
-        provides=frozenset(_interface(n) for n in _seq(items.get("provides"))),
-        requires=tuple(_requirement(n) for n in _seq(items.get("requires"))),
+        provides=frozenset([_interface(n, seen) for n in provides]),
+        requires=tuple([_requirement(n, seen) for n in requires]),
         failure_probability=(
             float(fp.value) if isinstance(fp, ys.YScalar) and fp.value is not None else None
         ),
-        needs=_names(items.get("needs")),
-        excludes=_names(items.get("excludes")),
-        schemas=_names(items.get("schemas")),
-        launch=_launch(items.get("ros")),
+        needs=_names(get("needs")),
+        excludes=_names(get("excludes")),
+        schemas=_names(get("schemas")),
+        launch=_launch(ros),
         metrics=MappingProxyType(metrics),
         qos=MappingProxyType(qos),
         dynamics=dynamics,
-        description=_text(items.get("description")),
+        description=_text(get("description")),
         span=node.span,
         where=MappingProxyType(where),
     )
@@ -234,9 +261,10 @@ def _component(node: ys.YNode) -> Component:
 
 def build_library(tree: ys.YMapping, name: str) -> ComponentLibrary:
     items = tree.items
+    seen: Interfaces = {}
     return ComponentLibrary(
         name=_text(items["name"]),
-        components=tuple(_component(n) for n in _seq(items["components"])),
+        components=tuple([_component(n, seen) for n in _seq(items["components"])]),
         description=_text(items.get("description")),
         source=(name,),
     )

@@ -13,11 +13,10 @@ import difflib
 from collections.abc import Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import simchecks
+from rosreconf.formats import interfacechecks, simchecks
 from rosreconf.model import (
     Component,
     ComponentLibrary,
-    Interface,
     InterfaceKind,
     InteroperabilitySchema,
     Span,
@@ -45,8 +44,8 @@ def check(
     if components:
         library = ComponentLibrary.merge(libraries)
         problems.extend(_couplings(library))
-        problems.extend(_interfaces(components))
-        problems.extend(_requirements(components))
+        problems.extend(interfacechecks.interface_problems(components))
+        problems.extend(interfacechecks.requirement_problems(components))
         problems.extend(_launch_args(components))
     problems.extend(_schema_names(schemas))
     known = components if library_complete else []
@@ -109,64 +108,6 @@ def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
                 f"{c.name} both needs and excludes '{name}'",
                 "keep it in one list only",
                 code="contradictory-coupling",
-            )
-
-
-def _all_interfaces(c: Component) -> Iterator[tuple[Interface, Span]]:
-    for i, iface in enumerate(sorted(c.provides)):
-        yield iface, c.at(f"provides.{i}")
-    for i, req in enumerate(c.requires):
-        for iface in req.options:
-            yield iface, req.span if req.span.line else c.at(f"requires.{i}")
-
-
-def _interfaces(components: Sequence[Component]) -> Iterator[Problem]:
-    types: dict[tuple[InterfaceKind, str], tuple[str, str, Span]] = {}
-    kinds: dict[str, tuple[InterfaceKind, str]] = {}
-    for c in components:
-        for iface, span in _all_interfaces(c):
-            key = (iface.kind, iface.label)
-            first = types.get(key)
-            if first is None:
-                types[key] = (iface.type, c.name, span)
-            elif first[0] != iface.type:
-                same = first[1] == c.name
-                yield Problem(
-                    span,
-                    f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
-                    f"{first[0]} in {first[1]} ({first[2]})",
-                    "one component cannot use one label with two message classes; rename one"
-                    if same
-                    else "allowed for alternatives (raw and compressed images): no "
-                    "configuration chooses providers of both; rename one if they are one thing",
-                    code="type-conflict",
-                    severity=Severity.ERROR if same else Severity.WARNING,
-                )
-            other = kinds.get(iface.label)
-            if other is None:
-                kinds[iface.label] = (iface.kind, c.name)
-            elif other[0] != iface.kind:
-                yield Problem(
-                    span,
-                    f"'{iface.label}' is a {iface.kind} in {c.name} but a {other[0]} in {other[1]}",
-                    "use different labels for a topic and a service",
-                    code="kind-conflict",
-                    severity=Severity.WARNING,
-                )
-
-
-def _requirements(components: Sequence[Component]) -> Iterator[Problem]:
-    provided = {iface for c in components for iface in c.provides}
-    for c in components:
-        for i, req in enumerate(c.requires):
-            if any(o in provided for o in req.options):
-                continue
-            verb = "calls" if req.options[0].kind is InterfaceKind.SERVICE else "subscribes to"
-            yield Problem(
-                req.span if req.span.line else c.at(f"requires.{i}"),
-                f"{c.name} {verb} {req}, which no component in the library provides",
-                "add a component that provides it, or fix the label or type",
-                code="unmet-requirement",
             )
 
 
@@ -258,6 +199,9 @@ def _nominal(
 ) -> Iterator[Problem]:
     if not s.nominal:
         return
+    needs: dict[str, str] = {}  # each role's label, as graph.role() (a scan: n^2 here) gives
+    for r in s.graph.roles:
+        needs.setdefault(r.name, r.abstraction)
     for role, comp in s.nominal.items():
         span = s.at(f"nominal.{role}")
         if role not in roles:
@@ -275,11 +219,11 @@ def _nominal(
                 _closest("components", comp, set(by_name)),
                 code="unknown-component",
             )
-        elif by_name and by_name[comp].abstraction != s.graph.role(role).abstraction:
+        elif by_name and by_name[comp].abstraction != needs[role]:
             yield Problem(
                 span,
                 f"nominal configuration puts {comp} ({by_name[comp].abstraction}) in role "
-                f"'{role}', which needs {s.graph.role(role).abstraction}",
+                f"'{role}', which needs {needs[role]}",
                 "choose a component with the role's abstraction label",
                 code="wrong-abstraction",
             )

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import difflib
 import enum
+import hashlib
+import importlib
 import json
 import re
 from collections.abc import Callable, Iterator, Sequence
@@ -101,14 +103,17 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
 def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
     """Return ``kind``'s JSON Schema compiled by fastjsonschema (raises on invalid data).
 
-    The code fastjsonschema writes (``compile_to_code``, its documented way to keep a
-    validator as a module) names each list item for its messages before validating it, as
-    ``"...[{x}]".format(**locals())``: a dict of every local variable per item, about a third
-    of the check on a thousand-role library. Only the verdict of this validator is used
-    (jsonschema words the messages), so each item is given its parent's name instead.
+    Writing and compiling that code costs 0.1 CPU s in every process (more than reading
+    and checking the bundled example), so the package ships it as modules written by
+    ``scripts/fast_validators.py`` (``FAST_MODULES``); a shipped module whose JSON Schema
+    or fastjsonschema version is not the one in use is ignored and the code written here
+    instead, so a stale module can cost time but never change a verdict.
     """
-    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
-    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
+    module = importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}")
+    if getattr(module, "SOURCE", None) == fast_validator_source(kind):
+        shipped: Callable[[Any], Any] = module.VALIDATE
+        return shipped
+    code = fast_validator_code(kind)
     entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
     assert entry is not None, "fastjsonschema wrote no validation function"
     namespace: dict[str, Any] = {}
@@ -117,8 +122,65 @@ def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
     return validate
 
 
+FAST_MODULES = {
+    DocumentKind.LIBRARY: "fastschema_library",
+    DocumentKind.SCHEMA: "fastschema_schema",
+}
+"""The modules in ``rosreconf.formats`` holding ``fast_validator_module``'s code."""
+
+
+def fast_validator_source(kind: DocumentKind) -> str:
+    """Return what ``kind``'s validator code is written from: the Schema's text and tools.
+
+    A digest of the JSON Schema as compiled (``without_one_of``'s), fastjsonschema's
+    version and this module's trimming patterns; a shipped module records it as ``SOURCE``.
+    """
+    compiled = json.dumps(without_one_of(json_schema(kind)), sort_keys=True)
+    digest = hashlib.sha256(compiled.encode("utf-8"))
+    digest.update(fastjsonschema.VERSION.encode("ascii"))
+    digest.update(_ITEM_NAME.pattern.encode("utf-8") + _DEFINITION.pattern.encode("utf-8"))
+    return digest.hexdigest()
+
+
+def fast_validator_module(kind: DocumentKind) -> str:
+    """Return the text of ``kind``'s shipped validator module (see ``fast_validator``)."""
+    code = fast_validator_code(kind)
+    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
+    assert entry is not None, "fastjsonschema wrote no validation function"
+    return (
+        f'"""fastjsonschema\'s code for {JSON_SCHEMA_FILES[kind]}: written by\n'
+        f"scripts/fast_validators.py, do not edit (see structure.fast_validator).\n"
+        f'"""\n\n# ruff: noqa\n# fmt: off\n# mypy: ignore-errors\n'
+        f"SOURCE = {fast_validator_source(kind)!r}\n"
+        f"{code.rstrip()}\n\n\nVALIDATE = {entry.group(1)}\n"
+    )
+
+
+def fast_validator_code(kind: DocumentKind) -> str:
+    """Return the Python code of ``fast_validator``, trimmed to what a verdict needs.
+
+    The code fastjsonschema writes (``compile_to_code``, its documented way to keep a
+    validator as a module) names each list item for its messages before validating it, as
+    ``"...[{x}]".format(**locals())``: a dict of every local variable per item, about a third
+    of the check on a thousand-role library. Only the verdict of this validator is used
+    (jsonschema words the messages), so each item is given its parent's name instead.
+
+    For the same reason every ``raise`` loses its ``definition=`` argument: a literal copy
+    of the JSON Schema's part it checks (two thirds of the code), which Python had to compile
+    (``detailed_exceptions=False``, made for this, fails on a ``const`` in fastjsonschema
+    2.22).
+    """
+    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
+    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
+    return _DEFINITION.sub(r"\1None\2", code)
+
+
 _ITEM_NAME = re.compile(r'\(name_prefix or "data"\) \+ "[^"\n]*"\.format\(\*\*locals\(\)\)')
 """How fastjsonschema's code names a list item for a message (see ``fast_validator``)."""
+
+_DEFINITION = re.compile(r"(, definition=).*(, rule='\w+'\)$)", re.MULTILINE)
+"""The literal JSON Schema part a ``raise`` of fastjsonschema's code carries (its last
+arguments on its one line; see ``fast_validator``)."""
 
 
 EXCLUSIVE_ONE_OF = {

@@ -67,31 +67,43 @@ class YSequence(YNode):
 _MAY_BE_NON_TEXT = frozenset("~nNtTfF0123456789+-.")
 """First characters of every YAML 1.2 core null, boolean, integer and float."""
 
+_MAY_BE_NUMBER = frozenset("0123456789+-.")
+"""First characters of every YAML 1.2 core integer and float (no null or boolean)."""
+
 
 def resolve_plain(text: str) -> Scalar:
-    """Resolve a plain scalar with YAML 1.2's core schema (never ``no`` -> False)."""
-    if text and text[0] not in _MAY_BE_NON_TEXT:
+    """Resolve a plain scalar with YAML 1.2's core schema (never ``no`` -> False).
+
+    The tests run from the cheapest decisive one: names by their first character, then
+    numbers (a library's many metrics) without the null and boolean spellings.
+    """
+    if not text:
+        return None
+    first = text[0]
+    if first not in _MAY_BE_NON_TEXT:
         return text  # most names: no pattern can match, skip them all
-    if text in ("", "~", "null", "Null", "NULL"):
+    if first in _MAY_BE_NUMBER:
+        if _INT.match(text):
+            if len(text) > _MAX_INT_DIGITS:  # int() refuses more digits; no count is text
+                return -math.inf if first == "-" else math.inf
+            return int(text)
+        if _FLOAT.match(text):
+            return float(text)
+        if _OCT.match(text):
+            return int(text[2:], 8)
+        if _HEX.match(text):
+            return int(text[2:], 16)
+        if _INF.match(text):
+            return -math.inf if first == "-" else math.inf
+        if _NAN.match(text):
+            return math.nan
+        return text
+    if text in ("~", "null", "Null", "NULL"):
         return None
     if text in ("true", "True", "TRUE"):
         return True
     if text in ("false", "False", "FALSE"):
         return False
-    if _INT.match(text):
-        if len(text) > _MAX_INT_DIGITS:  # int() refuses more digits; no count of ours is text
-            return -math.inf if text.startswith("-") else math.inf
-        return int(text)
-    if _OCT.match(text):
-        return int(text[2:], 8)
-    if _HEX.match(text):
-        return int(text[2:], 16)
-    if _FLOAT.match(text):
-        return float(text)
-    if _INF.match(text):
-        return -math.inf if text.startswith("-") else math.inf
-    if _NAN.match(text):
-        return math.nan
     return text
 
 

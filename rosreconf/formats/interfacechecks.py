@@ -1,0 +1,90 @@
+"""Check that interfaces agree across a library's components and that requirements are met.
+
+A label names one message class and one kind (topic or service) in every component that
+uses it, and some component must provide every interface a requirement names (the condition
+of Lemma 4). ``checks.check`` runs these with the other semantic checks.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+
+from rosreconf.errors import Problem, Severity
+from rosreconf.model import Component, Interface, InterfaceKind, Requirement, Span
+
+
+def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement | None]]:
+    """Yield each interface of ``c`` with what ``_where`` needs to say where it is written.
+
+    The position itself is made only for the few that a check keeps or reports: a large
+    library has 35,000 interfaces and a handful of distinct ones.
+    """
+    if len(c.provides) > 1:
+        for i, iface in enumerate(sorted(c.provides)):
+            yield iface, i, None
+    else:
+        for iface in c.provides:
+            yield iface, 0, None
+    for i, req in enumerate(c.requires):
+        for iface in req.options:
+            yield iface, i, req
+
+
+def _where(c: Component, i: int, req: Requirement | None) -> Span:
+    """Return where ``_all_interfaces`` found an interface (its provision or requirement)."""
+    if req is None:
+        return c.at(f"provides.{i}")
+    return req.span if req.span.line else c.at(f"requires.{i}")
+
+
+def interface_problems(components: Sequence[Component]) -> Iterator[Problem]:
+    """Yield each label used with two message classes, or as a topic and a service."""
+    types: dict[tuple[InterfaceKind, str], tuple[str, str, Component, int, Requirement | None]]
+    types = {}
+    kinds: dict[str, tuple[InterfaceKind, str]] = {}
+    for c in components:
+        for iface, i, req in _all_interfaces(c):
+            key = (iface.kind, iface.label)
+            first = types.get(key)
+            if first is None:
+                types[key] = (iface.type, c.name, c, i, req)
+            elif first[0] != iface.type:
+                same = first[1] == c.name
+                yield Problem(
+                    _where(c, i, req),
+                    f"{iface.kind} '{iface.label}' has type {iface.type} in {c.name} but "
+                    f"{first[0]} in {first[1]} ({_where(*first[2:])})",
+                    "one component cannot use one label with two message classes; rename one"
+                    if same
+                    else "allowed for alternatives (raw and compressed images): no "
+                    "configuration chooses providers of both; rename one if they are one thing",
+                    code="type-conflict",
+                    severity=Severity.ERROR if same else Severity.WARNING,
+                )
+            other = kinds.get(iface.label)
+            if other is None:
+                kinds[iface.label] = (iface.kind, c.name)
+            elif other[0] != iface.kind:
+                yield Problem(
+                    _where(c, i, req),
+                    f"'{iface.label}' is a {iface.kind} in {c.name} but a {other[0]} in {other[1]}",
+                    "use different labels for a topic and a service",
+                    code="kind-conflict",
+                    severity=Severity.WARNING,
+                )
+
+
+def requirement_problems(components: Sequence[Component]) -> Iterator[Problem]:
+    """Yield each requirement that no component of the library provides (Lemma 4)."""
+    provided = {iface for c in components for iface in c.provides}
+    for c in components:
+        for i, req in enumerate(c.requires):
+            if any(o in provided for o in req.options):
+                continue
+            verb = "calls" if req.options[0].kind is InterfaceKind.SERVICE else "subscribes to"
+            yield Problem(
+                req.span if req.span.line else c.at(f"requires.{i}"),
+                f"{c.name} {verb} {req}, which no component in the library provides",
+                "add a component that provides it, or fix the label or type",
+                code="unmet-requirement",
+            )
