@@ -9,7 +9,12 @@ which never forms the loop's badly scaled characteristic polynomial.
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import subprocess
+import sys
+from typing import Any
 
 import control
 import numpy as np
@@ -418,41 +423,65 @@ def test_balance_refuses_nan_as_scipy_does() -> None:
 
 
 THREADS_PROBE = """
-import json, sys
+import json, os, sys
+if sys.argv[1] == "numpy-first":
+    import numpy
+from threadpoolctl import threadpool_info
 from rosreconf.analysis.performance import LoopSpec, simulate_chunk
 from rosreconf.model.dynamics import TransferFunction
-from threadpoolctl import threadpool_info
-before = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+loaded = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
 spec = LoopSpec((TransferFunction((2.0,), (0.5, 1.0)),), TransferFunction((1.0,), (1.0, 1.0)), ())
 simulate_chunk([spec])
-after = [(i["num_threads"], i["filepath"]) for i in threadpool_info() if i["user_api"] == "blas"]
-print(json.dumps({"before": before, "after": after, "scipy": "scipy" in sys.modules}))
+print(json.dumps({
+    "loaded": loaded,
+    "after": [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"],
+    "threads": len(os.listdir("/proc/self/task")),
+    "variable": os.environ.get("OPENBLAS_NUM_THREADS"),
+    "scipy": "scipy" in sys.modules,
+}))
 """
 
 
-def test_simulating_limits_numpys_blas_to_one_thread_without_scipy() -> None:
-    """``simulate_chunk`` limits every BLAS loaded, numpy's own OpenBLAS included.
-
-    The limit once had to be set after scipy.linalg was imported (scipy's OpenBLAS is a
-    second library); now numpy's is the only one, loaded with numpy before the limit.
-    """
-    import json
-    import os
-    import subprocess
-    import sys
-
+def blas_probe(order: str, threads: str | None) -> dict[str, Any]:
+    """Run THREADS_PROBE in a fresh interpreter with ``OPENBLAS_NUM_THREADS`` as given."""
     env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    if threads is not None:
+        env["OPENBLAS_NUM_THREADS"] = threads
     done = subprocess.run(
-        [sys.executable, "-c", THREADS_PROBE],
+        [sys.executable, "-c", THREADS_PROBE, order],
         capture_output=True,
         text=True,
         check=True,
         timeout=120,
         env=env,
     )
-    report = json.loads(done.stdout)
+    report: dict[str, Any] = json.loads(done.stdout)
+    assert report["loaded"], "no BLAS loaded: the probe would prove nothing"
     assert not report["scipy"]
-    assert report["after"], "no BLAS loaded: the probe would prove nothing"
-    assert all(threads == 1 for threads, _ in report["after"]), report
-    if (os.cpu_count() or 1) > 1:
-        assert max(report["before"]) > 1  # the limit, not the default, made it one
+    assert report["after"] == [1] * len(report["after"])  # simulating: one thread, always
+    return report
+
+
+def test_the_simulation_loads_numpys_openblas_on_one_thread() -> None:
+    """Imported first, the simulation starts OpenBLAS with no worker thread at all.
+
+    That saves the threads' start-up (30 to 60 ms of CPU per process); the variable that
+    does it is gone again, so planners and ROS nodes started later do not inherit it.
+    """
+    report = blas_probe("rosreconf-first", None)
+    assert report["loaded"] == [1]
+    assert report["threads"] == 1  # the interpreter's own thread only
+    assert report["variable"] is None
+
+
+def test_numpy_loaded_first_or_a_chosen_count_is_still_limited_while_simulating() -> None:
+    """numpy imported before rosreconf, or the user's own thread count: threadpoolctl limits.
+
+    ``blas_probe`` checks one thread while simulating; here OpenBLAS started with more
+    (OpenBLAS caps a count at the number of cores).
+    """
+    cores = os.cpu_count() or 1
+    first = blas_probe("numpy-first", None)
+    assert first["loaded"] == [cores]  # the default: one thread per core
+    chosen = blas_probe("rosreconf-first", "2")
+    assert chosen["loaded"] == [min(2, cores)] and chosen["variable"] == "2"  # it stands

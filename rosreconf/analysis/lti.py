@@ -19,9 +19,8 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
-import numpy as np
-
 from rosreconf.analysis.matfuncs import balance, expm
+from rosreconf.analysis.numeric import np
 from rosreconf.model.dynamics import Dynamics, StateSpace, TransferFunction
 
 Array = np.ndarray[Any, Any]

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
+from rosreconf.analysis.numeric import np
 
 Array = np.ndarray[Any, Any]
 
