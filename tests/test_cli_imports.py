@@ -98,6 +98,28 @@ def test_enumerate_imports_no_graph_library(tmp_path: Path) -> None:
     assert [n for n in heavy_in(names) if n.split(".")[0] in ("networkx", "jinja2")] == []
 
 
+def test_plan_imports_no_drawing_and_no_process_pool(tmp_path: Path) -> None:
+    """plan simulates in process and draws only with --graph: neither import is paid for.
+
+    ``render.pictures`` (with ``render.dot``) comes with ``--graph``; the process pool
+    (``concurrent.futures.process``, multiprocessing) only with more than one worker.
+    """
+    names, done = imported(["plan", "--fail", "NSM3"], tmp_path)
+    assert done.returncode in (0, 1), done.stdout + done.stderr
+    assert "rosreconf.analysis.simulate" in names and "rosreconf.planning.replan" in names
+    unneeded = ("rosreconf.render.pictures", "rosreconf.render.dot", "multiprocessing")
+    assert sorted(names & set(unneeded)) == []
+    assert "concurrent.futures.process" not in names
+
+
+def test_plan_with_graph_does_import_the_drawing(tmp_path: Path) -> None:
+    """The same reading sees render.pictures when --graph asks for it."""
+    names, done = imported(["plan", "--fail", "NSM3", "--graph", str(tmp_path / "g.svg")], tmp_path)
+    assert done.returncode in (0, 1), done.stdout + done.stderr
+    assert "rosreconf.render.pictures" in names
+    assert (tmp_path / "g.svg").stat().st_size > 0
+
+
 def test_piped_enumerate_imports_no_picture_or_progress_module(tmp_path: Path) -> None:
     """Piped, enumerate shows no live counter and draws nothing: neither module is loaded."""
     names, done = imported(["enumerate"], tmp_path)

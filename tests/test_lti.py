@@ -9,16 +9,22 @@ which never forms the loop's badly scaled characteristic polynomial.
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import subprocess
+import sys
+from typing import Any
 
 import control
 import numpy as np
 import pytest
+import scipy.linalg
 import scipy.signal
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rosreconf.analysis import lti
+from rosreconf.analysis import lti, matfuncs
 from rosreconf.analysis.performance import SAMPLES, SETTLING_BAND, LoopSpec, closed_loop
 from rosreconf.model.dynamics import StateSpace, TransferFunction
 
@@ -192,3 +198,290 @@ def test_state_space_becomes_python_controls_ss2tf(model: StateSpace) -> None:
     assert lti.transfer_function(model) == tf
     plain = TransferFunction((1.0,), (1.0, 1.0))
     assert lti.transfer_function(plain) is plain
+
+
+# --- matfuncs: the matrix exponential and the balancing, held to scipy.linalg -------------
+#
+# ``step_response`` discretises every loop with ``matfuncs.expm`` of its balanced augmented
+# matrix; scipy.linalg is not imported at run time (issue 12). scipy stays the reference.
+# Tolerances: the two compute the same Pade approximant with the same degree and squarings,
+# in a different rounding order (numpy's solve for scipy's transposed LAPACK solve), so
+# they agree to a few dozen units in the last place times the norm that the squarings
+# amplify. Measured: 2e-16 relative for norms <= 1, 5e-14 x the 1-norm up to 1000, 2e-15 on
+# the bundled loops; each bound below is 10 to 20 times that.
+
+EPS = float(np.finfo(float).eps)
+
+
+def expm_error(a: np.ndarray) -> float:
+    """Return max |ours - scipy's| / max |scipy's| for ``expm(a)``."""
+    ours, theirs = matfuncs.expm(a), scipy.linalg.expm(a)
+    assert ours.shape == theirs.shape and np.all(np.isfinite(ours))
+    return float(np.max(np.abs(ours - theirs)) / np.max(np.abs(theirs)))
+
+
+def norm1(a: np.ndarray) -> float:
+    return float(np.abs(a).sum(axis=0).max())
+
+
+def random_matrices(seed: int, low: float, high: float) -> list[np.ndarray]:
+    """Return random n x n matrices (n = 2..24) with 1-norms drawn from [low, high]."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for n in range(2, 25):
+        for _ in range(6):
+            a = rng.standard_normal((n, n))
+            out.append(a * rng.uniform(low, high) / norm1(a))
+    return out
+
+
+def test_expm_of_small_norm_matrices_is_scipys_to_a_few_ulps() -> None:
+    for a in random_matrices(1, 1e-6, 1.0):
+        assert expm_error(a) < 4e-15, a
+
+
+@pytest.mark.parametrize(("low", "high"), [(1.0, 30.0), (30.0, 1000.0)])
+def test_expm_of_larger_norms_is_scipys_to_rounding_times_the_norm(low: float, high: float) -> None:
+    for a in random_matrices(2, low, high):
+        assert expm_error(a) < 5e-13 * norm1(a), a
+
+
+def bundled_loop_matrices() -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Return (companion A, B, sample time) of every distinct loop of the bundled example."""
+    from rosreconf.analysis.performance import time_points
+    from rosreconf.analysis.simulate import Cache, simulate_schema
+    from rosreconf.formats.loader import load_bundled
+
+    loaded = load_bundled()
+    cache: Cache = {}
+    for schema in loaded.schemas:
+        if schema.simulation is not None:
+            simulate_schema(loaded.library, schema, cache=cache)
+    out = []
+    for spec in cache:
+        loop = closed_loop(spec)
+        if loop is None:
+            continue
+        a, b, _, _ = lti.realise(*loop)
+        t = time_points(spec)
+        if len(b):
+            out.append((a, b, float(t[1] - t[0])))
+    return out
+
+
+def augmented(a: np.ndarray, b: np.ndarray, dt: float) -> np.ndarray:
+    n = len(b)
+    out = np.zeros((n + 1, n + 1))
+    out[:n, :n], out[:n, n] = a, b
+    return out * dt
+
+
+def test_expm_and_balance_on_the_bundled_loops_are_scipys() -> None:
+    loops = bundled_loop_matrices()
+    assert len(loops) >= 10 and max(len(b) for _, b, _ in loops) >= 8
+    for a, b, dt in loops:
+        scale = matfuncs.balance(a)
+        balanced, (ref_scale, _) = scipy.linalg.matrix_balance(a, permute=False, separate=True)
+        assert np.array_equal(scale, ref_scale)
+        assert np.array_equal(a / scale[:, None] * scale[None, :], balanced)
+        assert expm_error(augmented(balanced, b / scale, dt)) < 2e-14
+
+
+def test_expm_of_an_unbalanced_companion_is_no_worse_than_scipys() -> None:
+    """Badly scaled input: both err (hence the balancing), ours by no more than scipy's.
+
+    The truth is the balanced exponential scaled back: balancing is a similarity by powers
+    of two, so ``D e^(D^-1 A D) D^-1`` is exact to the balanced exponential's few ulps.
+    """
+    worse = 0
+    for a, b, dt in bundled_loop_matrices():
+        scale = matfuncs.balance(a)
+        full = np.concatenate([scale, [scale[-1]]])  # the input column is not rescaled
+        held = augmented(a, b, dt)
+        balanced = held / full[:, None] * full[None, :]
+        truth = matfuncs.expm(balanced) * full[:, None] / full[None, :]
+        with np.errstate(over="ignore", invalid="ignore"):
+            ours = np.max(np.abs(matfuncs.expm(held) - truth)) / np.max(np.abs(truth))
+            theirs = np.max(np.abs(scipy.linalg.expm(held) - truth)) / np.max(np.abs(truth))
+        if not theirs < 1e-12:  # a loop whose scaling matters
+            worse += 1
+            assert ours < 10 * theirs or not np.isfinite(theirs)
+    assert worse >= 1  # the case balancing is for does occur in the example
+
+
+def test_expm_of_ill_scaled_matrices_matches_the_exact_similarity() -> None:
+    """``D A D^-1`` with D powers of two from 2^-26 to 2^26: the truth is ``D e^A D^-1``."""
+    rng = np.random.default_rng(3)
+    for n in (2, 5, 9, 16):
+        for norm in (0.5, 5.0, 50.0):
+            a = rng.standard_normal((n, n))
+            a *= norm / norm1(a)
+            d = 2.0 ** rng.integers(-26, 27, n).astype(float)
+            scaled = a * d[:, None] / d[None, :]
+            truth = scipy.linalg.expm(a) * d[:, None] / d[None, :]
+            ours = matfuncs.expm(scaled) / (d[:, None] / d[None, :])
+            theirs = scipy.linalg.expm(scaled) / (d[:, None] / d[None, :])
+            base = np.max(np.abs(scipy.linalg.expm(a)))
+            ref = truth / (d[:, None] / d[None, :])
+            assert np.max(np.abs(ours - ref)) / base <= max(
+                10 * np.max(np.abs(theirs - ref)) / base, 1e-13 * max(1.0, norm)
+            )
+
+
+def test_expm_of_stiff_and_large_norm_matrices() -> None:
+    # A stiff loop: poles at -1, -1e3 and -1e5 in companion form, sampled at 10 ms.
+    a, _, _, _ = lti.realise(np.array([1.0]), np.poly([-1.0, -1e3, -1e5]))
+    scale = matfuncs.balance(a)
+    stiff = a / scale[:, None] * scale[None, :] * 0.01
+    assert expm_error(stiff) < 5e-13 * norm1(stiff)
+    # A fast rotation: e^A is a rotation by 1000 rad, entries of norm 1, norm(A) = 1000.
+    rotation = np.array([[0.0, 1000.0], [-1000.0, 0.0]])
+    assert expm_error(rotation) < 5e-13 * 1000
+    assert np.allclose(
+        matfuncs.expm(rotation),
+        [[np.cos(1e3), np.sin(1e3)], [-np.sin(1e3), np.cos(1e3)]],
+        atol=1e-11,
+    )
+    # A strongly damped stable matrix of norm 2000: a tiny, nonzero exponential.
+    rng = np.random.default_rng(4)
+    damped = -2000.0 * np.eye(6) + 10.0 * rng.standard_normal((6, 6))
+    ours, theirs = matfuncs.expm(damped * 0.3), scipy.linalg.expm(damped * 0.3)
+    assert np.max(np.abs(ours - theirs)) <= 5e-13 * norm1(damped) * np.max(np.abs(theirs))
+
+
+def test_expm_special_shapes() -> None:
+    zero = np.zeros((4, 4))
+    assert np.array_equal(matfuncs.expm(zero), np.eye(4))
+    one = np.array([[-2.5]])
+    assert np.array_equal(matfuncs.expm(one), np.exp(one))
+    assert np.array_equal(matfuncs.expm(one), scipy.linalg.expm(one))
+    diagonal = np.diag([-3.0, 0.0, 1e-9, 4.0])
+    assert np.array_equal(matfuncs.expm(diagonal), scipy.linalg.expm(diagonal))
+    # Nilpotent: the series stops, e^N = I + N + N^2/2 + ... + N^5/5!.
+    rng = np.random.default_rng(5)
+    nilpotent = np.triu(rng.standard_normal((6, 6)) * 3.0, k=1)
+    series, term = np.eye(6), np.eye(6)
+    for k in range(1, 6):
+        term = term @ nilpotent / k
+        series = series + term
+    assert np.max(np.abs(matfuncs.expm(nilpotent) - series)) < 1e-13 * np.max(np.abs(series))
+    assert expm_error(nilpotent) < 1e-13
+
+
+@pytest.mark.parametrize("lower", [False, True])
+def test_expm_of_triangular_matrices_recomputes_the_diagonal_as_scipy(lower: bool) -> None:
+    """With squarings, a triangular input takes Al-Mohy and Higham's Code Fragment 2.1."""
+    rng = np.random.default_rng(6)
+    squared = 0
+    for n in (2, 3, 7, 12):
+        for spread in (1.0, 40.0, 400.0):
+            a = np.triu(rng.standard_normal((n, n)) * spread / 4)
+            np.fill_diagonal(a, -rng.uniform(0.0, spread, n))
+            a = a.T if lower else a
+            ours = matfuncs.expm(a)
+            assert np.array_equal(ours, np.tril(ours) if lower else np.triu(ours))
+            if matfuncs._pade_structure(a)[1] > 0:  # squared: the diagonal is exact
+                squared += 1
+                assert np.array_equal(np.diag(ours), np.exp(np.diag(a)))
+            assert expm_error(a) < 5e-13 * max(1.0, norm1(a))
+    assert squared >= 6
+
+
+def balancing_cases() -> list[np.ndarray]:
+    rng = np.random.default_rng(7)
+    cases = [np.zeros((3, 3)), np.array([[5.0]]), np.array([[1.0, 1e6], [1e-6, 1.0]])]
+    for n in range(2, 16):
+        a = rng.standard_normal((n, n))
+        cases.append(a)
+        d = 10.0 ** rng.uniform(-12, 12, n)
+        cases.append(a * d[:, None] / d[None, :])
+        holey = a.copy()
+        holey[rng.integers(n), :] = 0.0  # a zero row: that index is left alone
+        holey[:, rng.integers(n)] = 0.0
+        cases.append(holey)
+        coefficients = 10.0 ** rng.uniform(-3, 25, n)
+        companion, _, _, _ = lti.realise(np.array([1.0]), np.concatenate([[1.0], coefficients]))
+        cases.append(companion)
+    return cases
+
+
+def test_balance_is_lapacks_gebal_without_permutation_bit_for_bit() -> None:
+    for a in balancing_cases():
+        scale = matfuncs.balance(a)
+        balanced, (ref_scale, _) = scipy.linalg.matrix_balance(a, permute=False, separate=True)
+        assert np.array_equal(scale, ref_scale), a
+        assert np.all(np.log2(scale) == np.round(np.log2(scale)))  # powers of two
+        assert np.array_equal(a / scale[:, None] * scale[None, :], balanced)
+
+
+def test_balance_refuses_nan_as_scipy_does() -> None:
+    bad = np.array([[1.0, np.nan], [0.0, 1.0]])
+    with pytest.raises(ValueError, match="NaN or infinite"):
+        matfuncs.balance(bad)
+    with pytest.raises(ValueError):
+        scipy.linalg.matrix_balance(bad, permute=False, separate=True)
+
+
+THREADS_PROBE = """
+import json, os, sys
+if sys.argv[1] == "numpy-first":
+    import numpy
+from threadpoolctl import threadpool_info
+from rosreconf.analysis.performance import LoopSpec, simulate_chunk
+from rosreconf.model.dynamics import TransferFunction
+loaded = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+spec = LoopSpec((TransferFunction((2.0,), (0.5, 1.0)),), TransferFunction((1.0,), (1.0, 1.0)), ())
+simulate_chunk([spec])
+print(json.dumps({
+    "loaded": loaded,
+    "after": [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"],
+    "threads": len(os.listdir("/proc/self/task")),
+    "variable": os.environ.get("OPENBLAS_NUM_THREADS"),
+    "scipy": "scipy" in sys.modules,
+}))
+"""
+
+
+def blas_probe(order: str, threads: str | None) -> dict[str, Any]:
+    """Run THREADS_PROBE in a fresh interpreter with ``OPENBLAS_NUM_THREADS`` as given."""
+    env = {k: v for k, v in os.environ.items() if not k.endswith("_NUM_THREADS")}
+    if threads is not None:
+        env["OPENBLAS_NUM_THREADS"] = threads
+    done = subprocess.run(
+        [sys.executable, "-c", THREADS_PROBE, order],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=120,
+        env=env,
+    )
+    report: dict[str, Any] = json.loads(done.stdout)
+    assert report["loaded"], "no BLAS loaded: the probe would prove nothing"
+    assert not report["scipy"]
+    assert report["after"] == [1] * len(report["after"])  # simulating: one thread, always
+    return report
+
+
+def test_the_simulation_loads_numpys_openblas_on_one_thread() -> None:
+    """Imported first, the simulation starts OpenBLAS with no worker thread at all.
+
+    That saves the threads' start-up (30 to 60 ms of CPU per process); the variable that
+    does it is gone again, so planners and ROS nodes started later do not inherit it.
+    """
+    report = blas_probe("rosreconf-first", None)
+    assert report["loaded"] == [1]
+    assert report["threads"] == 1  # the interpreter's own thread only
+    assert report["variable"] is None
+
+
+def test_numpy_loaded_first_or_a_chosen_count_is_still_limited_while_simulating() -> None:
+    """numpy imported before rosreconf, or the user's own thread count: threadpoolctl limits.
+
+    ``blas_probe`` checks one thread while simulating; here OpenBLAS started with more
+    (OpenBLAS caps a count at the number of cores).
+    """
+    cores = os.cpu_count() or 1
+    first = blas_probe("numpy-first", None)
+    assert first["loaded"] == [cores]  # the default: one thread per core
+    chosen = blas_probe("rosreconf-first", "2")
+    assert chosen["loaded"] == [min(2, cores)] and chosen["variable"] == "2"  # it stands

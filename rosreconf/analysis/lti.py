@@ -7,8 +7,9 @@ without slycot, which is scipy's ``tf2ss``, ``control.step_info``) and tests/tes
 each to python-control and scipy. They are written out here rather than called because
 importing python-control imports scipy.signal, scipy.stats and matplotlib.pyplot: two seconds
 of CPU per process, more than simulating a few hundred distinct loops takes, in a command
-whose whole-process time is its benchmark. Only numpy and scipy.linalg (the matrix
-exponential) are imported.
+whose whole-process time is its benchmark. Only numpy is imported: the matrix exponential
+and the balancing are ``matfuncs``'s, written as scipy.linalg computes them, because
+importing scipy.linalg alone costs ``plan`` a tenth of its whole-process time (issue 12).
 """
 
 from __future__ import annotations
@@ -18,9 +19,8 @@ import math
 from collections.abc import Iterable
 from typing import Any
 
-import numpy as np
-import scipy.linalg  # before threadpoolctl limits BLAS: scipy's own OpenBLAS must be loaded
-
+from rosreconf.analysis.matfuncs import balance, expm
+from rosreconf.analysis.numeric import np
 from rosreconf.model.dynamics import Dynamics, StateSpace, TransferFunction
 
 Array = np.ndarray[Any, Any]
@@ -159,13 +159,13 @@ def step_response(num: Array, den: Array, t: Array) -> Array:
     # 1e25 for a 14th-order loop with two Pade delays, and the exponential of it unbalanced
     # erred by 2.5e-3 of the output (tests/test_lti.py measures it against a block-wise
     # realisation, which agrees with the balanced one to 1e-13).
-    _, (scale, _) = scipy.linalg.matrix_balance(a, permute=False, separate=True)
+    scale = balance(a)
     a = a / scale[:, None] * scale[None, :]
     b, c = b / scale, c * scale
     augmented = np.zeros((n + 1, n + 1))
     augmented[:n, :n] = a
     augmented[:n, n] = b
-    held = scipy.linalg.expm(augmented * float(t[1] - t[0]))
+    held = expm(augmented * float(t[1] - t[0]))
     ad, bd = held[:n, :n], held[:n, n]
     with np.errstate(over="ignore", invalid="ignore"):  # unstable curves (plots) may blow up
         powers = np.empty((BLOCK, n, n))

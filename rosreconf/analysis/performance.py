@@ -33,8 +33,6 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass
 
-import numpy as np
-
 from rosreconf.analysis.lti import (
     Array,
     feedback,
@@ -43,6 +41,7 @@ from rosreconf.analysis.lti import (
     step_figures,
     step_response,
 )
+from rosreconf.analysis.numeric import np
 from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
 
 SETTLING_BAND = 0.02
@@ -162,7 +161,10 @@ def single_threaded_blas() -> None:
     adds synchronisation: on a busy two-core machine a 9x9 matrix exponential took 32 ms
     with OpenBLAS's threads and 0.2 ms with one. Parallelism comes from the worker
     processes instead (``--workers``, ``--cluster``), and every process computes the same
-    way (Dask workers run single-threaded BLAS by default too).
+    way (Dask workers run single-threaded BLAS by default too). Usually there is nothing
+    left to limit: ``numeric`` loads numpy's OpenBLAS with one thread. This covers the
+    rest: numpy imported before rosreconf, a thread count the user chose, a Dask worker.
+    tests/test_lti.py checks every loaded BLAS ends at one thread in each case.
     """
     from threadpoolctl import threadpool_limits
 

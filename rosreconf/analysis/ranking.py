@@ -15,8 +15,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, overload
 
-import numpy as np
-
+from rosreconf.analysis.numeric import np
 from rosreconf.analysis.performance import LoopResult, pareto_front
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.dynamics import METRICS

@@ -22,9 +22,8 @@ from collections.abc import Collection, Iterable, Mapping, Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from rosreconf.analysis.lti import transfer_function
+from rosreconf.analysis.numeric import np
 from rosreconf.analysis.performance import (
     LoopResult,
     LoopSpec,

@@ -12,9 +12,12 @@ from __future__ import annotations
 import contextlib
 import os
 from collections.abc import Iterator
-from concurrent.futures import Executor, ProcessPoolExecutor
+from typing import TYPE_CHECKING
 
 from rosreconf.errors import ExternalToolError, UsageError
+
+if TYPE_CHECKING:
+    from concurrent.futures import Executor
 
 CONNECT_TIMEOUT = 10.0
 """Seconds to wait for a Dask scheduler to answer before giving up (exit 3)."""
@@ -43,6 +46,10 @@ def executor(workers: int | None = None, cluster: str | None = None) -> Iterator
     if n == 1:
         yield None
         return
+    # Imported here: the process pool imports multiprocessing, which a command that
+    # simulates in process (plan, watch, --workers 1) never uses.
+    from concurrent.futures import ProcessPoolExecutor
+
     with ProcessPoolExecutor(max_workers=n) as pool:
         yield pool
 

@@ -24,7 +24,6 @@ from rosreconf.errors import ExitCode, UsageError
 from rosreconf.outfiles import output_target
 from rosreconf.planning.planners import DEFAULT_SEARCH, PlanStatus, planner_named
 from rosreconf.planning.replan import replan_all
-from rosreconf.render.pictures import ros_dot, write_picture
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.plan import REPORTERS, pictures
 from rosreconf.solve.running import running_mappings
@@ -87,6 +86,8 @@ def plan_command(
         weights=weights, timeout=timeout, keep_pddl=keep_pddl,
     )  # fmt: skip
     if graph is not None:
+        from rosreconf.render.pictures import ros_dot, write_picture  # only when drawing
+
         drawn = pictures(results)
         if drawn:
             fmt = write_picture(graph, ros_dot(sel.library, drawn, sel.failed))

@@ -156,7 +156,7 @@ def _performing(
     Raises:
         UsageError: pinning would forbid more than ``FORBID_LIMIT`` configurations.
     """
-    from rosreconf.analysis.simulate import choose, shortfall  # imports numpy, scipy
+    from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
 
     choice = choose(library, schema, fewest, current, dict(weights or {}), failed)
     notes: list[str] = []

@@ -227,7 +227,7 @@ class Watcher:
 
         Says so when the fewest-change configuration was passed over for failing them.
         """
-        from rosreconf.analysis.simulate import choose, shortfall  # imports numpy, scipy
+        from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
 
         choice = choose(self.library, self.schema, fewest, self.current.mapping, {}, failed)
         if choice.passed_over is not None and choice.passed_over_performance is not None:

@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from rosreconf import jsonout
 from rosreconf.formats.selection import Selection
 from rosreconf.model import Configuration
 from rosreconf.planning.planners import Planner, PlanStatus
 from rosreconf.planning.replan import ReplanResult
-from rosreconf.render.pictures import RosPicture
 from rosreconf.render.reports import Output
+
+if TYPE_CHECKING:  # drawn only with --graph: render.pictures is imported then
+    from rosreconf.render.pictures import RosPicture
 
 
 class PlanReporter(Protocol):
@@ -98,6 +100,8 @@ def _schema_doc(r: ReplanResult) -> dict[str, Any]:
 
 def pictures(results: Sequence[ReplanResult]) -> list[RosPicture]:
     """Return each new configuration's ROS-graph against the running one (none: left out)."""
+    from rosreconf.render.pictures import RosPicture
+
     return [
         RosPicture(
             r.schema,
