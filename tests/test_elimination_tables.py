@@ -1,10 +1,11 @@
 """The solver's compact tables and shortcuts answer exactly as the plain ones do.
 
-Min-plus elimination (``rosreconf.solve.optimum``) has two ways to minimise a role out: adding
-every row's candidate cost, and, when row values stay below the gap between candidate
-costs, comparing cost levels first and adding once per kept row. The traceback keeps its
-choices in a grid of bytes when it is dense enough, else in a dictionary. Each pair must
-agree on every input; the end-to-end equivalence (brute force, clingo) is in test_first.py
+Min-plus elimination (``rosreconf.solve.optimum``) minimises a role out by cost level first
+and adds a candidate's cost once per kept row (and looks at dearer candidates only where
+their cost alone does not rule them out), instead of adding every row's cost; the
+traceback keeps its choices in a grid of bytes when it is dense enough, else in a
+dictionary; joining skips combining with the neutral value. Each is held to the plain way
+on every input here; the end-to-end equivalence (brute force, clingo) is in test_first.py
 and test_optimum.py.
 """
 
@@ -16,8 +17,8 @@ import operator
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rosreconf.solve.factors import Factor, _join, key_of
-from rosreconf.solve.optimum import Choices, _min_out_added, _min_out_dominated
+from rosreconf.solve.factors import Factor, _join
+from rosreconf.solve.optimum import Choices, _min_out
 
 NAMES = [f"c{i}" for i in range(6)]
 
@@ -39,20 +40,40 @@ def tables(draw: st.DrawFn) -> tuple[Factor, list[list[str]], int]:
     return Factor(tuple(range(width)), rows), alive, cap
 
 
-@settings(max_examples=300, deadline=None)
+def _plain_min_out(
+    f: Factor, cost: dict[str, int], rank: dict[str, int]
+) -> tuple[dict[tuple[str, ...], int], dict[tuple[str, ...], str]]:
+    """Minimise role 0 out the plain way: add every row's cost, keep the least, then rank."""
+    best: dict[tuple[str, ...], int] = {}
+    arg: dict[tuple[str, ...], str] = {}
+    for row, w in f.rows.items():
+        c, k, v = row[0], row[1:], w + cost[row[0]]
+        if k not in best or v < best[k] or (v == best[k] and rank[c] < rank[arg[k]]):
+            best[k], arg[k] = v, c
+    return best, arg
+
+
+@settings(max_examples=400, deadline=None)
 @given(drawn=tables(), data=st.data())
-def test_dominated_minimising_equals_adding(
+def test_minimising_out_equals_adding_every_cost(
     drawn: tuple[Factor, list[list[str]], int], data: st.DataObject
 ) -> None:
     f, alive, cap = drawn
-    levels = data.draw(st.lists(st.integers(0, 3), min_size=len(alive[0]), max_size=len(alive[0])))
-    cost = {c: level * cap for c, level in zip(alive[0], levels, strict=True)}  # gap >= cap
+    scale = data.draw(st.sampled_from([1, cap, 2 * cap, 3**50]))  # cap: costs dominate values
+    levels = st.integers(0, 3).map(lambda n: n * scale) | st.integers(0, 3 * cap)
+    cost = {c: data.draw(levels) for c in alive[0]}
     rank = {c: i for i, c in enumerate(reversed(NAMES))}  # ties: not alphabetical
-    rest = key_of(list(range(1, len(f.scope))))
-    distinct = sorted(set(cost.values()))
-    assert _min_out_dominated(f, 0, rest, cost, distinct, rank) == _min_out_added(
-        f, 0, rest, cost, rank
-    )
+    want, want_arg = _plain_min_out(f, cost, rank)
+    trace: list[Choices] = []
+    offsets: list[int] = []
+    got = _min_out(f, 0, cost, rank, trace, offsets, alive)
+    low = min(want.values(), default=0)
+    assert got.scope == f.scope[1:]
+    assert got.rows == {k: v - low for k, v in want.items()}
+    assert offsets == ([low] if low else [])
+    where = [{c: j for j, c in enumerate(names)} for names in alive]
+    for k, c in want_arg.items():
+        assert trace[-1].pick(dict(zip(got.scope, k, strict=True)), where) == c
 
 
 @settings(max_examples=200, deadline=None)
