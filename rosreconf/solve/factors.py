@@ -84,25 +84,35 @@ def constraint_factors(
     for v, names in enumerate(alive):
         for n in names:
             holders[n].append(v)
+    # One table per scope, not per component: at 10,000 candidates of one role, a table per
+    # excluding candidate was 10,000 x K rows each, quadratic in all; grouped, each pair of
+    # roles gets one table holding every banned pair (the same function: all are 0/1 filters).
+    needs: dict[tuple[int, ...], dict[str, list[str]]] = defaultdict(dict)
+    banned: dict[tuple[str, tuple[int, int]], dict[str, set[str]]] = defaultdict(dict)
     for u in range(len(inst.roles)):
         for cu in alive[u]:
             comp = lib[cu]
             for need in sorted(comp.needs):
                 where = tuple(w for w in holders.get(need, []) if w != u)
-                keep = functools.partial(_needs_met, cu=cu, need=need)
-                out.append(table((u, *where), keep=keep, rule="needs"))
+                needs[(u, *where)].setdefault(cu, []).append(need)
             for ex in sorted(comp.excludes):
                 for w in holders.get(ex, []):
                     if w != u:
-                        out.append(table((u, w), keep=(cu, ex).__ne__, rule="excludes"))
+                        banned[("excludes", (u, w))].setdefault(cu, set()).add(ex)
             for other in sorted(inst.clashes.get(cu, ())):
                 for w in holders.get(other, []):
                     if w > u:  # clashes are symmetric: one table per pair of roles
-                        pair = (cu, other).__ne__
-                        out.append(table((u, w), keep=pair, rule="one-type-per-label"))
-    for shared in holders.values():
-        for u, w in itertools.combinations(shared, 2):
-            out.append(table((u, w), keep=_distinct, rule="one-role-each"))
+                        banned[("one-type-per-label", (u, w))].setdefault(cu, set()).add(other)
+    for scope, wanted in needs.items():
+        keep = functools.partial(_needs_met, needs=wanted)
+        out.append(table(scope, keep=keep, rule="needs"))
+    for (rule, pair), bans in banned.items():
+        out.append(table(pair, keep=functools.partial(_not_banned, bans=bans), rule=rule))
+    shared_pairs = {
+        pair for shared in holders.values() for pair in itertools.combinations(shared, 2)
+    }
+    for pair in sorted(shared_pairs):  # one table per pair of roles, however many they share
+        out.append(table(pair, keep=_distinct, rule="one-role-each"))
     return out
 
 
@@ -130,8 +140,14 @@ def _distinct(s: tuple[str, ...]) -> bool:
     return s[0] != s[1]
 
 
-def _needs_met(s: tuple[str, ...], cu: str, need: str) -> bool:
-    return s[0] != cu or need in s[1:]
+def _needs_met(s: tuple[str, ...], needs: dict[str, list[str]]) -> bool:
+    wanted = needs.get(s[0])
+    return not wanted or all(need in s[1:] for need in wanted)
+
+
+def _not_banned(s: tuple[str, ...], bans: dict[str, set[str]]) -> bool:
+    banned = bans.get(s[0])
+    return not banned or s[1] not in banned
 
 
 def _requirement_factors(
