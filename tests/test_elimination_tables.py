@@ -1,12 +1,12 @@
 """The solver's compact tables and shortcuts answer exactly as the plain ones do.
 
 Min-plus elimination (``rosreconf.solve.optimum``) minimises a role out by cost level first
-and adds a candidate's cost once per kept row (and looks at dearer candidates only where
-their cost alone does not rule them out), instead of adding every row's cost; the
-traceback keeps its choices in a grid of bytes when it is dense enough, else in a
-dictionary; joining skips combining with the neutral value. Each is held to the plain way
-on every input here; the end-to-end equivalence (brute force, clingo) is in test_first.py
-and test_optimum.py.
+and adds a candidate's cost once per kept row when every row value is below the gap
+between two candidates' costs, instead of adding every row's cost; the traceback keeps
+its choices in a grid of bytes when it is dense enough, else in a dictionary; joining
+skips combining with the neutral value. Each is held to the plain way on every input
+here; the end-to-end equivalence (brute force, clingo) is in test_first.py and
+test_optimum.py.
 """
 
 from __future__ import annotations

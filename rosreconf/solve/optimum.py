@@ -90,9 +90,6 @@ class Choices:
         return self._names[self._grid[index] - 1]
 
 
-Row = tuple[str, ...]
-"""A row of a table: one candidate name per role of its scope."""
-
 Trace = list[Choices]
 """Per eliminated role, in elimination order: its cheapest candidate per neighbour row."""
 
@@ -201,22 +198,71 @@ def _min_out(
 ) -> Factor:
     """Minimise ``var`` out of ``f`` plus its unary ``cost``, keeping the argmin per row.
 
-    Rows hold values >= 0, so a candidate's cost is a lower bound of every row it is in.
-    The first pass picks, per remaining row, the cheapest candidate by cost level, then
-    value, then library order, and adds its cost once; a second pass looks only at rows of
-    dearer candidates whose cost alone does not already exceed that. The first
-    configuration's costs weigh each role ``base ** (R - 1 - r)``, integers of thousands of
-    digits at 10,000 roles: adding one to every joined row (millions) was most of its time,
-    and the second pass is skipped outright when every value is below the gap between two
-    candidates' costs (then cost level decides).
-
-    The table's least value is then taken out of every row and kept in ``offsets`` (the
-    total is their sum plus what is left at the end): rows hold only how much worse than
-    the best they are, mostly small integers instead of thousands of digits.
+    The table's least value is taken out of every row and kept in ``offsets`` (the total is
+    their sum plus what is left at the end): rows then hold only how much worse than the
+    best they are. The first configuration's costs weigh each role ``base ** (R - 1 - r)``,
+    integers of thousands of digits at 10,000 roles; their differences are mostly 0, so the
+    tables stay small integers instead of holding thousands of digits per row.
     """
     pos = f.scope.index(var)
     rest = key_of([i for i in range(len(f.scope)) if i != pos])
     levels = sorted(set(cost.values()))
+    gap = min((b - a for a, b in pairwise(levels)), default=0)
+    if not gap or max(f.rows.values(), default=0) < gap:
+        best, arg = _min_out_dominated(f, pos, rest, cost, levels, rank)
+    else:
+        best, arg = _min_out_added(f, pos, rest, cost, rank)
+    scope = f.scope[:pos] + f.scope[pos + 1 :]
+    trace.append(Choices(var, scope, arg, alive))
+    low = min(best.values(), default=0)
+    if low:
+        offsets.append(low)
+        best = {k: w - low for k, w in best.items()}
+    return Factor(scope, best)
+
+
+Row = tuple[str, ...]
+
+
+def _min_out_added(
+    f: Factor,
+    pos: int,
+    rest: Callable[[Row], Row],
+    cost: Mapping[str, int],
+    rank: Mapping[str, int],
+) -> tuple[dict[Row, int], dict[Row, str]]:
+    """Minimise by adding each row's candidate cost to its value, then comparing."""
+    best: dict[Row, int] = {}
+    arg: dict[Row, str] = {}
+    for row, w in f.rows.items():
+        c = row[pos]
+        extra = cost[c]
+        if extra:  # most candidates' costs are 0 or the row's is: skip copying a big integer
+            w = extra if not w else w + extra
+        k = rest(row)
+        old = best.get(k)
+        if old is None or w < old or (w == old and rank[c] < rank[arg[k]]):
+            best[k] = w
+            arg[k] = c
+    return best, arg
+
+
+def _min_out_dominated(
+    f: Factor,
+    pos: int,
+    rest: Callable[[Row], Row],
+    cost: Mapping[str, int],
+    levels: list[int],
+    rank: Mapping[str, int],
+) -> tuple[dict[Row, int], dict[Row, str]]:
+    """Minimise when the candidate's cost decides: every row value is below the costs' gap.
+
+    Rows hold values >= 0 (offsets are taken out), so when they all stay below the least
+    difference between two candidates' costs, ``cost + value`` orders rows exactly as
+    (cost, value) does; comparing a candidate's cost level (a small integer) first and adding
+    only once per remaining row is what makes the first configuration's thousand-digit
+    costs cheap: they are added once per kept row, not once per row joined.
+    """
     level = {c: levels.index(u) for c, u in cost.items()}
     best_level: dict[Row, int] = {}
     value: dict[Row, int] = {}
@@ -236,32 +282,11 @@ def _min_out(
         best_level[k] = level[c]
         value[k] = w
         arg[k] = c
-    best: dict[Row, int] = {}
+    best = {}
     for k, w in value.items():
         extra = cost[arg[k]]
         best[k] = (extra if not w else w + extra) if extra else w
-    gap = min((b - a for a, b in pairwise(levels)), default=0)
-    if gap and max(value.values(), default=0) >= gap:  # a dearer candidate may still win
-        for row, w in f.rows.items():
-            c = row[pos]
-            k = rest(row)
-            if level[c] <= best_level[k]:
-                continue  # the first pass compared it exactly
-            u = cost[c]
-            b = best[k]
-            if u > b:
-                continue  # its cost alone is dearer (values are >= 0)
-            v = u + w if w else u
-            if v < b or (v == b and rank[c] < rank[arg[k]]):
-                best[k] = v
-                arg[k] = c
-    scope = f.scope[:pos] + f.scope[pos + 1 :]
-    trace.append(Choices(var, scope, arg, alive))
-    low = min(best.values(), default=0)
-    if low:
-        offsets.append(low)
-        best = {k: w - low for k, w in best.items()}
-    return Factor(scope, best)
+    return best, arg
 
 
 def _pack(
