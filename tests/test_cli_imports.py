@@ -96,3 +96,20 @@ def test_enumerate_imports_no_graph_library(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stdout + done.stderr
     assert "rosreconf.solve.listing" in names
     assert [n for n in heavy_in(names) if n.split(".")[0] in ("networkx", "jinja2")] == []
+
+
+def test_piped_enumerate_imports_no_picture_or_progress_module(tmp_path: Path) -> None:
+    """Piped, enumerate shows no live counter and draws nothing: neither module is loaded."""
+    names, done = imported(["enumerate"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rosreconf.render.pictures" not in names
+    assert "rich.progress" not in names
+    assert "rich._emoji_codes" not in names  # the consoles never turn ':name:' into emoji
+
+
+def test_enumerate_graph_still_draws(tmp_path: Path) -> None:
+    """--graph imports the picture module where it is needed and writes the picture."""
+    names, done = imported(["enumerate", "--only", "disc_loading", "--graph", "g.dot"], tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "rosreconf.render.pictures" in names
+    assert (tmp_path / "g.dot").read_text().startswith("digraph")

@@ -85,6 +85,15 @@ def test_dash_writes_to_stdout(
     assert not (tmp_path / "-").exists()
 
 
+def test_a_file_name_is_printed_as_written(runner: CliRunner, tmp_path: Path) -> None:
+    """Names are the user's: rich must not turn ``:warning:`` in a path into an emoji."""
+    target = tmp_path / "a:warning:b.dot"
+    result = runner.invoke(app, [*GRAPH, str(target)])
+    assert result.exit_code == 0, result.output
+    assert f"wrote {target}" in result.stderr
+    assert "\u26a0" not in result.stderr
+
+
 @pytest.mark.parametrize("given", ["", "loop"])
 def test_empty_names_and_symlink_loops_say_what_is_wrong(tmp_path: Path, given: str) -> None:
     if given:

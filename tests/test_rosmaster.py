@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import signal
 import socket
+import subprocess
 import threading
 import time
 import xmlrpc.client
@@ -298,3 +299,27 @@ def test_snapshot_cuts_an_endless_answer_at_the_given_cap(runner: CliRunner) -> 
         result = runner.invoke(app, ["snapshot", "--master", fake.uri, "--max-answer-mb", "1"])
     assert result.exit_code == 3, result.output
     assert "with more than 1 MiB" in result.stderr and result.stdout == ""
+
+
+@pytest.mark.ros
+def test_the_harness_kills_a_stray_rosout_and_still_reports_any_other_leftover(
+    tmp_path: Path,
+) -> None:
+    """A rosout outside roscore's process tree (as one forked just as roscore was killed) is
+    roscore's own and is killed at teardown; any other process left using the master's
+    ROS_HOME is still a leftover that fails the test, named by its command line."""
+    home = tmp_path / "ros"
+    started: list[subprocess.Popen[bytes]] = []
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    with (
+        pytest.raises(AssertionError, match="processes left") as left,
+        ros_harness.running_master(home) as master,
+    ):
+        env = ros_harness.ros_env(master.uri, home)
+        for argv in (["/usr/lib/rosout/rosout", "__name:=stray_rosout"], ["sleep", "300"]):
+            started.append(subprocess.Popen(argv, env=env, start_new_session=True, **quiet))
+        time.sleep(0.5)  # both running, neither a descendant of roscore
+    codes = [p.wait(10) for p in started]
+    assert codes == [-signal.SIGKILL, -signal.SIGKILL]  # both gone after teardown
+    assert "sleep 300" in str(left.value)
+    assert "rosout" not in str(left.value)

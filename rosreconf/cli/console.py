@@ -12,8 +12,10 @@ from rich.console import Console
 
 from rosreconf.outfiles import OutputTarget, write_atomic
 
-stdout = Console(highlight=False, soft_wrap=True)
-stderr = Console(stderr=True, highlight=False, soft_wrap=True)
+# emoji=False: names come from users' files, and ``:warning:`` in a component name must print
+# as written, not as a picture (it also spares every command importing rich's emoji table).
+stdout = Console(highlight=False, soft_wrap=True, emoji=False)
+stderr = Console(stderr=True, highlight=False, soft_wrap=True, emoji=False)
 
 
 def write_stdout(text: str) -> None:

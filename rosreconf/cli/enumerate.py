@@ -5,11 +5,10 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
 from rosreconf.cli.common import (
     FailOption,
@@ -25,11 +24,15 @@ from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.model import InteroperabilitySchema
 from rosreconf.outfiles import output_target
-from rosreconf.render.pictures import RosPicture, ros_dot, write_picture
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.enumerate import REPORTERS
 from rosreconf.solve.listing import Listing
 from rosreconf.solve.objective import Objective
+
+if TYPE_CHECKING:
+    # Pictures (Graphviz, networkx) are imported only when --graph asks for one: a plain
+    # listing pays for neither (issue 12: whole-process time of every command).
+    from rosreconf.render.pictures import RosPicture
 
 
 def enumerate_command(
@@ -95,7 +98,9 @@ def enumerate_command(
                 "counted by listing every configuration instead",
                 markup=False,
             )
-        if found.first is not None:
+        if graph is not None and found.first is not None:
+            from rosreconf.render.pictures import RosPicture
+
             firsts.append(RosPicture(s, found.first))
         empty += found.total == 0
         report.end_schema(
@@ -107,6 +112,8 @@ def enumerate_command(
         )
     report.close()
     if graph is not None:
+        from rosreconf.render.pictures import ros_dot, write_picture
+
         write_picture(graph, ros_dot(sel.library, firsts, sel.failed))
     raise typer.Exit(ExitCode.FAILED if empty else ExitCode.OK)
 
@@ -115,7 +122,16 @@ def enumerate_command(
 def _progress(
     console: Console, s: InteroperabilitySchema, *, quiet: bool
 ) -> Iterator[Callable[[], None]]:
-    """Show a live counter on stderr for long enumerations (terminals only)."""
+    """Show a live counter on stderr for long enumerations (terminals only).
+
+    rich.progress is imported only when the counter is shown: piped and --json runs (every
+    script and test) do not pay for it.
+    """
+    if quiet or not console.is_terminal:
+        yield lambda: None
+        return
+    from rich.progress import Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+
     progress = Progress(
         SpinnerColumn(),
         TextColumn("{task.description}"),
@@ -123,7 +139,6 @@ def _progress(
         TimeElapsedColumn(),
         console=console,
         transient=True,
-        disable=quiet or not console.is_terminal,
     )
     with progress:
         task = progress.add_task(f"enumerating {s.display_name}", total=None)
