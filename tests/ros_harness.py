@@ -211,17 +211,19 @@ def _roscores_own(pid: int) -> bool:
 def _kill_roscore(master: Master) -> None:
     """Kill roscore and every process it started (rosmaster, rosout), and wait for them.
 
-    roscore starts rosout in a session of its own a moment after the master answers; killed in
-    that moment, roscore leaves a rosout (or a forked child about to become one) that no
-    recorded pid leads (a fresh clone's suite failed so once). So after roscore is dead,
-    whatever of roscore's own programs still uses this master's ROS_HOME is killed too;
-    anything else there stays for the leftover check, which is what it is for.
+    roscore (a roslaunch) runs rosout with respawn="true" and in a session of its own: a
+    rosout killed while roscore still lives is started again under a new pid that no record
+    holds (a fresh clone's suite once found such a rosout alive after teardown; this is our
+    reading of it). So roscore dies first, then the children recorded before, then whatever
+    of roscore's own programs still uses this master's ROS_HOME; anything else there stays
+    for the leftover check, which is what it is for.
     """
     master.remember_children()
-    for pid in {master.process.pid, *master.pids}:
-        kill_group(pid)
+    kill_group(master.process.pid)
     with suppress(subprocess.TimeoutExpired):
         master.process.wait(STOP_TIMEOUT)
+    for pid in master.pids:
+        kill_group(pid)
     strays = {pid for pid in processes_using(master.home) if _roscores_own(pid)}
     for pid in strays:
         kill_group(pid)
