@@ -84,25 +84,35 @@ def constraint_factors(
     for v, names in enumerate(alive):
         for n in names:
             holders[n].append(v)
+    # One table per scope, not per component: at 10,000 candidates of one role, a table per
+    # excluding candidate was 10,000 x K rows each, quadratic in all; grouped, each pair of
+    # roles gets one table holding every banned pair (the same function: all are 0/1 filters).
+    needs: dict[tuple[int, ...], dict[str, list[str]]] = defaultdict(dict)
+    banned: dict[tuple[str, tuple[int, int]], dict[str, set[str]]] = defaultdict(dict)
     for u in range(len(inst.roles)):
         for cu in alive[u]:
             comp = lib[cu]
             for need in sorted(comp.needs):
                 where = tuple(w for w in holders.get(need, []) if w != u)
-                keep = functools.partial(_needs_met, cu=cu, need=need)
-                out.append(table((u, *where), keep=keep, rule="needs"))
+                needs[(u, *where)].setdefault(cu, []).append(need)
             for ex in sorted(comp.excludes):
                 for w in holders.get(ex, []):
                     if w != u:
-                        out.append(table((u, w), keep=(cu, ex).__ne__, rule="excludes"))
+                        banned[("excludes", (u, w))].setdefault(cu, set()).add(ex)
             for other in sorted(inst.clashes.get(cu, ())):
                 for w in holders.get(other, []):
                     if w > u:  # clashes are symmetric: one table per pair of roles
-                        pair = (cu, other).__ne__
-                        out.append(table((u, w), keep=pair, rule="one-type-per-label"))
-    for shared in holders.values():
-        for u, w in itertools.combinations(shared, 2):
-            out.append(table((u, w), keep=_distinct, rule="one-role-each"))
+                        banned[("one-type-per-label", (u, w))].setdefault(cu, set()).add(other)
+    for scope, wanted in needs.items():
+        keep = functools.partial(_needs_met, needs=wanted)
+        out.append(table(scope, keep=keep, rule="needs"))
+    for (rule, pair), bans in banned.items():
+        out.append(table(pair, keep=functools.partial(_not_banned, bans=bans), rule=rule))
+    shared_pairs = {
+        pair for shared in holders.values() for pair in itertools.combinations(shared, 2)
+    }
+    for pair in sorted(shared_pairs):  # one table per pair of roles, however many they share
+        out.append(table(pair, keep=_distinct, rule="one-role-each"))
     return out
 
 
@@ -130,8 +140,14 @@ def _distinct(s: tuple[str, ...]) -> bool:
     return s[0] != s[1]
 
 
-def _needs_met(s: tuple[str, ...], cu: str, need: str) -> bool:
-    return s[0] != cu or need in s[1:]
+def _needs_met(s: tuple[str, ...], needs: dict[str, list[str]]) -> bool:
+    wanted = needs.get(s[0])
+    return not wanted or all(need in s[1:] for need in wanted)
+
+
+def _not_banned(s: tuple[str, ...], bans: dict[str, set[str]]) -> bool:
+    banned = bans.get(s[0])
+    return not banned or s[1] not in banned
 
 
 def _requirement_factors(
@@ -219,21 +235,25 @@ def eliminate(
     times: Times,
     marginal: Marginal,
     max_rows: int,
-    unary: Callable[[int], Factor] | None = None,
+    one: int = 1,
 ) -> tuple[list[int], list[int]] | None:
     """Eliminate the roles in ``order``; return the leftover scalars and the free roles.
 
     A free role is in no table (any candidate will do). None means some table lost its last
-    row: there is no valid configuration. ``unary(var)``, when given, is a table over ``var``
-    alone, joined when ``var`` is eliminated and made only then: the first configuration's
-    unary costs are integers of thousands of digits at 10,000 roles, and holding all of them
-    from the start took more memory than the loaded library.
+    row: there is no valid configuration. ``factors`` is emptied: the tables move into the
+    elimination's pool, so each is freed as soon as it is joined instead of living (in the
+    caller's list) until the end; at 10,000 roles they are about 180 MiB. ``one`` is the
+    neutral value of ``times`` (1 to count, 0 for costs): combining with it is skipped.
+    Costs of single roles are the marginal's business (``optimum`` adds them while
+    minimising a role out), so a role in no table is free here too.
 
     Raises:
         TooHard: a joined table would exceed ``max_rows`` rows.
     """
     by_var: dict[int, set[int]] = defaultdict(set)
     pool: dict[int, Factor] = dict(enumerate(factors))
+    next_id = len(factors)
+    factors.clear()  # the pool owns the tables now: each is freed once joined
     for k, f in pool.items():
         if not f.rows:
             return None
@@ -241,16 +261,13 @@ def eliminate(
             by_var[v].add(k)
     scalars: list[int] = []
     free: list[int] = []
-    next_id = len(factors)
     for var in order:
         ids = sorted(by_var.pop(var, ()))
         mine = [pool.pop(k) for k in ids]
-        if unary is not None:
-            mine.append(unary(var))
         if not mine:
             free.append(var)
             continue
-        reduced = marginal(_join_all(mine, times, max_rows), var)
+        reduced = marginal(_join_all(mine, times, max_rows, one), var)
         if not reduced.rows:
             return None
         for v in {v for f in mine for v in f.scope} - {var}:
@@ -266,14 +283,14 @@ def eliminate(
     return scalars, free
 
 
-def _join_all(factors: list[Factor], times: Times, max_rows: int) -> Factor:
+def _join_all(factors: list[Factor], times: Times, max_rows: int, one: int = 1) -> Factor:
     """Join tables widest first, then always the one adding the fewest new roles."""
     rest = sorted(factors, key=lambda f: -len(f.scope))
     merged = rest.pop(0)
     while rest:
         have = set(merged.scope)
         pick = min(range(len(rest)), key=lambda i: (len(set(rest[i].scope) - have), i))
-        merged = _join(merged, rest.pop(pick), times, max_rows)
+        merged = _join(merged, rest.pop(pick), times, max_rows, one)
     return merged
 
 
@@ -304,7 +321,13 @@ def paused_gc() -> Iterator[None]:
             gc.enable()
 
 
-def _join(a: Factor, b: Factor, times: Times, max_rows: int) -> Factor:
+def _join(a: Factor, b: Factor, times: Times, max_rows: int, one: int = 1) -> Factor:
+    """Join two tables; a value equal to ``one`` (the neutral one) is never combined.
+
+    Counts and the first configuration's costs are integers of thousands of digits at
+    10,000 roles, and combining such an integer with the neutral value still copies it;
+    skipping those combinations is most of what joining them costs.
+    """
     if a.unit and not b.unit:  # keep the valued table on the left: only b may be a filter
         a, b = b, a
     shared = [v for v in a.scope if v in b.scope]
@@ -317,7 +340,10 @@ def _join(a: Factor, b: Factor, times: Times, max_rows: int) -> Factor:
         for row, w in a.rows.items():
             w2 = index.get(key_a(row))
             if w2 is not None:
-                rows[row] = w if b.unit else times(w, w2)
+                if b.unit or w2 == one:
+                    rows[row] = w
+                else:
+                    rows[row] = w2 if w == one else times(w, w2)
         return Factor(a.scope, rows, a.unit and b.unit)
     tail_b = key_of([b.scope.index(v) for v in extra])
     grouped: dict[tuple[str, ...], list[tuple[tuple[str, ...], int]]] = defaultdict(list)
@@ -327,9 +353,12 @@ def _join(a: Factor, b: Factor, times: Times, max_rows: int) -> Factor:
         if b.unit:
             for tail, _ in grouped.get(key_a(row), ()):
                 rows[row + tail] = w
+        elif w == one:
+            for tail, w2 in grouped.get(key_a(row), ()):
+                rows[row + tail] = w2
         else:
             for tail, w2 in grouped.get(key_a(row), ()):
-                rows[row + tail] = times(w, w2)
+                rows[row + tail] = w if w2 == one else times(w, w2)
         if len(rows) > max_rows:
             raise TooHard(
                 f"exact elimination needs over {max_rows} rows; the system graph is too "

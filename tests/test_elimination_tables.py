@@ -1,0 +1,132 @@
+"""The solver's compact tables and shortcuts answer exactly as the plain ones do.
+
+Min-plus elimination (``rosreconf.solve.optimum``) minimises a role out by cost level first
+and adds a candidate's cost once per kept row when every row value is below the gap
+between two candidates' costs, instead of adding every row's cost; the traceback keeps
+its choices in a grid of bytes when it is dense enough, else in a dictionary; joining
+skips combining with the neutral value. Each is held to the plain way on every input
+here; the end-to-end equivalence (brute force, clingo) is in test_first.py and
+test_optimum.py.
+"""
+
+from __future__ import annotations
+
+import itertools
+import operator
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rosreconf.solve.factors import Factor, _join
+from rosreconf.solve.optimum import Choices, _min_out
+
+NAMES = [f"c{i}" for i in range(6)]
+
+
+@st.composite
+def tables(draw: st.DrawFn) -> tuple[Factor, list[list[str]], int]:
+    """Draw a table over 1-3 roles (role 0 to minimise out), its candidates and the row cap."""
+    width = draw(st.integers(1, 3))
+    alive = [draw(st.lists(st.sampled_from(NAMES), min_size=1, max_size=4, unique=True))]
+    alive += [
+        draw(st.lists(st.sampled_from(NAMES), min_size=1, max_size=3, unique=True))
+        for _ in range(width - 1)
+    ]
+    cap = draw(st.sampled_from([1, 7, 2**70]))  # 2**70: values of many digits, as at 10k roles
+    rows = {}
+    for combo in itertools.product(*alive):
+        if draw(st.booleans()):
+            rows[combo] = draw(st.integers(0, cap - 1))
+    return Factor(tuple(range(width)), rows), alive, cap
+
+
+def _plain_min_out(
+    f: Factor, cost: dict[str, int], rank: dict[str, int]
+) -> tuple[dict[tuple[str, ...], int], dict[tuple[str, ...], str]]:
+    """Minimise role 0 out the plain way: add every row's cost, keep the least, then rank."""
+    best: dict[tuple[str, ...], int] = {}
+    arg: dict[tuple[str, ...], str] = {}
+    for row, w in f.rows.items():
+        c, k, v = row[0], row[1:], w + cost[row[0]]
+        if k not in best or v < best[k] or (v == best[k] and rank[c] < rank[arg[k]]):
+            best[k], arg[k] = v, c
+    return best, arg
+
+
+@settings(max_examples=400, deadline=None)
+@given(drawn=tables(), data=st.data())
+def test_minimising_out_equals_adding_every_cost(
+    drawn: tuple[Factor, list[list[str]], int], data: st.DataObject
+) -> None:
+    f, alive, cap = drawn
+    scale = data.draw(st.sampled_from([1, cap, 2 * cap, 3**50]))  # cap: costs dominate values
+    levels = st.integers(0, 3).map(lambda n: n * scale) | st.integers(0, 3 * cap)
+    cost = {c: data.draw(levels) for c in alive[0]}
+    rank = {c: i for i, c in enumerate(reversed(NAMES))}  # ties: not alphabetical
+    want, want_arg = _plain_min_out(f, cost, rank)
+    trace: list[Choices] = []
+    offsets: list[int] = []
+    got = _min_out(f, 0, cost, rank, trace, offsets, alive)
+    low = min(want.values(), default=0)
+    assert got.scope == f.scope[1:]
+    assert got.rows == {k: v - low for k, v in want.items()}
+    assert offsets == ([low] if low else [])
+    where = [{c: j for j, c in enumerate(names)} for names in alive]
+    for k, c in want_arg.items():
+        assert trace[-1].pick(dict(zip(got.scope, k, strict=True)), where) == c
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    alive=st.lists(
+        st.lists(st.sampled_from(NAMES), min_size=1, max_size=6, unique=True),
+        min_size=1,
+        max_size=4,
+    ),
+    data=st.data(),
+)
+def test_choices_grid_and_dictionary_pick_alike(
+    alive: list[list[str]], data: st.DataObject
+) -> None:
+    scope = tuple(range(1, len(alive)))
+    grid = list(itertools.product(*(alive[v] for v in scope)))
+    keys = data.draw(st.lists(st.sampled_from(grid), unique=True))
+    arg = {k: data.draw(st.sampled_from(alive[0])) for k in keys}
+    where = [{c: j for j, c in enumerate(names)} for names in alive]
+    choices = Choices(0, scope, dict(arg), alive)
+    for key, want in arg.items():
+        chosen = dict(zip(scope, key, strict=True))
+        assert choices.pick(chosen, where) == want
+
+
+def test_choices_keep_a_sparse_table_as_a_dictionary() -> None:
+    alive = [["a", "b"], [f"p{i}" for i in range(100)], [f"q{i}" for i in range(100)]]
+    arg: dict[tuple[str, ...], str] = {("p3", "q7"): "b", ("p99", "q0"): "a"}
+    choices = Choices(0, (1, 2), arg, alive)
+    assert choices._grid is None  # 10,000 cells for 2 rows: the dictionary is smaller
+    where = [{c: j for j, c in enumerate(names)} for names in alive]
+    assert choices.pick({1: "p3", 2: "q7"}, where) == "b"
+    assert choices.pick({1: "p99", 2: "q0"}, where) == "a"
+    dense = Choices(0, (1,), {(p,): "a" for p in alive[1]}, alive)
+    assert dense._grid is not None and len(dense._grid) == 100
+
+
+@settings(max_examples=300, deadline=None)
+@given(a=tables(), b=tables(), one=st.sampled_from([0, 1]))
+def test_join_skipping_the_neutral_value_equals_combining_every_row(
+    a: tuple[Factor, list[list[str]], int],
+    b: tuple[Factor, list[list[str]], int],
+    one: int,
+) -> None:
+    times = operator.add if one == 0 else operator.mul
+    fa, fb = a[0], Factor(tuple(v + 1 for v in b[0].scope), b[0].rows)  # overlapping scopes
+    fa.rows = {k: (one if i % 2 else w) for i, (k, w) in enumerate(fa.rows.items())}
+    joined = _join(fa, fb, times, 10**9, one)
+    plain: dict[tuple[str, ...], int] = {}
+    for ra, wa in fa.rows.items():
+        for rb, wb in fb.rows.items():
+            row = dict(zip(fa.scope, ra, strict=True))
+            if all(row.get(v, c) == c for v, c in zip(fb.scope, rb, strict=True)):
+                row.update(zip(fb.scope, rb, strict=True))
+                plain[tuple(row[v] for v in joined.scope)] = times(wa, wb)
+    assert joined.rows == plain
