@@ -114,11 +114,9 @@ def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
         shipped: Callable[[Any], Any] = module.VALIDATE
         return shipped
     code = fast_validator_code(kind)
-    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
-    assert entry is not None, "fastjsonschema wrote no validation function"
     namespace: dict[str, Any] = {}
     exec(compile(code, f"<fastjsonschema: {kind.value}>", "exec"), namespace)
-    validate: Callable[[Any], Any] = namespace[entry.group(1)]
+    validate: Callable[[Any], Any] = namespace[_entry_point(code)]
     return validate
 
 
@@ -145,15 +143,20 @@ def fast_validator_source(kind: DocumentKind) -> str:
 def fast_validator_module(kind: DocumentKind) -> str:
     """Return the text of ``kind``'s shipped validator module (see ``fast_validator``)."""
     code = fast_validator_code(kind)
-    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
-    assert entry is not None, "fastjsonschema wrote no validation function"
     return (
         f'"""fastjsonschema\'s code for {JSON_SCHEMA_FILES[kind]}: written by\n'
         f"scripts/fast_validators.py, do not edit (see structure.fast_validator).\n"
         f'"""\n\n# ruff: noqa\n# fmt: off\n# mypy: ignore-errors\n'
         f"SOURCE = {fast_validator_source(kind)!r}\n"
-        f"{code.rstrip()}\n\n\nVALIDATE = {entry.group(1)}\n"
+        f"{code.rstrip()}\n\n\nVALIDATE = {_entry_point(code)}\n"
     )
+
+
+def _entry_point(code: str) -> str:
+    """Return the name of the validation function fastjsonschema's ``code`` defines first."""
+    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
+    assert entry is not None, "fastjsonschema wrote no validation function"
+    return entry.group(1)
 
 
 def fast_validator_code(kind: DocumentKind) -> str:
