@@ -14,10 +14,12 @@ from __future__ import annotations
 import itertools
 import operator
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rosreconf.solve.factors import Factor, _join
+from rosreconf.solve.counting import _sum_out
+from rosreconf.solve.factors import Factor, TooHard, _join, join_sum_out
 from rosreconf.solve.optimum import Choices, _min_out
 
 NAMES = [f"c{i}" for i in range(6)]
@@ -130,3 +132,39 @@ def test_join_skipping_the_neutral_value_equals_combining_every_row(
                 row.update(zip(fb.scope, rb, strict=True))
                 plain[tuple(row[v] for v in joined.scope)] = times(wa, wb)
     assert joined.rows == plain
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    a=tables(),
+    b=tables(),
+    unit=st.sampled_from(["neither", "a", "b", "both"]),
+    ones=st.booleans(),
+    shift=st.integers(0, 1),
+)
+def test_join_and_sum_out_in_one_pass_equals_joining_then_summing(
+    a: tuple[Factor, list[list[str]], int],
+    b: tuple[Factor, list[list[str]], int],
+    unit: str,
+    ones: bool,
+    shift: int,
+) -> None:
+    """Counting's fused step builds the same table as the join it skips, then the sum."""
+    values = enumerate(a[0].rows.items())
+    fa = Factor(a[0].scope, {k: 1 if ones and i % 2 else w + 1 for i, (k, w) in values})
+    # b's roles: role 0 (summed out: it is in every table of its step) and a's other roles
+    # or (shift) partly new ones, so that both a filter and a widening join are drawn
+    scope_b = (0, *(v + shift for v in b[0].scope[1:]))
+    fb = Factor(scope_b, {k: w + 1 for k, w in b[0].rows.items()})
+    if unit in ("a", "both"):
+        fa = Factor(fa.scope, dict.fromkeys(fa.rows, 1), unit=True)
+    if unit in ("b", "both"):
+        fb = Factor(fb.scope, dict.fromkeys(fb.rows, 1), unit=True)
+    joined = _join(fa, fb, operator.mul, 10**9)
+    plain = _sum_out(joined, 0)
+    fused = join_sum_out(fa, fb, 0, 10**9)
+    assert (fused.scope, fused.rows) == (plain.scope, plain.rows)
+    if joined.rows and not set(fb.scope) <= set(fa.scope):  # the budget counts joined rows
+        with pytest.raises(TooHard):
+            join_sum_out(fa, fb, 0, len(joined.rows) - 1)
+        assert join_sum_out(fa, fb, 0, len(joined.rows)).rows == plain.rows

@@ -22,6 +22,7 @@ from rosreconf.solve.factors import (
     constraint_factors,
     eliminate,
     elimination_order,
+    join_sum_out,
     key_of,
     paused_gc,
 )
@@ -45,7 +46,7 @@ def count(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> int:
             return 0
         factors = constraint_factors(inst, alive, 1, max_rows)
         order = elimination_order([f.scope for f in factors], len(inst.roles))
-        done = eliminate(factors, order, operator.mul, _sum_out, max_rows)
+        done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
     if done is None:
         return 0
     scalars, free = done
