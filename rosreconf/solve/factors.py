@@ -308,13 +308,14 @@ def _join_all_but_last(
     Several rules often constrain the same roles (an edge realised and the consumer's
     requirement met across it are both tables over the two roles): joined while they are
     small, each only filters the other, instead of each filtering in turn the wide table
-    the other roles' tables make (at 1000 roles x 10 candidates, a tenth of the rows).
+    the other roles' tables make (at 1000 roles x 10 candidates counting's filters walked
+    648k rows that way, 248k this way).
     """
     same: dict[frozenset[int], Factor] = {}
     for f in factors:
         roles = frozenset(f.scope)
-        have = same.get(roles)
-        same[roles] = f if have is None else _join(have, f, times, max_rows, one)
+        earlier = same.get(roles)
+        same[roles] = f if earlier is None else _join(earlier, f, times, max_rows, one)
     rest = sorted(same.values(), key=lambda f: -len(f.scope))
     merged = rest.pop(0)
     while rest:
