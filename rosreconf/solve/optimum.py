@@ -33,7 +33,7 @@ from rosreconf.solve.factors import (
     key_of,
     paused_gc,
 )
-from rosreconf.solve.instance import Instance, prune
+from rosreconf.solve.instance import Instance, interchangeable, prune
 
 __all__ = ["MAX_FACTOR_ROWS", "TooHard", "first", "minimise"]
 
@@ -115,7 +115,11 @@ def minimise(
         if any(not a for a in alive):
             return None
         packed, unpack = _pack(alive, costs)
-        found = _minimise(inst, alive, packed.__getitem__, max_rows)
+        costs_of = packed.__getitem__
+        # a class's cheapest member; the earliest (least rank: alive keeps library order) on ties
+        found = _minimise(
+            inst, alive, costs_of, max_rows, lambda r, ms: min(ms, key=costs_of(r).__getitem__)
+        )
     return None if found is None else (found[0], unpack(found[1]))
 
 
@@ -145,7 +149,7 @@ def first(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Configuration | No
             position = {c.name: j for j, c in enumerate(inst.domains[r])}
             return {c: position[c] * weight for c in alive[r]}
 
-        found = _minimise(inst, alive, packed, max_rows)
+        found = _minimise(inst, alive, packed, max_rows, lambda r, ms: ms[0])  # the earliest
     return None if found is None else found[0]
 
 
@@ -154,13 +158,22 @@ def _minimise(
     alive: list[list[str]],
     packed: Callable[[int], Mapping[str, int]],
     max_rows: int,
+    prefer: Callable[[int, list[str]], str],
 ) -> tuple[Configuration, int] | None:
     """Minimise the packed unary costs over the constraint tables; the answer and its total.
 
     ``packed(r)`` gives role r's candidates' costs; it is asked once, when r is eliminated,
     and added to the rows while r is minimised out rather than joined as a table of its
     own: that join copied the largest table of every step once more.
+
+    Only one candidate of each class of interchangeable ones is kept (``interchangeable``):
+    ``prefer(r, members)``, the one of least cost, the earliest on ties. Its rows are the
+    others' rows, so every step picks what it would have picked among all of them.
     """
+    alive = [
+        [prefer(r, members) for members in role]
+        for r, role in enumerate(interchangeable(inst, alive))
+    ]
     factors = constraint_factors(inst, alive, 0, max_rows)
     order = elimination_order([f.scope for f in factors], len(inst.roles))
     rank = {c.name: i for i, c in enumerate(inst.library.components)}
