@@ -107,29 +107,6 @@ def compile_instance(
                 ]
     _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
-    # Candidates of one role and the edges around it repeat the same few interface sets:
-    # who offers a wanted set is found once per (role, set) and what an edge lets through
-    # once per (options, edge labels), not once per pair of candidates (K^2 per edge).
-    offering: dict[tuple[int, frozenset[int]], list[str]] = {}
-    passing: dict[tuple[tuple[int, ...], frozenset[str]], frozenset[int]] = {}
-
-    def offered(v: int, wanted: frozenset[int]) -> list[str]:
-        """Return role v's candidates providing one of ``wanted``, in domain order."""
-        names = offering.get((v, wanted))
-        if names is None:
-            names = offering[(v, wanted)] = [
-                cv.name for cv in domains[v] if not provides[cv.name].isdisjoint(wanted)
-            ]
-        return names
-
-    def allowed(opts: tuple[int, ...], e: Edge) -> frozenset[int]:
-        """Return the options of a requirement that edge ``e`` may carry."""
-        key = (opts, e.interfaces)
-        found = passing.get(key)
-        if found is None:
-            found = passing[key] = frozenset(o for o in opts if _allows(e, labels[o]))
-        return found
-
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
@@ -139,9 +116,9 @@ def compile_instance(
         inst.edges.append((u, v))
         ok: set[tuple[str, str]] = set()
         for cu in domains[u]:
-            wanted = frozenset().union(*(allowed(opts, e) for opts in options[cu.name]))
+            wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
             if wanted:
-                ok.update((cu.name, name) for name in offered(v, wanted))
+                ok.update((cu.name, cv.name) for cv in domains[v] if provides[cv.name] & wanted)
         inst.edge_ok.append(ok)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
@@ -149,7 +126,8 @@ def compile_instance(
             for i, opts in enumerate(options[cu.name]):
                 pairs: list[tuple[int, str]] = []
                 for e, v in mine:
-                    pairs.extend((v, name) for name in offered(v, allowed(opts, e)))
+                    allowed = {o for o in opts if _allows(e, labels[o])}
+                    pairs.extend((v, cv.name) for cv in domains[v] if provides[cv.name] & allowed)
                 inst.meets[(u, cu.name, i)] = pairs
     return inst
 
