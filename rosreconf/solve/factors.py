@@ -165,11 +165,15 @@ def _requirement_factors(
     u and one provider: K^2 rows, not K^4).
     """
     groups: dict[tuple[int, ...], dict[str, list[set[tuple[int, str]]]]] = defaultdict(dict)
+    made: dict[int, tuple[tuple[int, ...], set[tuple[int, str]]]] = {}
     for cu in alive[u]:
         for i in range(len(inst.library[cu].requires)):
             pairs = inst.meets[(u, cu, i)]
-            roles = tuple(sorted({v for v, _ in pairs}))
-            groups[roles].setdefault(cu, []).append(set(pairs))
+            found = made.get(id(pairs))  # candidates with one requirement share its pairs
+            if found is None:
+                found = made[id(pairs)] = (tuple(sorted({v for v, _ in pairs})), set(pairs))
+            roles, allowed = found
+            groups[roles].setdefault(cu, []).append(allowed)
     out = []
     for roles, needs in groups.items():
         scope = (u, *roles)

@@ -43,7 +43,8 @@ class Instance:
             candidate) pairs.
         meets: per (role index, candidate, requirement index), the (provider role index,
             provider candidate) pairs meeting that requirement along the role's edges
-            (required and optional).
+            (required and optional); candidates of one role with the same requirement share
+            one list (read it, never change it).
         clashes: candidate -> the candidates providing one of its labels with another type
             (symmetric; rule ``one-type-per-label``: never chosen together).
     """
@@ -122,12 +123,19 @@ def compile_instance(
         inst.edge_ok.append(ok)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
+        # the pairs depend only on the requirement's options: a role's candidates share a
+        # few requirements, and one (read-only) list is made for each
+        made: dict[tuple[int, ...], list[tuple[int, str]]] = {}
         for cu in domains[u]:
             for i, opts in enumerate(options[cu.name]):
-                pairs: list[tuple[int, str]] = []
-                for e, v in mine:
-                    allowed = {o for o in opts if _allows(e, labels[o])}
-                    pairs.extend((v, cv.name) for cv in domains[v] if provides[cv.name] & allowed)
+                pairs = made.get(opts)
+                if pairs is None:
+                    pairs = made[opts] = []
+                    for e, v in mine:
+                        allowed = {o for o in opts if _allows(e, labels[o])}
+                        pairs.extend(
+                            (v, cv.name) for cv in domains[v] if provides[cv.name] & allowed
+                        )
                 inst.meets[(u, cu.name, i)] = pairs
     return inst
 
