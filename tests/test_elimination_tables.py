@@ -19,8 +19,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rosreconf.solve.counting import _sum_out
-from rosreconf.solve.factors import Factor, TooHard, _join, join_sum_out
-from rosreconf.solve.optimum import Choices, _join_min_out, _min_out
+from rosreconf.solve.minout import Choices, join_minimise_out, minimise_out
+from rosreconf.solve.tables import Factor, TooHard, _join, join_sum_out
 
 NAMES = [f"c{i}" for i in range(6)]
 
@@ -74,7 +74,7 @@ def test_minimising_out_equals_adding_every_cost(
     want, want_arg = _plain_min_out(f, cost, rank)
     trace: list[Choices] = []
     offsets: list[int] = []
-    got = _min_out(f, 0, cost, rank, trace, offsets, alive)
+    got = minimise_out(f, 0, cost, rank, trace, offsets, alive)
     low = min(want.values(), default=0)
     assert got.scope == f.scope[1:]
     assert got.rows == {k: v - low for k, v in want.items()}
@@ -208,10 +208,10 @@ def test_join_and_minimise_out_in_one_pass_equals_joining_then_minimising(
     plain_trace: list[Choices] = []
     plain_offsets: list[int] = []
     joined = _join(fa, fb, operator.add, 10**9, 0)
-    want = _min_out(joined, 0, cost, rank, plain_trace, plain_offsets, alive)
+    want = minimise_out(joined, 0, cost, rank, plain_trace, plain_offsets, alive)
     trace: list[Choices] = []
     offsets: list[int] = []
-    got = _join_min_out(fa, fb, 0, cost, rank, trace, offsets, alive, 10**9)
+    got = join_minimise_out(fa, fb, 0, cost, rank, trace, offsets, alive, 10**9)
     assert (got.scope, got.rows, offsets) == (want.scope, want.rows, plain_offsets)
     where = [{c: j for j, c in enumerate(names)} for names in alive]
     for k in want.rows:
@@ -219,4 +219,4 @@ def test_join_and_minimise_out_in_one_pass_equals_joining_then_minimising(
         assert trace[-1].pick(chosen, where) == plain_trace[-1].pick(chosen, where)
     if joined.rows and _widens(fa, fb):  # the budget counts the joined rows
         with pytest.raises(TooHard):
-            _join_min_out(fa, fb, 0, cost, rank, [], [], alive, len(joined.rows) - 1)
+            join_minimise_out(fa, fb, 0, cost, rank, [], [], alive, len(joined.rows) - 1)
