@@ -7,6 +7,9 @@
  * YMapping and YSequence (called as the Python classes they are), Span positions made from
  * libyaml's marks exactly as PyYAML's CParser hands them over (line + 1, column + 1), and
  * the plain data, with plain scalars resolved by ``resolve_plain`` once per distinct text.
+ * Equal scalar texts share one str object (a library repeats its keys and interface types
+ * tens of thousands of times), and events on one line share their line number's int: equal
+ * values, less memory, which no comparison can tell apart.
  *
  * It declines (returns None) in exactly the cases yamlfast declines: a second document, an
  * anchor, an alias, a tag, a complex key, a duplicate key, nesting deeper than max_depth, a
@@ -49,6 +52,9 @@ typedef struct {
     Py_ssize_t max_depth; /* most collections open at once */
     /* State of the loop. */
     PyObject *resolved; /* plain scalar text -> resolved value */
+    PyObject *texts;    /* scalar text -> the one str object of that text */
+    PyObject *line;     /* the int line + 1 of the last Span made, or NULL */
+    size_t line_index;  /* its libyaml line */
     PyObject *root;
     PyObject *root_plain;
     Frame *stack; /* the enclosing collections, innermost last: max_depth frames */
@@ -75,10 +81,15 @@ frame_clear(Frame *f)
 static PyObject *
 new_span(Reader *r, yaml_mark_t mark)
 {
-    PyObject *line = PyLong_FromSize_t(mark.line + 1);
-    if (line == NULL) {
-        return NULL;
+    if (r->line == NULL || r->line_index != mark.line) {
+        PyObject *number = PyLong_FromSize_t(mark.line + 1);
+        if (number == NULL) {
+            return NULL;
+        }
+        Py_XSETREF(r->line, number);
+        r->line_index = mark.line;
     }
+    PyObject *line = Py_NewRef(r->line);
     PyObject *column = PyLong_FromSize_t(mark.column + 1);
     if (column == NULL) {
         Py_DECREF(line);
@@ -195,7 +206,13 @@ on_scalar(Reader *r, yaml_event_t *event)
             return DECLINE;
         }
     }
-    PyObject *value = PyUnicode_DecodeUTF8(text, (Py_ssize_t)length, "strict");
+    PyObject *decoded = PyUnicode_DecodeUTF8(text, (Py_ssize_t)length, "strict");
+    if (decoded == NULL) {
+        return FAILED;
+    }
+    PyObject *value = PyDict_SetDefault(r->texts, decoded, decoded); /* borrowed */
+    Py_XINCREF(value);
+    Py_DECREF(decoded);
     if (value == NULL) {
         return FAILED;
     }
@@ -423,10 +440,11 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     PyObject *result = NULL;
     r.stack = PyMem_Calloc(r.max_depth > 0 ? (size_t)r.max_depth : 1, sizeof(Frame));
     r.resolved = PyDict_New();
+    r.texts = PyDict_New();
     if (r.stack == NULL) {
         PyErr_NoMemory();
     }
-    else if (r.resolved != NULL) {
+    else if (r.resolved != NULL && r.texts != NULL) {
         int status = run(&r, PyBytes_AS_STRING(encoded), PyBytes_GET_SIZE(encoded));
         if (status == DONE) {
             result = PyTuple_Pack(2, r.root != NULL ? r.root : Py_None,
@@ -446,6 +464,8 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     Py_XDECREF(r.root);
     Py_XDECREF(r.root_plain);
     Py_XDECREF(r.resolved);
+    Py_XDECREF(r.texts);
+    Py_XDECREF(r.line);
     Py_DECREF(encoded);
     return result;
 }
