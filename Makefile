@@ -74,3 +74,4 @@ architecture: $(STAMP)
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache
+	rm -f rosreconf/formats/_yamlc.*.so
