@@ -30,7 +30,7 @@ The first three are seen in the text alone (``fast_path_safe``); the loop checks
 
 The loop exists twice: in C (``_yamlc.c``, the extension ``rosreconf.formats._yamlc``, built
 against libyaml when rosreconf is installed with a C compiler and libyaml's headers), which
-reads libyaml's events without PyYAML's Python event objects, about three times faster; and
+reads libyaml's events without PyYAML's Python event objects, several times faster; and
 here in Python (``_events``), used when the extension is not built or when the environment
 variable ``ROSRECONF_PURE_YAML`` is set to anything but ``""`` or ``0`` (for debugging and
 for comparing the two). Both give the same trees, plain data, positions and declines.
@@ -73,6 +73,7 @@ PURE_ENV: Final = "ROSRECONF_PURE_YAML"
 """Set to anything but ``""`` or ``0``: read with the Python loop, not the compiled one."""
 
 CompiledRead: TypeAlias = Callable[..., "tuple[YNode | None, Plain] | None"]
+"""``_yamlc.read``'s type (see its stub): the tree and plain data, or None where it declines."""
 
 
 def _compiled_read() -> CompiledRead | None:
