@@ -115,6 +115,9 @@ attach(Reader *r, PyObject *node, PyObject *plain)
 {
     Frame *c = &r->cur;
     if (c->spans != NULL) { /* a value in a mapping */
+        if (c->key == NULL) {
+            return DECLINE; /* never: a collection as a key is declined where it opens */
+        }
         int known = PyDict_Contains(c->items, c->key);
         if (known < 0) {
             return FAILED;
