@@ -4,7 +4,9 @@ Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read an
 at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
 that process (``time.process_time``), every stage the loader runs: YAML into the positioned
 tree and plain data, the JSON Schema check, the value checks, model building, the semantic
-checks. Imports are excluded (the whole-process rows of ``run.py`` include them).
+checks. Imports are excluded (the whole-process rows of ``run.py`` include them). The parse
+stage uses the compiled YAML reader when it is built (``reader`` in the entry says which);
+``ROSRECONF_PURE_YAML=1`` in the environment measures the Python loop instead.
 
 ``python benchmarks/loading.py --json benchmarks/results.json`` measures and replaces the
 ``loading`` entry of the results; ``run.py`` calls ``loading`` in a full run.
@@ -30,7 +32,7 @@ def child(folder: str) -> dict[str, float]:
     """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU)."""
     import gc
 
-    from rosreconf.formats import loader
+    from rosreconf.formats import loader, yamlfast
     from rosreconf.formats import yamlsource as ys
     from rosreconf.formats.build import build_library, build_schema
     from rosreconf.formats.checks import check
@@ -70,6 +72,7 @@ def child(folder: str) -> dict[str, float]:
     assert not problems, problems[:3]
     seconds["total"] = sum(seconds[s] for s in STAGES)
     seconds["bytes"] = float(sum(len(s.data) for s in sources))
+    seconds["compiled_reader"] = float(yamlfast.COMPILED_READ is not None)
     seconds.update(floors([s.data.decode("utf-8") for s in sources]))
     return seconds
 
@@ -81,8 +84,8 @@ def floors(texts: list[str]) -> dict[str, float]:
     """Time what any reader over PyYAML's C binding pays before building anything.
 
     ``libyaml``: libyaml parsing the texts with no Python object per event
-    (``CParser.raw_parse``); ``pyyaml_events``: PyYAML's event objects, fetched and dropped.
-    The parse stage can shrink towards the second, never below it, in a Python loop.
+    (``CParser.raw_parse``), the floor of the compiled reader; ``pyyaml_events``: PyYAML's
+    event objects, fetched and dropped, the floor of the Python loop over them.
     """
     import yaml
 
@@ -116,6 +119,11 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "seconds": medians,
         "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
         "floors": "libyaml: CParser.raw_parse (no Python objects); pyyaml_events: get_event only",
+        "reader": (
+            "compiled (rosreconf.formats._yamlc)"
+            if all(r["compiled_reader"] for r in results)
+            else "Python loop over PyYAML's events"
+        ),
         "goal_seconds": 1.0,
         "met": medians["total"] <= 1.0,
         "load_average": {"start": list(load_start), "end": list(os.getloadavg())},

@@ -30,6 +30,7 @@ def test_quick_grid_writes_table_and_json(tmp_path: Path) -> None:
     stages = doc["loading"]  # where reading and checking a library goes, stage by stage
     assert stages["scope"] == "in-process" and stages["bytes"] > 0
     assert stages["seconds"]["parse"] > 0
+    assert stages["reader"] == "compiled (rosreconf.formats._yamlc)"  # what users get
     assert stages["seconds"]["total"] >= max(stages["seconds"].values()) - 1e-9
     floors = stages["floor_seconds"]  # what any reader over PyYAML's C binding pays
     assert set(floors) == {"libyaml", "pyyaml_events"} and min(floors.values()) > 0

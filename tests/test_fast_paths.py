@@ -2,7 +2,10 @@
 
 rosreconf parses with libyaml and pre-validates with fastjsonschema for speed, falling back
 to PyYAML's pure parser and to jsonschema for messages. These tests hold the fast and the
-reference paths to identical trees, positions and verdicts.
+reference paths to identical trees, positions and verdicts. The fast YAML path exists twice,
+a loop in C (the extension rosreconf.formats._yamlc) and the same loop in Python
+(yamlfast._events): every comparison reads with all three readers, and also holds the two
+fast loops to the same declines.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from rosreconf.errors import InvalidInputError
+from rosreconf.formats import _yamlc, yamlfast
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.structure import (
     FAST_MODULES,
@@ -56,8 +60,18 @@ def _dump(node: ys.YNode | None) -> Any:
     return ("l", node.span, [_dump(v) for v in node.items])
 
 
-def _parse(data: bytes, fast: bool, monkeypatch: pytest.MonkeyPatch) -> Any:
-    monkeypatch.setattr(ys, "FAST_LOADER", ys.FAST_LOADER if fast else None)
+READERS = ("c", "python", "pure")
+"""The C loop over libyaml's events, the Python loop over PyYAML's, PyYAML's pure parser."""
+
+
+def _use(reader: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Make ``yamlsource.parse_plain`` read with ``reader`` (one of ``READERS``)."""
+    monkeypatch.setattr(ys, "FAST_LOADER", None if reader == "pure" else yaml.CSafeLoader)
+    monkeypatch.setattr(yamlfast, "COMPILED_READ", _yamlc.read if reader == "c" else None)
+
+
+def _parse(data: bytes, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
+    _use(reader, monkeypatch)
     try:
         tree, plain = ys.parse_plain(data, "f.yaml")
     except Exception as exc:  # compare failures too: same problems, same positions
@@ -68,14 +82,36 @@ def _parse(data: bytes, fast: bool, monkeypatch: pytest.MonkeyPatch) -> Any:
     return _dump(tree)
 
 
+def _fast(text: str, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
+    """Return what ``fast_read`` gives with the C or the Python loop: a dump, or "declined"."""
+    _use(reader, monkeypatch)
+    got = fast_read(text, "f.yaml", yaml.CSafeLoader)
+    if isinstance(got, Declined):
+        return "declined"
+    tree, plain = got
+    return _dump(tree), repr(plain)
+
+
+def _readers_agree(data: bytes) -> None:
+    """Assert that the three readers give one answer and the two fast loops one decline."""
+    with pytest.MonkeyPatch.context() as mp:
+        pure = _parse(data, "pure", mp)
+        assert _parse(data, "c", mp) == pure
+        assert _parse(data, "python", mp) == pure
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            return  # refused before any reader runs
+        assert _fast(text, "c", mp) == _fast(text, "python", mp)
+
+
 def test_libyaml_is_available() -> None:
     assert ys.FAST_LOADER is not None, "PyYAML without libyaml: parsing is 6x slower"
 
 
 @pytest.mark.parametrize("path", YAML_FILES, ids=lambda p: str(p.relative_to(REPO)))
-def test_parsers_agree_on_every_file(path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    data = path.read_bytes()
-    assert _parse(data, True, monkeypatch) == _parse(data, False, monkeypatch)
+def test_parsers_agree_on_every_file(path: Path) -> None:
+    _readers_agree(path.read_bytes())
 
 
 # --- the two YAML parsers give the same answer on every text ------------------------------
@@ -132,9 +168,7 @@ def test_pinned_positions_still_point_where_they_were_found() -> None:
 @example(cut=len(LIBRARY), junk="?")  # an explicit key with no value at the very end
 @example(cut=0, junk="\ufeff")  # a byte order mark
 def test_parsers_agree_on_damaged_files(cut: int, junk: str) -> None:
-    data = (LIBRARY[:cut] + junk + LIBRARY[cut:]).encode("utf-8", errors="surrogatepass")
-    with pytest.MonkeyPatch.context() as mp:
-        assert _parse(data, True, mp) == _parse(data, False, mp)
+    _readers_agree((LIBRARY[:cut] + junk + LIBRARY[cut:]).encode("utf-8", errors="surrogatepass"))
 
 
 @st.composite
@@ -155,9 +189,7 @@ def test_parsers_agree_after_one_character_edits(edit: tuple[str, int, str]) -> 
     name, at, char = edit
     text = BUNDLED[name]
     damaged = text[:at] + char + text[at + (0 if char else 1) :]
-    data = damaged.encode("utf-8")
-    with pytest.MonkeyPatch.context() as mp:
-        assert _parse(data, True, mp) == _parse(data, False, mp)
+    _readers_agree(damaged.encode("utf-8"))
 
 
 PIECES = [
@@ -183,9 +215,7 @@ PIECES = [
 @example(pieces=["{", "a", ": ", "\ufeff", "a", ",", " ", "b", ": ", "c", "}"], end=True)  # BOM
 @example(pieces=["a", ":", "\t", "b"], end=True)  # a tab separating tokens
 def test_parsers_agree_on_small_documents(pieces: list[str], end: bool) -> None:
-    data = ("".join(pieces) + ("\n" if end else "")).encode("utf-8")
-    with pytest.MonkeyPatch.context() as mp:
-        assert _parse(data, True, mp) == _parse(data, False, mp)
+    _readers_agree(("".join(pieces) + ("\n" if end else "")).encode("utf-8"))
 
 
 _ENDS = (yaml.CollectionEndEvent, yaml.DocumentEndEvent, yaml.StreamEndEvent)
@@ -226,10 +256,10 @@ KNOWN_DIFFERENCES = {
 def test_each_known_difference_is_real_and_takes_the_pure_path(text: str) -> None:
     # Real: if a libyaml upgrade removes a difference, this says which rule may go.
     assert _events_differ(text)
-    assert ys.FAST_LOADER is not None
-    assert isinstance(fast_read(text, "f.yaml", ys.FAST_LOADER), Declined)
     with pytest.MonkeyPatch.context() as mp:
-        assert _parse(text.encode(), True, mp) == _parse(text.encode(), False, mp)
+        for reader in ("c", "python"):
+            assert _fast(text, reader, mp) == "declined", reader
+    _readers_agree(text.encode())
 
 
 @pytest.mark.parametrize("at", [R_OBOT, E_LBOW], ids=["in-a-flow-mapping-value", "in-a-flow-key"])
@@ -299,7 +329,13 @@ def test_validators_agree(doc: dict[str, Any]) -> None:
         "a:" + " [" * 40 + "]" * 40 + "\n",  # too deep
     ],
 )
-def test_every_problem_is_refused_whichever_parser_reads_first(text: str) -> None:
+@pytest.mark.parametrize("reader", READERS)
+def test_every_problem_is_refused_whichever_parser_reads_first(
+    text: str, reader: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    if reader != "pure":
+        assert _fast(text, reader, monkeypatch) == "declined"
+    _use(reader, monkeypatch)
     with pytest.raises(ys.InvalidInputError):
         ys.parse(text.encode(), "f.yaml")
 

@@ -22,7 +22,15 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     # Build from a clean copy: a developer's build/ or .venv must not leak into the wheel.
     source = out / "source"
     skip = shutil.ignore_patterns(
-        ".venv", "build", "dist", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis"
+        ".venv",
+        "build",
+        "dist",
+        ".git",
+        "*.egg-info",
+        "__pycache__",
+        ".*_cache",
+        ".hypothesis",
+        "*.so",  # the editable install's compiled YAML reader: the wheel must build its own
     )
     shutil.copytree(REPO, source, ignore=skip)
     build = [sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps"]
@@ -46,6 +54,10 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     # editable install's finder, so only this list shows it.
     for package in REPO.joinpath("rosreconf").rglob("__init__.py"):
         assert package.relative_to(REPO).as_posix() in names
+    # The compiled YAML reader (setup.py): make test installs libyaml-dev and a compiler, so
+    # the wheel must hold it, with its type stub.
+    assert "rosreconf/formats/_yamlc.pyi" in names
+    assert [n for n in names if n.startswith("rosreconf/formats/_yamlc.") and n.endswith(".so")]
     return target
 
 
@@ -85,3 +97,29 @@ def test_installed_wheel_renders_pddl_from_its_templates(installed: Path, tmp_pa
     assert result.returncode == 0, result.stderr
     domain = (out / "disc_loading" / "domain.pddl").read_text(encoding="utf-8")
     assert "(define (domain" in domain and "choose-elbow_joint-nsm3" in domain
+
+
+def test_installed_wheel_reads_yaml_with_its_compiled_reader(
+    installed: Path, tmp_path: Path
+) -> None:
+    code = (
+        "import json\n"
+        "from rosreconf.formats import _yamlc, yamlfast, yamlsource\n"
+        "tree, plain = yamlsource.parse_plain(b'a: [1, {b: c}]\\n', 'f.yaml')\n"
+        "print(json.dumps({'file': _yamlc.__file__, 'plain': plain,\n"
+        "                  'used': yamlfast.COMPILED_READ is _yamlc.read}))\n"
+    )
+    env_free = {k: v for k, v in os.environ.items() if k != "ROSRECONF_PURE_YAML"}
+    result = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=tmp_path,
+        env={**env_free, "PYTHONPATH": str(installed)},
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr
+    probe = json.loads(result.stdout)
+    assert probe["file"].startswith(str(installed))  # the wheel's extension, not the checkout's
+    assert probe["used"]
+    assert probe["plain"] == {"a": [1, {"b": "c"}]}

@@ -27,12 +27,21 @@ libyaml 0.2.5 and PyYAML 6's pure parser read the same text differently where:
 * a ``#`` right after a block scalar's header (``|#``), a comment to libyaml only.
 
 The first three are seen in the text alone (``fast_path_safe``); the loop checks the rest.
+
+The loop exists twice: in C (``_yamlc.c``, the extension ``rosreconf.formats._yamlc``, built
+against libyaml when rosreconf is installed with a C compiler and libyaml's headers), which
+reads libyaml's events without PyYAML's Python event objects, several times faster; and
+here in Python (``_events``), used when the extension is not built or when the environment
+variable ``ROSRECONF_PURE_YAML`` is set to anything but ``""`` or ``0`` (for debugging and
+for comparing the two). Both give the same trees, plain data, positions and declines.
 """
 
 from __future__ import annotations
 
+import os
 import re
-from typing import Any, Final
+from collections.abc import Callable
+from typing import Any, Final, TypeAlias
 
 import yaml
 
@@ -60,6 +69,32 @@ _BLOCK_HEADER_THEN_COMMENT = re.compile(r"[|>](?:[-+][1-9]?|[1-9][-+]?)?#")
 """A block scalar header with a ``#`` right after it: libyaml reads a comment, PyYAML an error."""
 
 
+PURE_ENV: Final = "ROSRECONF_PURE_YAML"
+"""Set to anything but ``""`` or ``0``: read with the Python loop, not the compiled one."""
+
+CompiledRead: TypeAlias = Callable[..., "tuple[YNode | None, Plain] | None"]
+"""``_yamlc.read``'s type (see its stub): the tree and plain data, or None where it declines."""
+
+
+def _compiled_read() -> CompiledRead | None:
+    """Return the compiled loop's ``read``, or None when not built or not wanted.
+
+    Read once at import: the choice is a property of the installation (and of the
+    environment a process starts with), not of each file.
+    """
+    if os.environ.get(PURE_ENV, "") not in ("", "0"):
+        return None
+    try:
+        from rosreconf.formats import _yamlc
+    except ImportError:  # installed without a C compiler or libyaml's headers
+        return None
+    return _yamlc.read
+
+
+COMPILED_READ: CompiledRead | None = _compiled_read()
+"""The C loop (``_yamlc.read``) that ``fast_read`` uses, or None for the Python loop."""
+
+
 def fast_path_safe(text: str) -> bool:
     """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would."""
     return (
@@ -79,6 +114,19 @@ def fast_read(
     """
     if not fast_path_safe(text):
         return DECLINED
+    if COMPILED_READ is not None:
+        read = COMPILED_READ(
+            text,
+            file,
+            MAX_DEPTH,
+            Span,
+            YScalar,
+            YMapping,
+            YSequence,
+            resolve_plain,
+            _BLOCK_HEADER_THEN_COMMENT.match,
+        )
+        return DECLINED if read is None else read
     parser = loader(text)
     try:
         return _events(parser.get_event, file, len(text), text)

@@ -16,9 +16,9 @@ rosreconf promises:
 
 Three modules do the work: ``yamltree`` (the tree and the YAML 1.2 resolver), ``yamlfast``
 (one flat loop over libyaml's events for clean files, declining anything to report or that
-libyaml might read differently) and ``yamlbuilder`` (PyYAML's pure parser, the reader of
-record, with every message). ``parse`` tries the first and falls back to the second, so
-answers never depend on whether libyaml is installed.
+libyaml might read differently; compiled in ``_yamlc.c`` when built) and ``yamlbuilder``
+(PyYAML's pure parser, the reader of record, with every message). ``parse`` tries the
+first and falls back to the second, so answers never depend on whether libyaml is installed.
 """
 
 from __future__ import annotations
