@@ -14,13 +14,21 @@ from __future__ import annotations
 import itertools
 import operator
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rosreconf.solve.factors import Factor, _join
-from rosreconf.solve.optimum import Choices, _min_out
+from rosreconf.solve.counting import _sum_out
+from rosreconf.solve.minout import Choices, join_minimise_out, minimise_out
+from rosreconf.solve.tables import Factor, TooHard, _join, join_sum_out
 
 NAMES = [f"c{i}" for i in range(6)]
+
+
+def _widens(a: Factor, b: Factor) -> bool:
+    """Say whether joining adds roles to the valued table (the one a join keeps left)."""
+    left, right = (b, a) if a.unit and not b.unit else (a, b)
+    return not set(right.scope) <= set(left.scope)
 
 
 @st.composite
@@ -66,7 +74,7 @@ def test_minimising_out_equals_adding_every_cost(
     want, want_arg = _plain_min_out(f, cost, rank)
     trace: list[Choices] = []
     offsets: list[int] = []
-    got = _min_out(f, 0, cost, rank, trace, offsets, alive)
+    got = minimise_out(f, 0, cost, rank, trace, offsets, alive)
     low = min(want.values(), default=0)
     assert got.scope == f.scope[1:]
     assert got.rows == {k: v - low for k, v in want.items()}
@@ -130,3 +138,85 @@ def test_join_skipping_the_neutral_value_equals_combining_every_row(
                 row.update(zip(fb.scope, rb, strict=True))
                 plain[tuple(row[v] for v in joined.scope)] = times(wa, wb)
     assert joined.rows == plain
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    a=tables(),
+    b=tables(),
+    unit=st.sampled_from(["neither", "a", "b", "both"]),
+    ones=st.booleans(),
+    shift=st.integers(0, 1),
+)
+def test_join_and_sum_out_in_one_pass_equals_joining_then_summing(
+    a: tuple[Factor, list[list[str]], int],
+    b: tuple[Factor, list[list[str]], int],
+    unit: str,
+    ones: bool,
+    shift: int,
+) -> None:
+    """Counting's fused step builds the same table as the join it skips, then the sum."""
+    values = enumerate(a[0].rows.items())
+    fa = Factor(a[0].scope, {k: 1 if ones and i % 2 else w + 1 for i, (k, w) in values})
+    # b's roles: role 0 (summed out: it is in every table of its step) and a's other roles
+    # or (shift) partly new ones, so that both a filter and a widening join are drawn
+    scope_b = (0, *(v + shift for v in b[0].scope[1:]))
+    fb = Factor(scope_b, {k: w + 1 for k, w in b[0].rows.items()})
+    if unit in ("a", "both"):
+        fa = Factor(fa.scope, dict.fromkeys(fa.rows, 1), unit=True)
+    if unit in ("b", "both"):
+        fb = Factor(fb.scope, dict.fromkeys(fb.rows, 1), unit=True)
+    joined = _join(fa, fb, operator.mul, 10**9)
+    plain = _sum_out(joined, 0)
+    fused = join_sum_out(fa, fb, 0, 10**9)
+    assert (fused.scope, fused.rows) == (plain.scope, plain.rows)
+    if joined.rows and _widens(fa, fb):  # the budget counts the joined rows
+        with pytest.raises(TooHard):
+            join_sum_out(fa, fb, 0, len(joined.rows) - 1)
+        assert join_sum_out(fa, fb, 0, len(joined.rows)).rows == plain.rows
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    a=tables(),
+    b=tables(),
+    unit=st.sampled_from(["neither", "a", "b", "both"]),
+    shift=st.integers(0, 1),
+    data=st.data(),
+)
+def test_join_and_minimise_out_in_one_pass_equals_joining_then_minimising(
+    a: tuple[Factor, list[list[str]], int],
+    b: tuple[Factor, list[list[str]], int],
+    unit: str,
+    shift: int,
+    data: st.DataObject,
+) -> None:
+    """The optimum's fused step: same table, offsets and traceback as join then minimise."""
+    fa, alive, cap = a
+    scope_b = (0, *(v + shift for v in b[0].scope[1:]))
+    fb = Factor(scope_b, dict(b[0].rows))
+    if unit in ("a", "both"):
+        fa = Factor(fa.scope, dict.fromkeys(fa.rows, 0), unit=True)
+    if unit in ("b", "both"):
+        fb = Factor(fb.scope, dict.fromkeys(fb.rows, 0), unit=True)
+    roles = max((*fa.scope, *fb.scope)) + 1
+    alive = [list(NAMES) for _ in range(roles)]  # every name any row may hold, per role
+    scale = data.draw(st.sampled_from([1, cap, 2 * cap, 3**50]))  # large: the dominated path
+    levels = st.integers(0, 3).map(lambda n: n * scale) | st.integers(0, 3 * cap)
+    cost = {c: data.draw(levels) for c in NAMES}
+    rank = {c: i for i, c in enumerate(reversed(NAMES))}
+    plain_trace: list[Choices] = []
+    plain_offsets: list[int] = []
+    joined = _join(fa, fb, operator.add, 10**9, 0)
+    want = minimise_out(joined, 0, cost, rank, plain_trace, plain_offsets, alive)
+    trace: list[Choices] = []
+    offsets: list[int] = []
+    got = join_minimise_out(fa, fb, 0, cost, rank, trace, offsets, alive, 10**9)
+    assert (got.scope, got.rows, offsets) == (want.scope, want.rows, plain_offsets)
+    where = [{c: j for j, c in enumerate(names)} for names in alive]
+    for k in want.rows:
+        chosen = dict(zip(want.scope, k, strict=True))
+        assert trace[-1].pick(chosen, where) == plain_trace[-1].pick(chosen, where)
+    if joined.rows and _widens(fa, fb):  # the budget counts the joined rows
+        with pytest.raises(TooHard):
+            join_minimise_out(fa, fb, 0, cost, rank, [], [], alive, len(joined.rows) - 1)

@@ -27,16 +27,9 @@ import operator
 from collections import defaultdict
 from dataclasses import dataclass
 
-from rosreconf.solve.factors import (
-    MAX_FACTOR_ROWS,
-    Factor,
-    _join_all,
-    constraint_factors,
-    elimination_order,
-    key_of,
-    paused_gc,
-)
+from rosreconf.solve.factors import constraint_factors, elimination_order
 from rosreconf.solve.instance import Instance, prune
+from rosreconf.solve.tables import MAX_FACTOR_ROWS, Factor, _join_all, key_of, paused_gc
 
 __all__ = ["Marginals", "marginals"]
 

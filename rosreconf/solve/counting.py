@@ -22,10 +22,11 @@ from rosreconf.solve.factors import (
     constraint_factors,
     eliminate,
     elimination_order,
+    join_sum_out,
     key_of,
     paused_gc,
 )
-from rosreconf.solve.instance import Instance, prune
+from rosreconf.solve.instance import Instance, interchangeable, prune
 
 CountTooHard = TooHard
 """The name callers of ``count`` know for "too densely connected to count exactly"."""
@@ -43,13 +44,36 @@ def count(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> int:
         alive, _, _ = prune(inst)
         if any(not a for a in alive):
             return 0
-        factors = constraint_factors(inst, alive, 1, max_rows)
+        classes = interchangeable(inst, alive)
+        kept = [[members[0] for members in role] for role in classes]
+        factors = constraint_factors(inst, kept, 1, max_rows)
+        _weigh(factors, classes)
         order = elimination_order([f.scope for f in factors], len(inst.roles))
-        done = eliminate(factors, order, operator.mul, _sum_out, max_rows)
+        done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
     if done is None:
         return 0
     scalars, free = done
     return math.prod(scalars) * math.prod(len(alive[v]) for v in free)
+
+
+def _weigh(factors: list[Factor], classes: list[list[list[str]]]) -> None:
+    """Count each kept candidate as many times as its class has members.
+
+    The tables hold one candidate per class of interchangeable ones (``interchangeable``):
+    every configuration through a kept candidate stands for one per member. Each role's
+    sizes go into the first table over it, once; a role in no table is free, and counted
+    by all its candidates at the end.
+    """
+    weighed: set[int] = set()
+    for f in factors:
+        for pos, v in enumerate(f.scope):
+            if v in weighed:
+                continue
+            weighed.add(v)
+            size = {members[0]: len(members) for members in classes[v] if len(members) > 1}
+            if size:
+                f.rows = {row: w * size.get(row[pos], 1) for row, w in f.rows.items()}
+                f.unit = False
 
 
 def _sum_out(f: Factor, var: int) -> Factor:

@@ -19,50 +19,40 @@ neighbours first keeps every intermediate table to a few candidates^3 rows.
 
 from __future__ import annotations
 
-import contextlib
 import functools
-import gc
 import itertools
-import operator
 from collections import defaultdict
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from collections.abc import Callable
 
-from rosreconf.errors import RosreconfError
 from rosreconf.solve.instance import Instance
+from rosreconf.solve.tables import (
+    MAX_FACTOR_ROWS,
+    Factor,
+    JoinOut,
+    Marginal,
+    Times,
+    TooHard,
+    _join,
+    _join_all_but_last,
+    join_sum_out,
+    key_of,
+    paused_gc,
+)
 
-MAX_FACTOR_ROWS = 2_000_000
-"""Largest table built before giving up on exact elimination."""
-
-
-class TooHard(RosreconfError):
-    """The system graph is too densely connected to eliminate exactly within the row budget."""
-
-
-@dataclass
-class Factor:
-    """A table over a few roles; only allowed rows are stored.
-
-    Attributes:
-        scope: the role indices the table ranges over, in column order.
-        rows: candidate names (one per scope role) -> value (a count, or an encoded cost).
-        unit: every value is the neutral one (1 to count, 0 for costs), so joining with this
-            table only filters rows and never needs to combine values.
-        rule: the rule of ``rosreconf.model.validity.RULES`` a constraint table encodes
-            (empty for tables made while eliminating and for cost tables).
-    """
-
-    scope: tuple[int, ...]
-    rows: dict[tuple[str, ...], int]
-    unit: bool = False
-    rule: str = ""
-
-
-Times = Callable[[int, int], int]
-"""How two values of one row combine: ``operator.mul`` to count, ``operator.add`` for costs."""
-
-Marginal = Callable[[Factor, int], Factor]
-"""How a role leaves a table: summed out to count, minimised out (with argmin) to optimise."""
+__all__ = [
+    "MAX_FACTOR_ROWS",
+    "Factor",
+    "JoinOut",
+    "Marginal",
+    "Times",
+    "TooHard",
+    "constraint_factors",
+    "eliminate",
+    "elimination_order",
+    "join_sum_out",
+    "key_of",
+    "paused_gc",
+]
 
 
 def constraint_factors(
@@ -161,11 +151,15 @@ def _requirement_factors(
     u and one provider: K^2 rows, not K^4).
     """
     groups: dict[tuple[int, ...], dict[str, list[set[tuple[int, str]]]]] = defaultdict(dict)
+    made: dict[int, tuple[tuple[int, ...], set[tuple[int, str]]]] = {}
     for cu in alive[u]:
         for i in range(len(inst.library[cu].requires)):
             pairs = inst.meets[(u, cu, i)]
-            roles = tuple(sorted({v for v, _ in pairs}))
-            groups[roles].setdefault(cu, []).append(set(pairs))
+            found = made.get(id(pairs))  # candidates with one requirement share its pairs
+            if found is None:
+                found = made[id(pairs)] = (tuple(sorted({v for v, _ in pairs})), set(pairs))
+            roles, allowed = found
+            groups[roles].setdefault(cu, []).append(allowed)
     out = []
     for roles, needs in groups.items():
         scope = (u, *roles)
@@ -174,8 +168,9 @@ def _requirement_factors(
             rows: dict[tuple[str, ...], int] = {}
             for cu in alive[u]:
                 reqs = needs.get(cu)
+                both = set.intersection(*reqs) if reqs else None  # providers meeting all
                 for cv in alive[v]:
-                    if not reqs or all((v, cv) in r for r in reqs):
+                    if both is None or (v, cv) in both:
                         rows[(cu, cv)] = one
             out.append(Factor(scope, rows, unit=True, rule="requirement-met"))
             continue
@@ -236,6 +231,7 @@ def eliminate(
     marginal: Marginal,
     max_rows: int,
     one: int = 1,
+    join_out: JoinOut | None = None,
 ) -> tuple[list[int], list[int]] | None:
     """Eliminate the roles in ``order``; return the leftover scalars and the free roles.
 
@@ -245,7 +241,9 @@ def eliminate(
     caller's list) until the end; at 10,000 roles they are about 180 MiB. ``one`` is the
     neutral value of ``times`` (1 to count, 0 for costs): combining with it is skipped.
     Costs of single roles are the marginal's business (``optimum`` adds them while
-    minimising a role out), so a role in no table is free here too.
+    minimising a role out), so a role in no table is free here too. ``join_out``, when
+    given, does the last join of each role's tables and its marginal in one pass: the
+    joined table is the widest of each step, and is otherwise built only to be walked once.
 
     Raises:
         TooHard: a joined table would exceed ``max_rows`` rows.
@@ -267,7 +265,13 @@ def eliminate(
         if not mine:
             free.append(var)
             continue
-        reduced = marginal(_join_all(mine, times, max_rows, one), var)
+        merged, last = _join_all_but_last(mine, times, max_rows, one)
+        if last is None:
+            reduced = marginal(merged, var)
+        elif join_out is not None:
+            reduced = join_out(merged, last, var, max_rows)
+        else:
+            reduced = marginal(_join(merged, last, times, max_rows, one), var)
         if not reduced.rows:
             return None
         for v in {v for f in mine for v in f.scope} - {var}:
@@ -281,87 +285,3 @@ def eliminate(
         next_id += 1
     scalars.extend(v for f in pool.values() for v in f.rows.values())  # pragma: no cover
     return scalars, free
-
-
-def _join_all(factors: list[Factor], times: Times, max_rows: int, one: int = 1) -> Factor:
-    """Join tables widest first, then always the one adding the fewest new roles."""
-    rest = sorted(factors, key=lambda f: -len(f.scope))
-    merged = rest.pop(0)
-    while rest:
-        have = set(merged.scope)
-        pick = min(range(len(rest)), key=lambda i: (len(set(rest[i].scope) - have), i))
-        merged = _join(merged, rest.pop(pick), times, max_rows, one)
-    return merged
-
-
-def key_of(positions: list[int]) -> Callable[[tuple[str, ...]], tuple[str, ...]]:
-    """Return a fast row -> sub-row function (itemgetter, always returning a tuple)."""
-    if not positions:
-        return lambda row: ()
-    if len(positions) == 1:
-        p = positions[0]
-        return lambda row: (row[p],)
-    return operator.itemgetter(*positions)
-
-
-@contextlib.contextmanager
-def paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while millions of acyclic rows are built.
-
-    Tables hold only tuples of strings and integers, which reference counting frees; but
-    every collection would still walk the whole loaded library, and at 1000 roles those
-    walks cost more than the elimination itself.
-    """
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.enable()
-
-
-def _join(a: Factor, b: Factor, times: Times, max_rows: int, one: int = 1) -> Factor:
-    """Join two tables; a value equal to ``one`` (the neutral one) is never combined.
-
-    Counts and the first configuration's costs are integers of thousands of digits at
-    10,000 roles, and combining such an integer with the neutral value still copies it;
-    skipping those combinations is most of what joining them costs.
-    """
-    if a.unit and not b.unit:  # keep the valued table on the left: only b may be a filter
-        a, b = b, a
-    shared = [v for v in a.scope if v in b.scope]
-    extra = [v for v in b.scope if v not in a.scope]
-    key_a = key_of([a.scope.index(v) for v in shared])
-    key_b = key_of([b.scope.index(v) for v in shared])
-    rows: dict[tuple[str, ...], int] = {}
-    if not extra:  # b only filters a's rows
-        index = {key_b(row): w for row, w in b.rows.items()}
-        for row, w in a.rows.items():
-            w2 = index.get(key_a(row))
-            if w2 is not None:
-                if b.unit or w2 == one:
-                    rows[row] = w
-                else:
-                    rows[row] = w2 if w == one else times(w, w2)
-        return Factor(a.scope, rows, a.unit and b.unit)
-    tail_b = key_of([b.scope.index(v) for v in extra])
-    grouped: dict[tuple[str, ...], list[tuple[tuple[str, ...], int]]] = defaultdict(list)
-    for row, w in b.rows.items():
-        grouped[key_b(row)].append((tail_b(row), w))
-    for row, w in a.rows.items():
-        if b.unit:
-            for tail, _ in grouped.get(key_a(row), ()):
-                rows[row + tail] = w
-        elif w == one:
-            for tail, w2 in grouped.get(key_a(row), ()):
-                rows[row + tail] = w2
-        else:
-            for tail, w2 in grouped.get(key_a(row), ()):
-                rows[row + tail] = w if w2 == one else times(w, w2)
-        if len(rows) > max_rows:
-            raise TooHard(
-                f"exact elimination needs over {max_rows} rows; the system graph is too "
-                "densely connected"
-            )
-    return Factor((*a.scope, *extra), rows, a.unit and b.unit)

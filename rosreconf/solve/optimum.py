@@ -17,9 +17,7 @@ levels can reach, which keeps the order lexicographic and the arithmetic exact.
 from __future__ import annotations
 
 import operator
-from array import array
 from collections.abc import Callable, Mapping, Sequence
-from itertools import pairwise, product
 
 from rosreconf.model import Configuration
 from rosreconf.solve.factors import (
@@ -29,69 +27,12 @@ from rosreconf.solve.factors import (
     constraint_factors,
     eliminate,
     elimination_order,
-    key_of,
     paused_gc,
 )
-from rosreconf.solve.instance import Instance, prune
+from rosreconf.solve.instance import Instance, interchangeable, prune
+from rosreconf.solve.minout import Trace, join_minimise_out, minimise_out
 
 __all__ = ["MAX_FACTOR_ROWS", "TooHard", "first", "minimise"]
-
-
-class Choices:
-    """Remember, per row of an eliminated role's neighbours, its cheapest candidate; compactly.
-
-    The traceback needs one candidate per row of every table minimising a role out: a
-    million rows at 10,000 roles, which as dictionaries of name tuples took 100 MiB for
-    the whole solve. When the neighbours' candidates make a dense enough grid, the choice
-    is one byte (or two) per grid cell, at the cell's mixed-radix index; else the dictionary
-    is kept as it is.
-
-    Attributes:
-        var: the eliminated role.
-        scope: its neighbours when it was eliminated (the rows' roles, in order).
-    """
-
-    def __init__(
-        self,
-        var: int,
-        scope: tuple[int, ...],
-        arg: dict[tuple[str, ...], str],
-        alive: Sequence[Sequence[str]],
-    ) -> None:
-        self.var = var
-        self.scope = scope
-        self._names = alive[var]
-        self._grid: array[int] | None = None
-        self._arg: dict[tuple[str, ...], str] | None = arg
-        cells = 1
-        for v in scope:
-            cells *= len(alive[v])
-        if cells > 4 * len(arg) + 64:  # sparse: a grid would be larger than the dictionary
-            return
-        code: dict[str | None, int] = {c: j + 1 for j, c in enumerate(self._names)}
-        code[None] = 0  # no row: never read back
-        kind = "B" if len(self._names) < 255 else "I"
-        self._grid = array(
-            kind, map(code.__getitem__, map(arg.get, product(*(alive[v] for v in scope))))
-        )
-        self._arg = None
-
-    def pick(self, chosen: Mapping[int, str], where: Sequence[Mapping[str, int]]) -> str:
-        """Return the remembered candidate for the neighbours' ``chosen`` candidates.
-
-        ``where[v]`` maps role v's surviving candidates to their positions.
-        """
-        if self._arg is not None:
-            return self._arg[tuple(chosen[v] for v in self.scope)]
-        assert self._grid is not None
-        index = 0
-        for v in self.scope:
-            index = index * len(where[v]) + where[v][chosen[v]]
-        return self._names[self._grid[index] - 1]
-
-
-Trace = list[Choices]
-"""Per eliminated role, in elimination order: its cheapest candidate per neighbour row."""
 
 
 def minimise(
@@ -114,7 +55,11 @@ def minimise(
         if any(not a for a in alive):
             return None
         packed, unpack = _pack(alive, costs)
-        found = _minimise(inst, alive, packed.__getitem__, max_rows)
+        costs_of = packed.__getitem__
+        # a class's cheapest member; the earliest (least rank: alive keeps library order) on ties
+        found = _minimise(
+            inst, alive, costs_of, max_rows, lambda r, ms: min(ms, key=costs_of(r).__getitem__)
+        )
     return None if found is None else (found[0], unpack(found[1]))
 
 
@@ -144,7 +89,7 @@ def first(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Configuration | No
             position = {c.name: j for j, c in enumerate(inst.domains[r])}
             return {c: position[c] * weight for c in alive[r]}
 
-        found = _minimise(inst, alive, packed, max_rows)
+        found = _minimise(inst, alive, packed, max_rows, lambda r, ms: ms[0])  # the earliest
     return None if found is None else found[0]
 
 
@@ -153,13 +98,22 @@ def _minimise(
     alive: list[list[str]],
     packed: Callable[[int], Mapping[str, int]],
     max_rows: int,
+    prefer: Callable[[int, list[str]], str],
 ) -> tuple[Configuration, int] | None:
     """Minimise the packed unary costs over the constraint tables; the answer and its total.
 
     ``packed(r)`` gives role r's candidates' costs; it is asked once, when r is eliminated,
     and added to the rows while r is minimised out rather than joined as a table of its
     own: that join copied the largest table of every step once more.
+
+    Only one candidate of each class of interchangeable ones is kept (``interchangeable``):
+    ``prefer(r, members)``, the one of least cost, the earliest on ties. Its rows are the
+    others' rows, so every step picks what it would have picked among all of them.
     """
+    alive = [
+        [prefer(r, members) for members in role]
+        for r, role in enumerate(interchangeable(inst, alive))
+    ]
     factors = constraint_factors(inst, alive, 0, max_rows)
     order = elimination_order([f.scope for f in factors], len(inst.roles))
     rank = {c.name: i for i, c in enumerate(inst.library.components)}
@@ -167,9 +121,12 @@ def _minimise(
     offsets: list[int] = []
 
     def min_out(f: Factor, var: int) -> Factor:
-        return _min_out(f, var, packed(var), rank, trace, offsets, alive)
+        return minimise_out(f, var, packed(var), rank, trace, offsets, alive)
 
-    done = eliminate(factors, order, operator.add, min_out, max_rows, 0)
+    def join_out(a: Factor, b: Factor, var: int, budget: int) -> Factor:
+        return join_minimise_out(a, b, var, packed(var), rank, trace, offsets, alive, budget)
+
+    done = eliminate(factors, order, operator.add, min_out, max_rows, 0, join_out)
     if done is None:
         return None
     scalars, free = done
@@ -185,108 +142,6 @@ def _minimise(
     mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
     return config, sum(scalars) + sum(offsets)
-
-
-def _min_out(
-    f: Factor,
-    var: int,
-    cost: Mapping[str, int],
-    rank: Mapping[str, int],
-    trace: Trace,
-    offsets: list[int],
-    alive: Sequence[Sequence[str]],
-) -> Factor:
-    """Minimise ``var`` out of ``f`` plus its unary ``cost``, keeping the argmin per row.
-
-    The table's least value is taken out of every row and kept in ``offsets`` (the total is
-    their sum plus what is left at the end): rows then hold only how much worse than the
-    best they are. The first configuration's costs weigh each role ``base ** (R - 1 - r)``,
-    integers of thousands of digits at 10,000 roles; their differences are mostly 0, so the
-    tables stay small integers instead of holding thousands of digits per row.
-    """
-    pos = f.scope.index(var)
-    rest = key_of([i for i in range(len(f.scope)) if i != pos])
-    levels = sorted(set(cost.values()))
-    gap = min((b - a for a, b in pairwise(levels)), default=0)
-    if not gap or max(f.rows.values(), default=0) < gap:
-        best, arg = _min_out_dominated(f, pos, rest, cost, levels, rank)
-    else:
-        best, arg = _min_out_added(f, pos, rest, cost, rank)
-    scope = f.scope[:pos] + f.scope[pos + 1 :]
-    trace.append(Choices(var, scope, arg, alive))
-    low = min(best.values(), default=0)
-    if low:
-        offsets.append(low)
-        best = {k: w - low for k, w in best.items()}
-    return Factor(scope, best)
-
-
-Row = tuple[str, ...]
-
-
-def _min_out_added(
-    f: Factor,
-    pos: int,
-    rest: Callable[[Row], Row],
-    cost: Mapping[str, int],
-    rank: Mapping[str, int],
-) -> tuple[dict[Row, int], dict[Row, str]]:
-    """Minimise by adding each row's candidate cost to its value, then comparing."""
-    best: dict[Row, int] = {}
-    arg: dict[Row, str] = {}
-    for row, w in f.rows.items():
-        c = row[pos]
-        extra = cost[c]
-        if extra:  # most candidates' costs are 0 or the row's is: skip copying a big integer
-            w = extra if not w else w + extra
-        k = rest(row)
-        old = best.get(k)
-        if old is None or w < old or (w == old and rank[c] < rank[arg[k]]):
-            best[k] = w
-            arg[k] = c
-    return best, arg
-
-
-def _min_out_dominated(
-    f: Factor,
-    pos: int,
-    rest: Callable[[Row], Row],
-    cost: Mapping[str, int],
-    levels: list[int],
-    rank: Mapping[str, int],
-) -> tuple[dict[Row, int], dict[Row, str]]:
-    """Minimise when the candidate's cost decides: every row value is below the costs' gap.
-
-    Rows hold values >= 0 (offsets are taken out), so when they all stay below the least
-    difference between two candidates' costs, ``cost + value`` orders rows exactly as
-    (cost, value) does; comparing a candidate's cost level (a small integer) first and adding
-    only once per remaining row is what makes the first configuration's thousand-digit
-    costs cheap: they are added once per kept row, not once per row joined.
-    """
-    level = {c: levels.index(u) for c, u in cost.items()}
-    best_level: dict[Row, int] = {}
-    value: dict[Row, int] = {}
-    arg: dict[Row, str] = {}
-    for row, w in f.rows.items():
-        c = row[pos]
-        k = rest(row)
-        old = best_level.get(k)
-        if old is not None:
-            lv = level[c]
-            if lv > old:
-                continue
-            if lv == old:
-                w0 = value[k]
-                if w > w0 or (w == w0 and rank[c] > rank[arg[k]]):
-                    continue
-        best_level[k] = level[c]
-        value[k] = w
-        arg[k] = c
-    best = {}
-    for k, w in value.items():
-        extra = cost[arg[k]]
-        best[k] = (extra if not w else w + extra) if extra else w
-    return best, arg
 
 
 def _pack(
