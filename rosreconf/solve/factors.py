@@ -66,8 +66,13 @@ def constraint_factors(
     table = functools.partial(_table, alive=alive, one=one, max_rows=max_rows)
     lib = inst.library
     out: list[Factor] = []
-    for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
-        out.append(table((u, v), keep=ok.__contains__, rule="edge-realised"))
+    for (u, v), partners in zip(inst.edges, inst.partners, strict=True):
+        # edge_ok by consumer: only the allowed pairs are made, never every pair to test it
+        _check_size((u, v), alive, max_rows)
+        rows = {
+            (a, b): one for a in alive[u] if a in partners for b in alive[v] if b in partners[a]
+        }
+        out.append(Factor((u, v), rows, unit=True, rule="edge-realised"))
     for u in range(len(inst.roles)):
         out.extend(_requirement_factors(inst, u, alive, one, max_rows))
     holders: dict[str, list[int]] = defaultdict(list)
@@ -114,6 +119,13 @@ def _table(
     max_rows: int,
     rule: str,
 ) -> Factor:
+    _check_size(scope, alive, max_rows)
+    rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
+    return Factor(scope, rows, unit=True, rule=rule)
+
+
+def _check_size(scope: tuple[int, ...], alive: list[list[str]], max_rows: int) -> None:
+    """Refuse a table over ``scope`` whose every combination would exceed ``max_rows`` rows."""
     size = 1
     for v in scope:
         size *= len(alive[v])
@@ -122,8 +134,6 @@ def _table(
             f"exact elimination needs a table of {size} rows over {len(scope)} roles; "
             "the system graph is too densely connected"
         )
-    rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
-    return Factor(scope, rows, unit=True, rule=rule)
 
 
 def _distinct(s: tuple[str, ...]) -> bool:
@@ -153,7 +163,7 @@ def _requirement_factors(
     groups: dict[tuple[int, ...], dict[str, list[set[tuple[int, str]]]]] = defaultdict(dict)
     made: dict[int, tuple[tuple[int, ...], set[tuple[int, str]]]] = {}
     for cu in alive[u]:
-        for i in range(len(inst.library[cu].requires)):
+        for i in range(len(inst.interfaces[cu][1])):  # cu's requirements
             pairs = inst.meets[(u, cu, i)]
             found = made.get(id(pairs))  # candidates with one requirement share its pairs
             if found is None:
