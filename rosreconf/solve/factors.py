@@ -69,7 +69,7 @@ def constraint_factors(
     for (u, v), partners in zip(inst.edges, inst.partners, strict=True):
         # edge_ok by consumer: only the allowed pairs are made, never every pair to test it
         _check_size((u, v), alive, max_rows)
-        rows = {
+        rows: dict[tuple[str, ...], int] = {
             (a, b): one for a in alive[u] if a in partners for b in alive[v] if b in partners[a]
         }
         out.append(Factor((u, v), rows, unit=True, rule="edge-realised"))
