@@ -11,9 +11,9 @@ first role left without candidates into a plain-language reason.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Collection
 from dataclasses import dataclass, field
-from itertools import repeat
 
 from rosreconf.model import (
     Component,
@@ -40,8 +40,6 @@ class Instance:
         edges: the (consumer, provider) role indices of the schema's *required* edges, the
             ones every configuration must realise; optional edges are left out (rule
             ``optional-edge`` of ``rosreconf.model.validity.RULES``) and only feed ``meets``.
-        edge_ok: per required edge index, the allowed (consumer candidate, provider
-            candidate) pairs.
         meets: per (role index, candidate, requirement index), the (provider role index,
             provider candidate) pairs meeting that requirement along the role's edges
             (required and optional); candidates of one role with the same requirement share
@@ -49,7 +47,8 @@ class Instance:
         clashes: candidate -> the candidates providing one of its labels with another type
             (symmetric; rule ``one-type-per-label``: never chosen together).
         partners: per required edge index, consumer candidate -> the provider candidates
-            it may be paired with (``edge_ok`` by consumer; candidates with none are absent).
+            it may be paired with, the pairs of which make ``edge_ok`` (candidates with none
+            are absent).
         users: per required edge index, provider candidate -> the consumer candidates that
             may use it (``edge_ok`` by provider).
         interfaces: candidate -> (the numbers of the interfaces it provides, per requirement
@@ -64,7 +63,6 @@ class Instance:
     domains: list[list[Component]]
     excluded: list[dict[str, str]]
     edges: list[tuple[int, int]] = field(default_factory=list)
-    edge_ok: list[set[tuple[str, str]]] = field(default_factory=list)
     meets: dict[tuple[int, str, int], list[tuple[int, str]]] = field(default_factory=dict)
     clashes: dict[str, set[str]] = field(default_factory=dict)
     partners: list[dict[str, set[str]]] = field(default_factory=list)
@@ -72,6 +70,19 @@ class Instance:
     interfaces: dict[str, tuple[frozenset[int], tuple[tuple[int, ...], ...]]] = field(
         default_factory=dict
     )
+
+    @functools.cached_property
+    def edge_ok(self) -> list[set[tuple[str, str]]]:
+        """Return per required edge index, the allowed (consumer, provider) candidate pairs.
+
+        Made from ``partners`` when first asked: clingo's facts, the PDDL and the library
+        analysis read pairs; elimination and pruning read ``partners`` and ``users`` and never
+        pay for a set of every pair (read it, never change it).
+        """
+        return [
+            {(cu, cv) for cu, mates in partners.items() for cv in mates}
+            for partners in self.partners
+        ]
 
     @property
     def role_index(self) -> dict[str, int]:
@@ -131,7 +142,6 @@ def compile_instance(
         inst.edges.append((u, v))
         partners: dict[str, set[str]] = {}
         users: dict[str, set[str]] = {}
-        ok: set[tuple[str, str]] = set()
         for cu in domains[u]:
             wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
             if not wanted:
@@ -139,10 +149,8 @@ def compile_instance(
             mates = {cv.name for cv in domains[v] if not provides[cv.name].isdisjoint(wanted)}
             if mates:
                 partners[cu.name] = mates
-                ok.update(zip(repeat(cu.name), mates))
                 for cv_name in mates:
                     users.setdefault(cv_name, set()).add(cu.name)
-        inst.edge_ok.append(ok)
         inst.partners.append(partners)
         inst.users.append(users)
     for u in range(len(roles)):
