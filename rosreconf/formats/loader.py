@@ -196,7 +196,7 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
         loaded.problems.extend(todo_marks(src))
         structural = list(structure_problems(tree, kind, plain))
         if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
-            structural = value_problems(tree)
+            structural = value_problems(tree, plain)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
