@@ -33,7 +33,8 @@ def content_key(value: Any) -> Hashable:
     """
     kind = type(value)
     if kind is str:
-        return value
+        text: str = value
+        return text
     if kind is dict:
         items = []
         for key, item in value.items():
