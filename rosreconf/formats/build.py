@@ -275,9 +275,16 @@ def _component(node: ys.YNode, seen: Interfaces) -> Component:
     )
 
 
-def build_library(tree: ys.YMapping, name: str) -> ComponentLibrary:
+def build_library(tree: ys.YMapping, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
+    """Build a library file's model; ``seen`` shares interfaces with files built before.
+
+    One ``seen`` for all the library files of a load makes every use of an interface, in
+    any file, the same object: a requirement in one file and the provision meeting it in
+    another then match by identity in every set and dict, without a comparison.
+    """
     items = tree.items
-    seen: Interfaces = {}
+    if seen is None:
+        seen = {}
     return ComponentLibrary(
         name=_text(items["name"]),
         components=tuple([_component(n, seen) for n in _seq(items["components"])]),
