@@ -40,10 +40,10 @@ def content_key(value: Any) -> Hashable:
         for key, item in value.items():
             if type(key) is not str:
                 raise TypeError(f"mapping key {key!r} is not a string")
-            items.append((key, content_key(item)))
+            items.append((key, item if type(item) is str else content_key(item)))
         return (dict, tuple(items))
     if kind is list:
-        return (list, tuple([content_key(item) for item in value]))
+        return (list, tuple([i if type(i) is str else content_key(i) for i in value]))
     hash(value)
     return (kind, value)
 
