@@ -74,24 +74,43 @@ library writes each of its few distinct interfaces many times, and one shared, e
 (frozen) object per distinct interface saves building and hashing a new one each time."""
 
 
-def _interface(node: ys.YNode, seen: Interfaces) -> Interface:
+def _interface(node: ys.YNode, seen: Interfaces, found: _Found) -> Interface:
+    """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
     items = _map(node)
     service = "service" in items
     label = _text(items["service" if service else "topic"])
     key = (service, label, _text(items["type"]))
-    found = seen.get(key)
-    if found is None:
+    interface = seen.get(key)
+    if interface is None:
         kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
-        found = seen[key] = Interface(kind, label, key[2])
-    return found
+        interface = seen[key] = Interface(kind, label, key[2])
+    spec = items.get("qos")
+    if spec is not None:
+        found.qos[label] = QosProfile.from_dict(_plain(spec))
+        found.where[f"qos.{label}"] = spec.span
+    return interface
 
 
-def _requirement(node: ys.YNode, seen: Interfaces) -> Requirement:
+def _requirement(node: ys.YNode, seen: Interfaces, found: _Found) -> Requirement:
     items = _map(node)
     if "any_of" in items:
-        options = tuple(_interface(o, seen) for o in _seq(items["any_of"]))
+        options = tuple([_interface(o, seen, found) for o in _seq(items["any_of"])])
         return Requirement(options, node.span)
-    return Requirement((_interface(node, seen),), node.span)
+    return Requirement((_interface(node, seen, found),), node.span)
+
+
+class _Found:
+    """What building a component's interfaces finds on the way: QoS profiles and positions.
+
+    Interfaces, their QoS and the positions of both are collected in one walk over a
+    component's provisions and requirements (a large library has 35,000 of them).
+    """
+
+    __slots__ = ("qos", "where")
+
+    def __init__(self, where: dict[str, Span]) -> None:
+        self.qos: dict[str, QosProfile] = {}
+        self.where = where
 
 
 def _launch(node: ys.YNode | None) -> RosLaunch | None:
@@ -220,19 +239,16 @@ def _component(node: ys.YNode, seen: Interfaces) -> Component:
         if key in items:
             for n in _seq(items[key]):
                 where[f"{key}.{_text(n)}"] = n.span
+    found = _Found(where)
     provides, requires = _seq(get("provides")), _seq(get("requires"))
-    for key, listed in (("provides", provides), ("requires", requires)):
-        names = _LIST_KEYS[key]
-        for i, n in enumerate(listed):
-            where[names[i] if i < len(names) else sys.intern(f"{key}.{i}")] = n.span
-    qos: dict[str, QosProfile] = {}
-    for n in (*provides, *requires):
-        for option in _seq(_map(n).get("any_of")) or [n]:
-            spec = _map(option).get("qos")
-            if spec is not None:
-                label = _text(_map(option).get("topic", _map(option).get("service")))
-                qos[label] = QosProfile.from_dict(_plain(spec))
-                where[f"qos.{label}"] = spec.span
+    names = _LIST_KEYS["provides"]
+    for i, n in enumerate(provides):
+        where[names[i] if i < len(names) else sys.intern(f"provides.{i}")] = n.span
+    provided = frozenset([_interface(n, seen, found) for n in provides])
+    names = _LIST_KEYS["requires"]
+    for i, n in enumerate(requires):
+        where[names[i] if i < len(names) else sys.intern(f"requires.{i}")] = n.span
+    required = tuple([_requirement(n, seen, found) for n in requires])
     ros = get("ros")
     if ros is not None:
         for i, n in enumerate(_seq(_map(ros).get("args"))):
@@ -241,8 +257,8 @@ def _component(node: ys.YNode, seen: Interfaces) -> Component:
     return Component(
         name=_text(items["name"]),
         abstraction=_text(items["abstraction"]),
-        provides=frozenset([_interface(n, seen) for n in provides]),
-        requires=tuple([_requirement(n, seen) for n in requires]),
+        provides=provided,
+        requires=required,
         failure_probability=(
             float(fp.value) if isinstance(fp, ys.YScalar) and fp.value is not None else None
         ),
@@ -251,7 +267,7 @@ def _component(node: ys.YNode, seen: Interfaces) -> Component:
         schemas=_names(get("schemas")),
         launch=_launch(ros),
         metrics=MappingProxyType(metrics),
-        qos=MappingProxyType(qos),
+        qos=MappingProxyType(found.qos),
         dynamics=dynamics,
         description=_text(get("description")),
         span=node.span,
@@ -259,9 +275,16 @@ def _component(node: ys.YNode, seen: Interfaces) -> Component:
     )
 
 
-def build_library(tree: ys.YMapping, name: str) -> ComponentLibrary:
+def build_library(tree: ys.YMapping, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
+    """Build a library file's model; ``seen`` shares interfaces with files built before.
+
+    One ``seen`` for all the library files of a load makes every use of an interface, in
+    any file, the same object: a requirement in one file and the provision meeting it in
+    another then match by identity in every set and dict, without a comparison.
+    """
     items = tree.items
-    seen: Interfaces = {}
+    if seen is None:
+        seen = {}
     return ComponentLibrary(
         name=_text(items["name"]),
         components=tuple([_component(n, seen) for n in _seq(items["components"])]),

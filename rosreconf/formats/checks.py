@@ -85,6 +85,8 @@ def _names(components: Sequence[Component]) -> Iterator[Problem]:
 
 def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
     for c in library:
+        if not (c.needs or c.excludes):  # most components: nothing to sort or look up
+            continue
         for key, names in (("needs", c.needs), ("excludes", c.excludes)):
             for name in sorted(names):
                 span = c.at(f"{key}.{name}")

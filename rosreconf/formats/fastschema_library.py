@@ -5,7 +5,7 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = '05e9d3a90763bfe99b64c3c7f7d87693d64b37819bcf465a91017fa5a6757954'
+SOURCE = 'f080f95ed9b62a4219da8b0f8cae30f6c5b8fdd71833cdfc7a3afc3f796fe74e'
 VERSION = "2.22.3"
 from decimal import Decimal
 import re
@@ -681,6 +681,10 @@ def validate____defs_name(data, custom_formats={}, name_prefix=None):
         if not REGEX_PATTERNS['^[A-Za-z][A-Za-z0-9_]*$'].search(data):
             raise JsonSchemaValueException("" + (name_prefix or "data") + " must match pattern ^[A-Za-z][A-Za-z0-9_]*$", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='pattern')
     return data
+
+from rosreconf.formats.schemamemo import remember_valid
+validate____defs_interface = remember_valid(validate____defs_interface)
+validate____defs_requirement = remember_valid(validate____defs_requirement)
 
 
 VALIDATE = validate_urn_rosreconf_component_library_1

@@ -5,7 +5,7 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = '12765338de7d575cf56bd5e1d44eabae971129d261be7c2d1628b72c6680f201'
+SOURCE = 'fbf8e221978533803528e47fc24c60790dd4a80bace541cfea7c397898309a4d'
 VERSION = "2.22.3"
 from decimal import Decimal
 import re

@@ -79,7 +79,7 @@ def requirement_problems(components: Sequence[Component]) -> Iterator[Problem]:
     provided = {iface for c in components for iface in c.provides}
     for c in components:
         for i, req in enumerate(c.requires):
-            if any(o in provided for o in req.options):
+            if not provided.isdisjoint(req.options):
                 continue
             verb = "calls" if req.options[0].kind is InterfaceKind.SERVICE else "subscribes to"
             yield Problem(

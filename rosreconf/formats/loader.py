@@ -21,7 +21,7 @@ from pathlib import Path
 
 from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.build import build_library, build_schema
+from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
 from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
 from rosreconf.formats.values import duplicate_edges, value_problems
@@ -176,6 +176,7 @@ def load_sources(sources: Iterable[Source]) -> Loaded:
 
 def _load_sources(sources: Iterable[Source]) -> Loaded:
     loaded = Loaded()
+    interfaces: Interfaces = {}  # shared by every library file (see build_library)
     for src in sources:
         loaded.files.append(src.name)
         if src.size > ys.MAX_BYTES:
@@ -196,14 +197,14 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
         loaded.problems.extend(todo_marks(src))
         structural = list(structure_problems(tree, kind, plain))
         if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
-            structural = value_problems(tree)
+            structural = value_problems(tree, plain)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
             continue
         assert isinstance(tree, ys.YMapping)
         if kind is DocumentKind.LIBRARY:
-            loaded.libraries.append(build_library(tree, src.name))
+            loaded.libraries.append(build_library(tree, src.name, interfaces))
         else:
             loaded.problems.extend(duplicate_edges(tree))
             loaded.schemas.append(build_schema(tree, src.name))

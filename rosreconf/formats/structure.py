@@ -131,12 +131,14 @@ def fast_validator_source(kind: DocumentKind) -> str:
     """Return what ``kind``'s validator code is written from: the Schema's text and tools.
 
     A digest of the JSON Schema as compiled (``without_one_of``'s), fastjsonschema's
-    version and this module's trimming patterns; a shipped module records it as ``SOURCE``.
+    version, this module's trimming patterns and the ``$defs`` it remembers; a shipped
+    module records it as ``SOURCE``.
     """
     compiled = json.dumps(without_one_of(json_schema(kind)), sort_keys=True)
     digest = hashlib.sha256(compiled.encode("utf-8"))
     digest.update(fastjsonschema.VERSION.encode("ascii"))
     digest.update(_ITEM_NAME.pattern.encode("utf-8") + _DEFINITION.pattern.encode("utf-8"))
+    digest.update(" ".join(REMEMBERED).encode("utf-8"))
     return digest.hexdigest()
 
 
@@ -172,10 +174,24 @@ def fast_validator_code(kind: DocumentKind) -> str:
     of the JSON Schema's part it checks (two thirds of the code), which Python had to compile
     (``detailed_exceptions=False``, made for this, fails on a ``const`` in fastjsonschema
     2.22).
+
+    Last, the ``REMEMBERED`` validators are wrapped to check each distinct valid content
+    once (``rosreconf.formats.schemamemo``): the code calls them by their global names.
     """
     code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
     code = _ITEM_NAME.sub('(name_prefix or "data")', code)
-    return _DEFINITION.sub(r"\1None\2", code)
+    code = _DEFINITION.sub(r"\1None\2", code)
+    remembered = [f"validate____defs_{d}" for d in REMEMBERED]
+    remembered = [name for name in remembered if f"\ndef {name}(" in code]
+    if remembered:
+        code += "\n\nfrom rosreconf.formats.schemamemo import remember_valid\n"
+        code += "".join(f"{name} = remember_valid({name})\n" for name in remembered)
+    return code
+
+
+REMEMBERED = ("interface", "requirement")
+"""The ``$defs`` whose valid contents the fast validator checks once (``schemamemo``): a
+large library repeats a few thousand distinct ones tens of thousands of times."""
 
 
 _ITEM_NAME = re.compile(r'\(name_prefix or "data"\) \+ "[^"\n]*"\.format\(\*\*locals\(\)\)')

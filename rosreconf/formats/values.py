@@ -35,10 +35,21 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: ys.YMapping) -> list[Problem]:
-    """Return the problems of a structurally valid component library's numbers and launch values."""
+def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
+    """Return the problems of a structurally valid component library's numbers and launch values.
+
+    ``plain`` is the tree as plain data when the reader built it (``parse_plain``): a
+    component whose plain values ``_clean`` passes has no problem to report, and only the
+    others are walked in the positioned tree, for their positions.
+    """
     problems: list[Problem] = []
-    for component in _items(tree.items.get("components")):
+    components = _items(tree.items.get("components"))
+    fast = plain.get("components") if isinstance(plain, dict) else None
+    if not (isinstance(fast, list) and len(fast) == len(components)):
+        fast = [None] * len(components)
+    for component, values in zip(components, fast, strict=True):
+        if isinstance(values, dict) and _clean(values):
+            continue
         fields = component.items if isinstance(component, ys.YMapping) else {}
         fp = fields.get("failure_probability")
         if isinstance(fp, ys.YScalar):
@@ -54,6 +65,39 @@ def value_problems(tree: ys.YMapping) -> list[Problem]:
             for key, value in params.items.items():
                 problems.extend(_parameter(key, value))
     return problems
+
+
+def _clean(component: dict[str, ys.Plain]) -> bool:
+    """Tell whether a component's plain values give ``value_problems`` nothing to report.
+
+    The same tests as ``_number`` and ``_parameter`` on plain values, without building
+    problems: a comparison with NaN is false, so NaN is never clean. A large library's
+    components are almost all clean, and need no walk through their positioned tree.
+    """
+    if not _within(component.get("failure_probability"), 1.0):
+        return False
+    metrics = component.get("metrics")
+    if isinstance(metrics, dict) and not all(_within(v, MAX_METRIC) for v in metrics.values()):
+        return False
+    ros = component.get("ros")
+    params = ros.get("parameters") if isinstance(ros, dict) else None
+    if isinstance(params, dict):
+        for value in params.values():
+            if isinstance(value, str) and SUBSTITUTION in value:
+                return False
+            if isinstance(value, float) and not math.isfinite(value):
+                return False
+            integer = isinstance(value, int) and not isinstance(value, bool)
+            if integer and not INT32[0] <= value <= INT32[1]:  # type: ignore[operator]
+                return False
+    return True
+
+
+def _within(value: ys.Plain, high: float) -> bool:
+    """Tell whether ``_number`` accepts ``value`` in [0, ``high``] (anything not a number too)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return True
+    return 0.0 <= value <= high
 
 
 def _items(node: ys.YNode | None) -> list[ys.YNode]:
