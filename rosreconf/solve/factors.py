@@ -66,8 +66,13 @@ def constraint_factors(
     table = functools.partial(_table, alive=alive, one=one, max_rows=max_rows)
     lib = inst.library
     out: list[Factor] = []
-    for (u, v), ok in zip(inst.edges, inst.edge_ok, strict=True):
-        out.append(table((u, v), keep=ok.__contains__, rule="edge-realised"))
+    for (u, v), partners in zip(inst.edges, inst.partners, strict=True):
+        # edge_ok by consumer: only the allowed pairs are made, never every pair to test it
+        _check_size((u, v), alive, max_rows)
+        rows: dict[tuple[str, ...], int] = {
+            (a, b): one for a in alive[u] if a in partners for b in alive[v] if b in partners[a]
+        }
+        out.append(Factor((u, v), rows, unit=True, rule="edge-realised"))
     for u in range(len(inst.roles)):
         out.extend(_requirement_factors(inst, u, alive, one, max_rows))
     holders: dict[str, list[int]] = defaultdict(list)
@@ -114,6 +119,13 @@ def _table(
     max_rows: int,
     rule: str,
 ) -> Factor:
+    _check_size(scope, alive, max_rows)
+    rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
+    return Factor(scope, rows, unit=True, rule=rule)
+
+
+def _check_size(scope: tuple[int, ...], alive: list[list[str]], max_rows: int) -> None:
+    """Refuse a table over ``scope`` whose every combination would exceed ``max_rows`` rows."""
     size = 1
     for v in scope:
         size *= len(alive[v])
@@ -122,8 +134,6 @@ def _table(
             f"exact elimination needs a table of {size} rows over {len(scope)} roles; "
             "the system graph is too densely connected"
         )
-    rows = {combo: one for combo in itertools.product(*(alive[v] for v in scope)) if keep(combo)}
-    return Factor(scope, rows, unit=True, rule=rule)
 
 
 def _distinct(s: tuple[str, ...]) -> bool:
@@ -150,16 +160,15 @@ def _requirement_factors(
     table over all of u's providers, but each table is only as wide as one group (usually
     u and one provider: K^2 rows, not K^4).
     """
-    groups: dict[tuple[int, ...], dict[str, list[set[tuple[int, str]]]]] = defaultdict(dict)
-    made: dict[int, tuple[tuple[int, ...], set[tuple[int, str]]]] = {}
+    groups: dict[tuple[int, ...], dict[str, list[_Met]]] = defaultdict(dict)
+    made: dict[int, _Met] = {}
     for cu in alive[u]:
-        for i in range(len(inst.library[cu].requires)):
+        for i in range(len(inst.interfaces[cu][1])):  # cu's requirements
             pairs = inst.meets[(u, cu, i)]
             found = made.get(id(pairs))  # candidates with one requirement share its pairs
             if found is None:
-                found = made[id(pairs)] = (tuple(sorted({v for v, _ in pairs})), set(pairs))
-            roles, allowed = found
-            groups[roles].setdefault(cu, []).append(allowed)
+                found = made[id(pairs)] = _Met(pairs)
+            groups[found.roles].setdefault(cu, []).append(found)
     out = []
     for roles, needs in groups.items():
         scope = (u, *roles)
@@ -168,26 +177,40 @@ def _requirement_factors(
             rows: dict[tuple[str, ...], int] = {}
             for cu in alive[u]:
                 reqs = needs.get(cu)
-                both = set.intersection(*reqs) if reqs else None  # providers meeting all
-                for cv in alive[v]:
-                    if both is None or (v, cv) in both:
-                        rows[(cu, cv)] = one
+                if not reqs:
+                    rows.update(((cu, cv), one) for cv in alive[v])
+                    continue
+                both = set.intersection(*(r.names for r in reqs))  # providers meeting all
+                rows.update(((cu, cv), one) for cv in alive[v] if cv in both)
             out.append(Factor(scope, rows, unit=True, rule="requirement-met"))
             continue
 
         def met(
             s: tuple[str, ...],
             scope: tuple[int, ...] = scope,
-            needs: dict[str, list[set[tuple[int, str]]]] = needs,
+            needs: dict[str, list[_Met]] = needs,
         ) -> bool:
             reqs = needs.get(s[0])
             if not reqs:
                 return True
             have = set(zip(scope[1:], s[1:], strict=True))
-            return all(not have.isdisjoint(r) for r in reqs)
+            return all(not have.isdisjoint(r.pairs) for r in reqs)
 
         out.append(_table(scope, alive, met, one, max_rows, "requirement-met"))
     return out
+
+
+class _Met:
+    """One ``meets`` list as sets: its provider roles, its (role, candidate) pairs, its names.
+
+    Made once per shared list; ``names`` (the candidates alone) is what a requirement met
+    across a single provider role is tested against, without making a pair per test.
+    """
+
+    def __init__(self, pairs: list[tuple[int, str]]) -> None:
+        self.roles = tuple(sorted({v for v, _ in pairs}))
+        self.pairs = set(pairs)
+        self.names = {cv for _, cv in pairs}
 
 
 def elimination_order(scopes: list[tuple[int, ...]], n: int) -> list[int]:

@@ -11,6 +11,7 @@ first role left without candidates into a plain-language reason.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Collection
 from dataclasses import dataclass, field
 
@@ -39,14 +40,20 @@ class Instance:
         edges: the (consumer, provider) role indices of the schema's *required* edges, the
             ones every configuration must realise; optional edges are left out (rule
             ``optional-edge`` of ``rosreconf.model.validity.RULES``) and only feed ``meets``.
-        edge_ok: per required edge index, the allowed (consumer candidate, provider
-            candidate) pairs.
         meets: per (role index, candidate, requirement index), the (provider role index,
             provider candidate) pairs meeting that requirement along the role's edges
             (required and optional); candidates of one role with the same requirement share
             one list (read it, never change it).
         clashes: candidate -> the candidates providing one of its labels with another type
             (symmetric; rule ``one-type-per-label``: never chosen together).
+        partners: per required edge index, consumer candidate -> the provider candidates
+            it may be paired with, the pairs of which make ``edge_ok`` (candidates with none
+            are absent).
+        users: per required edge index, provider candidate -> the consumer candidates that
+            may use it (``edge_ok`` by provider).
+        interfaces: candidate -> (the numbers of the interfaces it provides, per requirement
+            the numbers of its options): equal numbers are equal interfaces, so comparing
+            these compares what the candidates provide and require.
     """
 
     schema: InteroperabilitySchema
@@ -56,9 +63,26 @@ class Instance:
     domains: list[list[Component]]
     excluded: list[dict[str, str]]
     edges: list[tuple[int, int]] = field(default_factory=list)
-    edge_ok: list[set[tuple[str, str]]] = field(default_factory=list)
     meets: dict[tuple[int, str, int], list[tuple[int, str]]] = field(default_factory=dict)
     clashes: dict[str, set[str]] = field(default_factory=dict)
+    partners: list[dict[str, set[str]]] = field(default_factory=list)
+    users: list[dict[str, set[str]]] = field(default_factory=list)
+    interfaces: dict[str, tuple[frozenset[int], tuple[tuple[int, ...], ...]]] = field(
+        default_factory=dict
+    )
+
+    @functools.cached_property
+    def edge_ok(self) -> list[set[tuple[str, str]]]:
+        """Return per required edge index, the allowed (consumer, provider) candidate pairs.
+
+        Made from ``partners`` when first asked: clingo's facts, the PDDL and the library
+        analysis read pairs; elimination and pruning read ``partners`` and ``users`` and never
+        pay for a set of every pair (read it, never change it).
+        """
+        return [
+            {(cu, cv) for cu, mates in partners.items() for cv in mates}
+            for partners in self.partners
+        ]
 
     @property
     def role_index(self) -> dict[str, int]:
@@ -98,14 +122,15 @@ def compile_instance(
     inst = Instance(schema, library, dead, roles, domains, excluded)
     ids: dict[Interface, int] = {}
     provides: dict[str, frozenset[int]] = {}
-    options: dict[str, list[tuple[int, ...]]] = {}
+    options: dict[str, tuple[tuple[int, ...], ...]] = {}
     for dom in domains:
         for c in dom:
             if c.name not in provides:
                 provides[c.name] = frozenset(ids.setdefault(i, len(ids)) for i in c.provides)
-                options[c.name] = [
+                options[c.name] = tuple(
                     tuple(ids.setdefault(o, len(ids)) for o in r.options) for r in c.requires
-                ]
+                )
+                inst.interfaces[c.name] = (provides[c.name], options[c.name])
     _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
@@ -115,12 +140,19 @@ def compile_instance(
         if e.optional:
             continue  # requirements may be met across it (meets, below); it need not be realised
         inst.edges.append((u, v))
-        ok: set[tuple[str, str]] = set()
+        partners: dict[str, set[str]] = {}
+        users: dict[str, set[str]] = {}
         for cu in domains[u]:
             wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
-            if wanted:
-                ok.update((cu.name, cv.name) for cv in domains[v] if provides[cv.name] & wanted)
-        inst.edge_ok.append(ok)
+            if not wanted:
+                continue
+            mates = {cv.name for cv in domains[v] if not provides[cv.name].isdisjoint(wanted)}
+            if mates:
+                partners[cu.name] = mates
+                for cv_name in mates:
+                    users.setdefault(cv_name, set()).add(cu.name)
+        inst.partners.append(partners)
+        inst.users.append(users)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
         # the pairs depend only on the requirement's options: a role's candidates share a
@@ -134,7 +166,9 @@ def compile_instance(
                     for e, v in mine:
                         allowed = {o for o in opts if _allows(e, labels[o])}
                         pairs.extend(
-                            (v, cv.name) for cv in domains[v] if provides[cv.name] & allowed
+                            (v, cv.name)
+                            for cv in domains[v]
+                            if not provides[cv.name].isdisjoint(allowed)
                         )
                 inst.meets[(u, cu.name, i)] = pairs
     return inst
@@ -207,44 +241,42 @@ def interchangeable(inst: Instance, alive: list[list[str]]) -> list[list[list[st
     per role, and each elimination step's table is cubic in that. Classes and their members
     keep ``alive``'s order.
     """
-    lib = inst.library
+    lib = inst.library.by_name
     roles_of: dict[str, int] = {}
     named: set[str] = set(inst.clashes)
     for names in alive:
         for n in names:
             roles_of[n] = roles_of.get(n, 0) + 1
             c = lib[n]
-            named.update(c.needs, c.excludes)
+            if c.needs or c.excludes:
+                named.update(c.needs, c.excludes)
+                named.add(n)
     out: list[list[list[str]]] = []
     for names in alive:
         by_key: dict[object, list[str]] = {}
         for n in names:
-            c = lib[n]
-            alone = n in named or c.needs or c.excludes or roles_of[n] > 1
-            key = n if alone else (c.provides, tuple(r.options for r in c.requires))
+            # compile_instance's interface numbers stand for the interfaces themselves
+            key = n if n in named or roles_of[n] > 1 else inst.interfaces[n]
             by_key.setdefault(key, []).append(n)
         out.append(list(by_key.values()))
     return out
 
 
 class _Support:
-    """Index the edge tables by role and by candidate, so pruning never scans every edge."""
+    """Index the edge tables by role and by candidate, so pruning never scans every edge.
+
+    The candidate indexes are ``compile_instance``'s own (``partners``, ``users``), made
+    while the tables were joined; only the edges touching each role are listed here.
+    """
 
     def __init__(self, inst: Instance) -> None:
         self.incident: list[list[int]] = [[] for _ in inst.roles]
-        self.partners: list[dict[str, set[str]]] = []
-        self.users: list[dict[str, set[str]]] = []
         for k, (eu, ev) in enumerate(inst.edges):
             self.incident[eu].append(k)
             if ev != eu:
                 self.incident[ev].append(k)
-            partners: dict[str, set[str]] = {}
-            users: dict[str, set[str]] = {}
-            for a, b in inst.edge_ok[k]:
-                partners.setdefault(a, set()).add(b)
-                users.setdefault(b, set()).add(a)
-            self.partners.append(partners)
-            self.users.append(users)
+        self.partners = inst.partners
+        self.users = inst.users
 
 
 def _dead_reason(

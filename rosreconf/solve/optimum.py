@@ -149,24 +149,21 @@ def _pack(
 ) -> tuple[list[dict[str, int]], _Unpack]:
     """Pack each candidate's cost tuple into one non-negative integer, order preserved."""
     levels = max((len(t) for m in costs for t in m.values()), default=0)
-
-    def level(r: int, c: str, i: int) -> int:
-        t = costs[r].get(c, ())
-        return t[i] if i < len(t) else 0
-
-    lows = [
-        [min(level(r, c, i) for c in names) for i in range(levels)] for r, names in enumerate(alive)
-    ]
-    spans = [
-        sum(max(level(r, c, i) for c in names) - lows[r][i] for r, names in enumerate(alive))
-        for i in range(levels)
-    ]
+    pad = (0,) * levels
+    # per role, its candidates' cost tuples padded to every level (a missing level costs 0)
+    table = [[(costs[r].get(c, ()) + pad)[:levels] for c in names] for r, names in enumerate(alive)]
+    lows = [list(map(min, zip(*rows, strict=True))) if rows else list(pad) for rows in table]
+    highs = [list(map(max, zip(*rows, strict=True))) if rows else list(pad) for rows in table]
+    spans = [sum(h[i] - lo[i] for h, lo in zip(highs, lows, strict=True)) for i in range(levels)]
     bases = [1] * levels
     for i in range(levels - 2, -1, -1):
         bases[i] = bases[i + 1] * (spans[i + 1] + 1)
     packed = [
-        {c: sum((level(r, c, i) - lows[r][i]) * bases[i] for i in range(levels)) for c in names}
-        for r, names in enumerate(alive)
+        {
+            c: sum((x - low) * base for x, low, base in zip(t, lo, bases, strict=True))
+            for c, t in zip(names, rows, strict=True)
+        }
+        for names, rows, lo in zip(alive, table, lows, strict=True)
     ]
     offsets = [sum(low[i] for low in lows) for i in range(levels)]
     return packed, _Unpack(bases, offsets)

@@ -19,14 +19,18 @@ from __future__ import annotations
 import logging
 from collections.abc import Collection, Iterator
 from dataclasses import dataclass
-
-import clingo
+from typing import TYPE_CHECKING
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.solve.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
 from rosreconf.solve.instance import Instance, compile_instance, explain
 from rosreconf.solve.objective import METRIC_SCALE, Objective, scaled_metric, unary_costs
 from rosreconf.solve.optimum import first, minimise
+
+if TYPE_CHECKING:
+    # clingo is imported where it runs: a first configuration or an optimum that elimination
+    # finds never loads it (issue 12: whole-process time)
+    import clingo
 
 LOG = logging.getLogger(__name__)
 
@@ -99,6 +103,8 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
 
 
 def _control(inst: Instance, objective: Objective | None, args: list[str]) -> clingo.Control:
+    import clingo
+
     ctl = clingo.Control(["--warn=none", *args])
     ctl.add("base", [], PROGRAM + (OPTIMISE if objective is not None else ""))
     ctl.add("base", [], _facts(inst, objective))
@@ -118,6 +124,8 @@ class _Reader:
     """
 
     def __init__(self, inst: Instance) -> None:
+        import clingo
+
         ids = {c.name: i for i, c in enumerate(inst.library.components)}
         self.schema = inst.schema.name
         self.roles = [r.name for r in inst.roles]
