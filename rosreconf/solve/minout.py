@@ -10,11 +10,10 @@ table's least value is taken out into the offsets so that rows stay small intege
 from __future__ import annotations
 
 from array import array
-from collections import defaultdict
 from collections.abc import Callable, Mapping, Sequence
 from itertools import pairwise, product
 
-from rosreconf.solve.tables import Factor, TooHard, key_of
+from rosreconf.solve.tables import Factor, Row, key_of, one_pass, over_budget
 
 __all__ = ["Choices", "Trace", "join_minimise_out", "minimise_out"]
 
@@ -143,18 +142,7 @@ def join_minimise_out(
     both paths give the same minimum and argmin, so the choice changes only the time.
     tests/test_elimination_tables.py holds this to joining then minimising.
     """
-    if a.unit and not b.unit:  # as ``_join``: the valued table on the left
-        a, b = b, a
-    extra = [v for v in b.scope if v not in a.scope]
-    shared = [v for v in a.scope if v in b.scope]
-    key_a = key_of([a.scope.index(v) for v in shared])
-    key_b = key_of([b.scope.index(v) for v in shared])
-    pos = a.scope.index(var)
-    head = key_of([i for i in range(len(a.scope)) if i != pos])
-    tail_b = key_of([b.scope.index(v) for v in extra])
-    grouped: dict[Row, list[tuple[Row, int]]] = defaultdict(list)
-    for row, w in b.rows.items():
-        grouped[key_b(row)].append((tail_b(row), w))
+    a, b, pos, extra, key_a, head, grouped = one_pass(a, b, var)
     levels = sorted(set(cost.values()))
     gap = min((y - x for x, y in pairwise(levels)), default=0)
     top = max(a.rows.values(), default=0) + max(b.rows.values(), default=0)
@@ -168,10 +156,7 @@ def join_minimise_out(
         matches = grouped.get(key_a(row), ())
         joined += len(matches)
         if joined > max_rows and extra:  # the budget of the join it replaces
-            raise TooHard(
-                f"exact elimination needs over {max_rows} rows; the system graph is too "
-                "densely connected"
-            )
+            raise over_budget(max_rows)
         c = row[pos]
         r = rank[c]
         start = head(row)
@@ -209,9 +194,6 @@ def join_minimise_out(
                 best[k] = add if not v else v + add
     scope = (*a.scope[:pos], *a.scope[pos + 1 :], *extra)
     return _reduced(var, scope, best, arg, trace, offsets, alive)
-
-
-Row = tuple[str, ...]
 
 
 def _min_out_added(

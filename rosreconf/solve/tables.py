@@ -16,6 +16,7 @@ import operator
 from collections import defaultdict
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import NamedTuple
 
 from rosreconf.errors import RosreconfError
 
@@ -93,6 +94,55 @@ def _join_all(factors: list[Factor], times: Times, max_rows: int, one: int = 1) 
     return merged if last is None else _join(merged, last, times, max_rows, one)
 
 
+Row = tuple[str, ...]
+"""One row of a table: a candidate name per role of its scope."""
+
+
+class OnePass(NamedTuple):
+    """How a join that takes a role out in the same pass walks its two tables.
+
+    ``join_sum_out`` and ``minout.join_minimise_out`` both walk every row of ``a`` once and
+    only the rows of ``b`` agreeing with it on their shared roles (``grouped`` by those
+    roles' candidates); each result row is ``head(row)`` (``a``'s row without the role
+    taken out, at ``pos``) followed by the tail of the matching ``b`` row (its ``extra``
+    roles, which ``a`` lacks).
+    """
+
+    a: Factor
+    b: Factor
+    pos: int
+    extra: list[int]
+    key_a: Callable[[Row], Row]
+    head: Callable[[Row], Row]
+    grouped: dict[Row, list[tuple[Row, int]]]
+
+
+def one_pass(a: Factor, b: Factor, var: int) -> OnePass:
+    """Lay out a one-pass join of ``a`` and ``b`` taking ``var`` (in ``a``'s scope) out.
+
+    A table of neutral values goes on the right, as in ``_join``: only ``b`` may be a filter.
+    """
+    if a.unit and not b.unit:
+        a, b = b, a
+    extra = [v for v in b.scope if v not in a.scope]
+    shared = [v for v in a.scope if v in b.scope]
+    key_b = key_of([b.scope.index(v) for v in shared])
+    tail_b = key_of([b.scope.index(v) for v in extra])
+    grouped: dict[Row, list[tuple[Row, int]]] = defaultdict(list)
+    for row, w in b.rows.items():
+        grouped[key_b(row)].append((tail_b(row), w))
+    pos = a.scope.index(var)
+    head = key_of([i for i in range(len(a.scope)) if i != pos])
+    return OnePass(a, b, pos, extra, key_of([a.scope.index(v) for v in shared]), head, grouped)
+
+
+def over_budget(max_rows: int) -> TooHard:
+    """Return the error for a join that would pass ``max_rows`` rows (the row budget)."""
+    return TooHard(
+        f"exact elimination needs over {max_rows} rows; the system graph is too densely connected"
+    )
+
+
 def join_sum_out(a: Factor, b: Factor, var: int, max_rows: int) -> Factor:
     """Join two count tables and sum ``var`` out of the result, in one pass.
 
@@ -102,18 +152,7 @@ def join_sum_out(a: Factor, b: Factor, var: int, max_rows: int) -> Factor:
     added into its sub-row. The row budget still counts the joined rows, so a schema too
     densely connected to count exactly is refused exactly where it was before.
     """
-    if a.unit and not b.unit:  # keep the valued table on the left: only b may be a filter
-        a, b = b, a
-    extra = [v for v in b.scope if v not in a.scope]
-    shared = [v for v in a.scope if v in b.scope]
-    key_a = key_of([a.scope.index(v) for v in shared])
-    key_b = key_of([b.scope.index(v) for v in shared])
-    pos = a.scope.index(var)
-    head = key_of([i for i in range(len(a.scope)) if i != pos])
-    tail_b = key_of([b.scope.index(v) for v in extra])
-    grouped: dict[tuple[str, ...], list[tuple[tuple[str, ...], int]]] = defaultdict(list)
-    for row, w in b.rows.items():
-        grouped[key_b(row)].append((tail_b(row), w))
+    a, b, pos, extra, key_a, head, grouped = one_pass(a, b, var)
     rows: dict[tuple[str, ...], int] = defaultdict(int)
     joined = 0
     for row, w in a.rows.items():
@@ -127,10 +166,7 @@ def join_sum_out(a: Factor, b: Factor, var: int, max_rows: int) -> Factor:
                 rows[start + tail] += w2 if w == 1 else w if w2 == 1 else w * w2
         joined += len(matches)
         if joined > max_rows and extra:  # as ``_join``: a filter never grows its table
-            raise TooHard(
-                f"exact elimination needs over {max_rows} rows; the system graph is too "
-                "densely connected"
-            )
+            raise over_budget(max_rows)
     return Factor((*a.scope[:pos], *a.scope[pos + 1 :], *extra), dict(rows))
 
 
@@ -200,8 +236,5 @@ def _join(a: Factor, b: Factor, times: Times, max_rows: int, one: int = 1) -> Fa
             for tail, w2 in grouped.get(key_a(row), ()):
                 rows[row + tail] = w if w2 == one else times(w, w2)
         if len(rows) > max_rows:
-            raise TooHard(
-                f"exact elimination needs over {max_rows} rows; the system graph is too "
-                "densely connected"
-            )
+            raise over_budget(max_rows)
     return Factor((*a.scope, *extra), rows, a.unit and b.unit)
