@@ -94,10 +94,9 @@ def minimise_out(
     """
     pos = f.scope.index(var)
     rest = key_of([i for i in range(len(f.scope)) if i != pos])
-    levels = sorted(set(cost.values()))
-    gap = min((b - a for a, b in pairwise(levels)), default=0)
+    level, gap = _cost_levels(cost)
     if not gap or max(f.rows.values(), default=0) < gap:
-        best, arg = _min_out_dominated(f, pos, rest, cost, levels, rank)
+        best, arg = _min_out_dominated(f, pos, rest, cost, level, rank)
     else:
         best, arg = _min_out_added(f, pos, rest, cost, rank)
     return _reduced(var, f.scope[:pos] + f.scope[pos + 1 :], best, arg, trace, offsets, alive)
@@ -143,10 +142,8 @@ def join_minimise_out(
     tests/test_elimination_tables.py holds this to joining then minimising.
     """
     a, b, pos, extra, key_a, head, grouped = one_pass(a, b, var)
-    levels = sorted(set(cost.values()))
-    gap = min((y - x for x, y in pairwise(levels)), default=0)
+    level, gap = _cost_levels(cost)
     top = max(a.rows.values(), default=0) + max(b.rows.values(), default=0)
-    level = {c: levels.index(u) for c, u in cost.items()}
     dominated = not gap or top < gap
     best_level: dict[Row, int] = {}
     best: dict[Row, int] = {}
@@ -219,12 +216,24 @@ def _min_out_added(
     return best, arg
 
 
+def _cost_levels(cost: Mapping[str, int]) -> tuple[dict[str, int], int]:
+    """Return each candidate's cost level (0 for the least cost) and the least gap between costs.
+
+    The gap is 0 when all costs are equal. While every row value stays below the gap,
+    ``cost + value`` orders rows exactly as (level, value) does: the dominated path's test.
+    """
+    levels = sorted(set(cost.values()))
+    at = {u: i for i, u in enumerate(levels)}
+    gap = min((b - a for a, b in pairwise(levels)), default=0)
+    return {c: at[u] for c, u in cost.items()}, gap
+
+
 def _min_out_dominated(
     f: Factor,
     pos: int,
     rest: Callable[[Row], Row],
     cost: Mapping[str, int],
-    levels: list[int],
+    level: Mapping[str, int],
     rank: Mapping[str, int],
 ) -> tuple[dict[Row, int], dict[Row, str]]:
     """Minimise when the candidate's cost decides: every row value is below the costs' gap.
@@ -235,7 +244,6 @@ def _min_out_dominated(
     only once per remaining row is what makes the first configuration's thousand-digit
     costs cheap: they are added once per kept row, not once per row joined.
     """
-    level = {c: levels.index(u) for c, u in cost.items()}
     best_level: dict[Row, int] = {}
     value: dict[Row, int] = {}
     arg: dict[Row, str] = {}
