@@ -95,6 +95,21 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
     ]
 
 
+def kind_of_plain(plain: ys.Plain) -> DocumentKind | None:
+    """Return the kind a document's plain data claims, or None for ``kind_of`` to report.
+
+    The same answer as ``kind_of`` whenever that finds no problem (a text ``format`` is
+    its own raw text), without a positioned tree; None asks for the tree, to say where the
+    problem is.
+    """
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    if type(fmt) is str:
+        for kind in DocumentKind:
+            if fmt == kind.value:
+                return kind
+    return None
+
+
 # --- structure: JSON Schema, with friendly positioned messages ---------------------------
 
 
@@ -156,6 +171,15 @@ def fast_validator_code(kind: DocumentKind) -> str:
     return schemacode.verdict_code(json_schema(kind))
 
 
+def structure_valid(kind: DocumentKind, plain: ys.Plain) -> bool:
+    """Tell whether ``plain`` satisfies ``kind``'s JSON Schema (no tree needed to say yes).
+
+    ``structure_problems`` (which needs the positioned tree, for positions) reports why
+    when the answer is no.
+    """
+    return fast_validator(kind)(plain)
+
+
 def structure_problems(
     tree: ys.YNode, kind: DocumentKind, plain: ys.Plain | None = None
 ) -> Iterator[Problem]:
@@ -165,7 +189,7 @@ def structure_problems(
     """
     if plain is None:
         plain = ys.to_plain(tree)
-    if fast_validator(kind)(plain):
+    if structure_valid(kind, plain):
         return
     # Invalid: jsonschema finds every error, with paths (imported here: valid files, the
     # common case, never pay its import time).
