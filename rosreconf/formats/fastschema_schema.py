@@ -5,63 +5,68 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = '750e64f0ab1cea69b3056f23669d386abb6c29f9c55eda0555fc81b144d271ea'
+SOURCE = 'd307ab20f27de0d41b4a277e9c66f6598ec1fb415d507f609f384baeeead5619'
 import re
 
 _NUMBER = (int, float)
 _MISSING = object()
-_C0 = frozenset({'environment', 'format', 'name', 'roles', 'skill', 'version'})
-_C1 = frozenset({'edges', 'environment', 'format', 'name', 'nominal', 'roles', 'simulation', 'skill', 'title', 'version'})
-_C2 = re.compile('^[A-Za-z][A-Za-z0-9_]*$').search
-_C3 = set()  # texts _C2 matched
-_C4 = frozenset({'abstraction', 'name'})
-_C5 = frozenset({'abstraction', 'description', 'name'})
-_C6 = frozenset({'consumer', 'providers'})
-_C7 = frozenset({'consumer', 'interfaces', 'optional', 'providers'})
-_C8 = re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$').search
-_C9 = set()  # texts _C8 matched
-_C10 = frozenset({'duration', 'loops'})
-_C11 = frozenset({'duration', 'loops', 'reference', 'requirements'})
-_C12 = frozenset({'forward', 'name', 'plant'})
-_C13 = frozenset({'feedback', 'forward', 'name', 'plant'})
-_C14 = frozenset({'delay', 'state_space', 'transfer_function'})
-_C15 = frozenset({'den', 'num'})
-_C16 = frozenset({'A', 'B', 'C', 'D'})
-_C17 = frozenset({'overshoot', 'settling_time', 'steady_state_error'})
+_C0 = frozenset({'edges', 'environment', 'format', 'name', 'nominal', 'roles', 'simulation', 'skill', 'title', 'version'})
+_C1 = re.compile('^[A-Za-z][A-Za-z0-9_]*$').search
+_C2 = set()  # texts _C1 matched
+_C3 = frozenset({'abstraction', 'description', 'name'})
+_C4 = frozenset({'consumer', 'interfaces', 'optional', 'providers'})
+_C5 = re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$').search
+_C6 = set()  # texts _C5 matched
+_C7 = frozenset({'duration', 'loops', 'reference', 'requirements'})
+_C8 = frozenset({'feedback', 'forward', 'name', 'plant'})
+_C9 = frozenset({'delay', 'state_space', 'transfer_function'})
+_C10 = frozenset({'den', 'num'})
+_C11 = frozenset({'A', 'B', 'C', 'D'})
+_C12 = frozenset({'overshoot', 'settling_time', 'steady_state_error'})
 
 
 def validate(data):
     if not type(data) is dict:
         return False
-    if not data.keys() >= _C0:
+    if not data.keys() <= _C0:
         return False
-    if not data.keys() <= _C1:
+    v1 = data.get('format', _MISSING)
+    if v1 is _MISSING:
         return False
-    v1 = data['format']
     if not (type(v1) is str and v1 == 'rosreconf/interoperability-schema'):
         return False
-    v2 = data['version']
+    v2 = data.get('version', _MISSING)
+    if v2 is _MISSING:
+        return False
     if not (type(v2) in _NUMBER and v2 == 1):
         return False
-    v3 = data['name']
+    v3 = data.get('name', _MISSING)
+    if v3 is _MISSING:
+        return False
     if not type(v3) is str:
         return False
-    if v3 not in _C3:
-        if _C2(v3) is None:
+    if v3 not in _C2:
+        if _C1(v3) is None:
             return False
-        if len(_C3) < 100000:
-            _C3.add(v3)
+        if len(_C2) < 100000:
+            _C2.add(v3)
     v4 = data.get('title', _MISSING)
     if v4 is not _MISSING:
         if not type(v4) is str:
             return False
-    v5 = data['skill']
+    v5 = data.get('skill', _MISSING)
+    if v5 is _MISSING:
+        return False
     if not type(v5) is str:
         return False
-    v6 = data['environment']
+    v6 = data.get('environment', _MISSING)
+    if v6 is _MISSING:
+        return False
     if not type(v6) is str:
         return False
-    v7 = data['roles']
+    v7 = data.get('roles', _MISSING)
+    if v7 is _MISSING:
+        return False
     if not type(v7) is list:
         return False
     if len(v7) < 1:
@@ -69,26 +74,28 @@ def validate(data):
     for v8 in v7:
         if not type(v8) is dict:
             return False
-        if not v8.keys() >= _C4:
+        if not v8.keys() <= _C3:
             return False
-        if not v8.keys() <= _C5:
+        v9 = v8.get('name', _MISSING)
+        if v9 is _MISSING:
             return False
-        v9 = v8['name']
         if not type(v9) is str:
             return False
-        if v9 not in _C3:
-            if _C2(v9) is None:
+        if v9 not in _C2:
+            if _C1(v9) is None:
                 return False
-            if len(_C3) < 100000:
-                _C3.add(v9)
-        v10 = v8['abstraction']
+            if len(_C2) < 100000:
+                _C2.add(v9)
+        v10 = v8.get('abstraction', _MISSING)
+        if v10 is _MISSING:
+            return False
         if not type(v10) is str:
             return False
-        if v10 not in _C3:
-            if _C2(v10) is None:
+        if v10 not in _C2:
+            if _C1(v10) is None:
                 return False
-            if len(_C3) < 100000:
-                _C3.add(v10)
+            if len(_C2) < 100000:
+                _C2.add(v10)
         v11 = v8.get('description', _MISSING)
         if v11 is not _MISSING:
             if not type(v11) is str:
@@ -100,19 +107,21 @@ def validate(data):
         for v13 in v12:
             if not type(v13) is dict:
                 return False
-            if not v13.keys() >= _C6:
+            if not v13.keys() <= _C4:
                 return False
-            if not v13.keys() <= _C7:
+            v14 = v13.get('consumer', _MISSING)
+            if v14 is _MISSING:
                 return False
-            v14 = v13['consumer']
             if not type(v14) is str:
                 return False
-            if v14 not in _C3:
-                if _C2(v14) is None:
+            if v14 not in _C2:
+                if _C1(v14) is None:
                     return False
-                if len(_C3) < 100000:
-                    _C3.add(v14)
-            v15 = v13['providers']
+                if len(_C2) < 100000:
+                    _C2.add(v14)
+            v15 = v13.get('providers', _MISSING)
+            if v15 is _MISSING:
+                return False
             if not type(v15) is list:
                 return False
             if len(v15) < 1:
@@ -120,11 +129,11 @@ def validate(data):
             for v16 in v15:
                 if not type(v16) is str:
                     return False
-                if v16 not in _C3:
-                    if _C2(v16) is None:
+                if v16 not in _C2:
+                    if _C1(v16) is None:
                         return False
-                    if len(_C3) < 100000:
-                        _C3.add(v16)
+                    if len(_C2) < 100000:
+                        _C2.add(v16)
             if len(set(v15)) != len(v15):
                 return False
             v17 = v13.get('interfaces', _MISSING)
@@ -136,11 +145,11 @@ def validate(data):
                 for v18 in v17:
                     if not type(v18) is str:
                         return False
-                    if v18 not in _C9:
-                        if _C8(v18) is None:
+                    if v18 not in _C6:
+                        if _C5(v18) is None:
                             return False
-                        if len(_C9) < 100000:
-                            _C9.add(v18)
+                        if len(_C6) < 100000:
+                            _C6.add(v18)
                 if len(set(v17)) != len(v17):
                     return False
             v19 = v13.get('optional', _MISSING)
@@ -154,28 +163,28 @@ def validate(data):
         for v22 in v20.values():
             if not type(v22) is str:
                 return False
-            if v22 not in _C3:
-                if _C2(v22) is None:
+            if v22 not in _C2:
+                if _C1(v22) is None:
                     return False
-                if len(_C3) < 100000:
-                    _C3.add(v22)
+                if len(_C2) < 100000:
+                    _C2.add(v22)
         for v23 in v20:
             if not type(v23) is str:
                 return False
-            if v23 not in _C3:
-                if _C2(v23) is None:
+            if v23 not in _C2:
+                if _C1(v23) is None:
                     return False
-                if len(_C3) < 100000:
-                    _C3.add(v23)
+                if len(_C2) < 100000:
+                    _C2.add(v23)
     v24 = data.get('simulation', _MISSING)
     if v24 is not _MISSING:
         if not type(v24) is dict:
             return False
-        if not v24.keys() >= _C10:
+        if not v24.keys() <= _C7:
             return False
-        if not v24.keys() <= _C11:
+        v25 = v24.get('loops', _MISSING)
+        if v25 is _MISSING:
             return False
-        v25 = v24['loops']
         if not type(v25) is list:
             return False
         if len(v25) < 1:
@@ -183,19 +192,21 @@ def validate(data):
         for v26 in v25:
             if not type(v26) is dict:
                 return False
-            if not v26.keys() >= _C12:
+            if not v26.keys() <= _C8:
                 return False
-            if not v26.keys() <= _C13:
+            v27 = v26.get('name', _MISSING)
+            if v27 is _MISSING:
                 return False
-            v27 = v26['name']
             if not type(v27) is str:
                 return False
-            if v27 not in _C3:
-                if _C2(v27) is None:
+            if v27 not in _C2:
+                if _C1(v27) is None:
                     return False
-                if len(_C3) < 100000:
-                    _C3.add(v27)
-            v28 = v26['forward']
+                if len(_C2) < 100000:
+                    _C2.add(v27)
+            v28 = v26.get('forward', _MISSING)
+            if v28 is _MISSING:
+                return False
             if not type(v28) is list:
                 return False
             if len(v28) < 1:
@@ -203,29 +214,31 @@ def validate(data):
             for v29 in v28:
                 if not type(v29) is str:
                     return False
-                if v29 not in _C3:
-                    if _C2(v29) is None:
+                if v29 not in _C2:
+                    if _C1(v29) is None:
                         return False
-                    if len(_C3) < 100000:
-                        _C3.add(v29)
+                    if len(_C2) < 100000:
+                        _C2.add(v29)
             if len(set(v28)) != len(v28):
                 return False
-            v30 = v26['plant']
+            v30 = v26.get('plant', _MISSING)
+            if v30 is _MISSING:
+                return False
             if not type(v30) is dict:
                 return False
             if ((not ('transfer_function' not in v30)) + (not ('state_space' not in v30))) != 1:
                 return False
-            if not v30.keys() <= _C14:
+            if not v30.keys() <= _C9:
                 return False
             v31 = v30.get('transfer_function', _MISSING)
             if v31 is not _MISSING:
                 if not type(v31) is dict:
                     return False
-                if not v31.keys() >= _C15:
+                if not v31.keys() <= _C10:
                     return False
-                if not v31.keys() <= _C15:
+                v32 = v31.get('num', _MISSING)
+                if v32 is _MISSING:
                     return False
-                v32 = v31['num']
                 if not type(v32) is list:
                     return False
                 if len(v32) < 1:
@@ -233,7 +246,9 @@ def validate(data):
                 for v33 in v32:
                     if not type(v33) in _NUMBER:
                         return False
-                v34 = v31['den']
+                v34 = v31.get('den', _MISSING)
+                if v34 is _MISSING:
+                    return False
                 if not type(v34) is list:
                     return False
                 if len(v34) < 1:
@@ -245,11 +260,11 @@ def validate(data):
             if v36 is not _MISSING:
                 if not type(v36) is dict:
                     return False
-                if not v36.keys() >= _C16:
+                if not v36.keys() <= _C11:
                     return False
-                if not v36.keys() <= _C16:
+                v37 = v36.get('A', _MISSING)
+                if v37 is _MISSING:
                     return False
-                v37 = v36['A']
                 if not type(v37) is list:
                     return False
                 if len(v37) < 1:
@@ -262,7 +277,9 @@ def validate(data):
                     for v39 in v38:
                         if not type(v39) in _NUMBER:
                             return False
-                v40 = v36['B']
+                v40 = v36.get('B', _MISSING)
+                if v40 is _MISSING:
+                    return False
                 if not type(v40) is list:
                     return False
                 if len(v40) < 1:
@@ -275,7 +292,9 @@ def validate(data):
                     for v42 in v41:
                         if not type(v42) in _NUMBER:
                             return False
-                v43 = v36['C']
+                v43 = v36.get('C', _MISSING)
+                if v43 is _MISSING:
+                    return False
                 if not type(v43) is list:
                     return False
                 if len(v43) < 1:
@@ -288,7 +307,9 @@ def validate(data):
                     for v45 in v44:
                         if not type(v45) in _NUMBER:
                             return False
-                v46 = v36['D']
+                v46 = v36.get('D', _MISSING)
+                if v46 is _MISSING:
+                    return False
                 if not type(v46) is list:
                     return False
                 if len(v46) < 1:
@@ -314,11 +335,11 @@ def validate(data):
                 for v51 in v50:
                     if not type(v51) is str:
                         return False
-                    if v51 not in _C3:
-                        if _C2(v51) is None:
+                    if v51 not in _C2:
+                        if _C1(v51) is None:
                             return False
-                        if len(_C3) < 100000:
-                            _C3.add(v51)
+                        if len(_C2) < 100000:
+                            _C2.add(v51)
                 if len(set(v50)) != len(v50):
                     return False
         v52 = v24.get('reference', _MISSING)
@@ -327,7 +348,9 @@ def validate(data):
                 return False
             if v52 <= 0:
                 return False
-        v53 = v24['duration']
+        v53 = v24.get('duration', _MISSING)
+        if v53 is _MISSING:
+            return False
         if not type(v53) in _NUMBER:
             return False
         if v53 <= 0:
@@ -336,7 +359,7 @@ def validate(data):
         if v54 is not _MISSING:
             if not type(v54) is dict:
                 return False
-            if not v54.keys() <= _C17:
+            if not v54.keys() <= _C12:
                 return False
             v55 = v54.get('settling_time', _MISSING)
             if v55 is not _MISSING:

@@ -232,13 +232,16 @@ def _required(w: _Writer, schema: dict[str, Any], v: str, known: Any, typeset: A
     keys = schema["required"]
     if not isinstance(keys, list) or not all(isinstance(k, str) for k in keys):
         raise Unsupported(f"required {keys!r}")
+    test = _applies(v, "object", known, typeset)
+    if test == "":  # an object for sure: ``_properties`` reads each key it has a schema for
+        keys = [k for k in keys if k not in schema.get("properties", {})]
     if not keys:
         return []
     if len(keys) == 1:
         failing = f"{keys[0]!r} not in {v}"
     else:
         failing = f"not {v}.keys() >= {w.constant(_frozen(keys))}"
-    return _guarded(_applies(v, "object", known, typeset), failing)
+    return _guarded(test, failing)
 
 
 def _properties(w: _Writer, schema: dict[str, Any], v: str, known: Any, typeset: Any) -> list[str]:
@@ -257,10 +260,11 @@ def _properties(w: _Writer, schema: dict[str, Any], v: str, known: Any, typeset:
     for key, sub in properties.items():
         x = w.local()
         inner = _check(w, sub, x, None)
-        if not inner:
+        if key in required and test == "":  # one lookup tells presence and gives the value
+            body += [f"{x} = {v}.get({key!r}, _MISSING)", f"if {x} is _MISSING:"]
+            body += ["    return False", *inner]
+        elif not inner:
             continue
-        if key in required and test == "":  # present: checked before (see KEYWORDS' order)
-            body += [f"{x} = {v}[{key!r}]", *inner]
         else:
             body += [f"{x} = {v}.get({key!r}, _MISSING)", f"if {x} is not _MISSING:"]
             body += _indent(inner)
@@ -371,8 +375,8 @@ GROUPS: tuple[tuple[tuple[str, ...], Any], ...] = (
 )
 """Every keyword written as code (after ``type``, written first), grouped where one writer
 writes several, in the order written: cheap tests of the value itself first, then
-``required`` (so that ``properties`` may read a required key directly), the branches, and
-last the walks into mappings and lists."""
+``required`` (of an object's keys without a schema: ``properties`` tests the others as it
+reads them), the branches, and last the walks into mappings and lists."""
 
 KEYWORDS = frozenset({"type", "$defs"}.union(*(keys for keys, _ in GROUPS)))
 """Every keyword this module knows (besides ``ANNOTATIONS``)."""

@@ -142,11 +142,11 @@ FAST_MODULES = {
 def fast_validator_source(kind: DocumentKind) -> str:
     """Return what ``kind``'s validator code is written from: the Schema and the generator.
 
-    A digest of the JSON Schema and ``schemacode.GENERATOR_VERSION``; a shipped module
-    records it as ``SOURCE``.
+    A digest of the JSON Schema file's bytes (no parsing: every process asks, and a valid
+    document needs nothing else of the file) and ``schemacode.GENERATOR_VERSION``; a
+    shipped module records it as ``SOURCE``.
     """
-    compiled = json.dumps(json_schema(kind), sort_keys=True)
-    digest = hashlib.sha256(compiled.encode("utf-8"))
+    digest = hashlib.sha256(bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_bytes())
     digest.update(schemacode.GENERATOR_VERSION.encode("ascii"))
     return digest.hexdigest()
 
