@@ -47,6 +47,7 @@ def child(folder: str) -> dict[str, float]:
     sources = loader.read_sources(loader.discover([d / "libraries", d / "schemas"]))
     seconds["read"] = clock() - t
     libraries, schemas, problems = [], [], []
+    interfaces: dict[Any, Any] = {}  # shared by every library file, as loader._load_sources
     for src in sources:
         t = clock()
         tree, plain = ys.parse_plain(src.data, src.name)
@@ -58,11 +59,11 @@ def child(folder: str) -> dict[str, float]:
         seconds["structure"] += clock() - t
         t = clock()
         if kind is DocumentKind.LIBRARY:
-            problems += value_problems(tree)
+            problems += value_problems(tree, plain)  # as the loader: plain values first
         seconds["values"] += clock() - t
         t = clock()
         if kind is DocumentKind.LIBRARY:
-            libraries.append(build_library(tree, src.name))
+            libraries.append(build_library(tree, src.name, interfaces))
         else:
             schemas.append(build_schema(tree, src.name))
         seconds["build"] += clock() - t

@@ -21,8 +21,8 @@ COMMITTED_DOT = REPO / "docs" / "img" / "architecture.dot"
 MAX_LINES = 400
 """Every module under rosreconf/ has fewer lines than this."""
 GENERATED = "fastschema_"
-"""Modules a script writes and nobody reads (fastjsonschema's code, held to its generator by
-tests/test_fast_paths.py), exempt from the line limit."""
+"""Modules a script writes and nobody reads (the JSON Schemas as verdict code, held to their
+generator by tests/test_fast_paths.py), exempt from the line limit."""
 PAPER = [
     "Def. 1",
     "Def. 2",

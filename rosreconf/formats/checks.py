@@ -13,15 +13,14 @@ import difflib
 from collections.abc import Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import interfacechecks, simchecks
+from rosreconf.formats import interfacechecks, qoschecks, simchecks
 from rosreconf.model import (
     Component,
     ComponentLibrary,
-    InterfaceKind,
+    Interface,
     InteroperabilitySchema,
     Span,
 )
-from rosreconf.model.qos import QosProfile, incompatibilities
 
 
 def check(
@@ -36,29 +35,96 @@ def check(
     need the whole library (does some component carry this label, provide this interface?)
     are skipped for the schemas: they would only repeat the broken file's problem as
     dozens of false ones.
+
+    A clean library is the common case: each check first decides it on an index built
+    once here (``_Index``: names, labels, the few distinct interfaces) and walks the
+    components one by one only to report what it found, in the same order as ever.
     """
     problems: list[Problem] = []
     components = [c for lib in libraries for c in lib.components]
-    problems.extend(_names(components))
-    problems.extend(p for c in components for p in simchecks.component_problems(c))
+    index = _Index(components)
+    problems.extend(_names(components, index))
+    problems.extend(p for c in index.dynamic for p in simchecks.component_problems(c))
     if components:
-        library = ComponentLibrary.merge(libraries)
-        problems.extend(_couplings(library))
-        problems.extend(interfacechecks.interface_problems(components))
-        problems.extend(interfacechecks.requirement_problems(components))
-        problems.extend(_launch_args(components))
+        problems.extend(_couplings(index))
+        problems.extend(interfacechecks.index_problems(components, index.interfaces))
+        problems.extend(_launch_args(index.launched))
     problems.extend(_schema_names(schemas))
-    known = components if library_complete else []
+    known = index if library_complete else _Index([])
     for schema in schemas:
         problems.extend(_schema(schema, known))
         problems.extend(simchecks.schema_problems(schema))
     if components and schemas and library_complete:
-        problems.extend(_usage(components, schemas))
-        problems.extend(_qos(components, schemas))
+        problems.extend(_usage(components, schemas, index))
+        if index.has_qos:  # a library without qos: is not checked
+            problems.extend(qoschecks.qos_problems(components, schemas))
     return sorted(problems)
 
 
-def _names(components: Sequence[Component]) -> Iterator[Problem]:
+class _Index:
+    """What the checks look up in the library, gathered in one walk over its components.
+
+    A thousand-role library has 10,000 components spread over memory: each separate walk
+    over them costs more than what it tests, so one walk collects what every check needs,
+    and a clean library's checks are decided on these (small) sets.
+
+    Attributes:
+        components: the components, in file order.
+        names: their names, in file order.
+        known: their names, as a set.
+        labels: their abstraction labels.
+        named_schemas: the schemas some component names (``schemas:``).
+        coupled: the components with ``needs`` or ``excludes``.
+        launched: the components with ``ros`` (launch arguments to check).
+        dynamic: the components with dynamics.
+        has_qos: whether some component declares a QoS.
+        interfaces: the distinct interfaces they provide and require.
+        provided_labels: the labels of the interfaces they provide.
+    """
+
+    def __init__(self, components: Sequence[Component]) -> None:
+        self.components = components
+        self.names: list[str] = []
+        self.labels: set[str] = set()
+        self.named_schemas: set[str] = set()
+        self.coupled: list[Component] = []
+        self.launched: list[Component] = []
+        self.dynamic: list[Component] = []
+        self.has_qos = False
+        provided: list[frozenset[Interface]] = []
+        options: list[Interface] = []
+        for c in components:
+            self.names.append(c.name)
+            self.labels.add(c.abstraction)
+            provided.append(c.provides)
+            for r in c.requires:
+                options += r.options
+            if c.needs or c.excludes:
+                self.coupled.append(c)
+            if c.launch is not None:
+                self.launched.append(c)
+            if c.dynamics is not None:
+                self.dynamic.append(c)
+            if c.schemas:
+                self.named_schemas |= c.schemas
+            if c.qos:
+                self.has_qos = True
+        self.known = set(self.names)
+        self.interfaces = interfacechecks.InterfaceIndex(provided, options)
+        self.provided_labels = {i.label for i in self.interfaces.provided}
+        self._by_name: dict[str, Component] | None = None
+
+    @property
+    def by_name(self) -> dict[str, Component]:
+        """Return the components by name (the last of a repeated name), made when first read."""
+        if self._by_name is None:
+            self._by_name = dict(zip(self.names, self.components, strict=True))
+        return self._by_name
+
+
+def _names(components: Sequence[Component], index: _Index) -> Iterator[Problem]:
+    if _unique_names(index):
+        return
     seen: dict[str, Component] = {}
     folded: dict[str, Component] = {}
     for c in components:
@@ -83,10 +149,13 @@ def _names(components: Sequence[Component]) -> Iterator[Problem]:
         folded[c.name.lower()] = c
 
 
-def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
-    for c in library:
-        if not (c.needs or c.excludes):  # most components: nothing to sort or look up
-            continue
+def _unique_names(index: _Index) -> bool:
+    """Tell whether no name is repeated, not even in another letter case (``_names``'s case)."""
+    return len(index.known) == len(index.names) == len({n.lower() for n in index.known})
+
+
+def _couplings(index: _Index) -> Iterator[Problem]:
+    for c in index.coupled:  # most components have no needs or excludes
         for key, names in (("needs", c.needs), ("excludes", c.excludes)):
             for name in sorted(names):
                 span = c.at(f"{key}.{name}")
@@ -97,7 +166,7 @@ def _couplings(library: ComponentLibrary) -> Iterator[Problem]:
                         f"remove '{name}' from {key}",
                         code="self-coupling",
                     )
-                elif name not in library:
+                elif name not in index.known:
                     yield Problem(
                         span,
                         f"{c.name} {key} '{name}', which is not a component of the library",
@@ -145,9 +214,9 @@ def _schema_names(schemas: Sequence[InteroperabilitySchema]) -> Iterator[Problem
         seen.setdefault(s.name, s)
 
 
-def _schema(s: InteroperabilitySchema, components: Sequence[Component]) -> Iterator[Problem]:
-    by_name = {c.name: c for c in components}
-    labels = {c.abstraction for c in components}
+def _schema(s: InteroperabilitySchema, index: _Index) -> Iterator[Problem]:
+    components = index.components
+    labels = index.labels
     roles: dict[str, Span] = {}
     for role in s.graph.roles:
         if role.name in roles:
@@ -167,7 +236,7 @@ def _schema(s: InteroperabilitySchema, components: Sequence[Component]) -> Itera
                 _closest("abstraction labels in the library", role.abstraction, labels),
                 code="unknown-abstraction",
             )
-    provided = {iface.label for c in components for iface in c.provides}
+    provided = index.provided_labels
     for e in s.graph.edges:
         for end in (e.consumer, e.provider):
             if end not in roles:
@@ -193,14 +262,13 @@ def _schema(s: InteroperabilitySchema, components: Sequence[Component]) -> Itera
                     "fix the label, or remove it from interfaces",
                     code="unknown-interface",
                 )
-    yield from _nominal(s, roles, by_name)
+    yield from _nominal(s, roles, index)
 
 
-def _nominal(
-    s: InteroperabilitySchema, roles: dict[str, Span], by_name: dict[str, Component]
-) -> Iterator[Problem]:
+def _nominal(s: InteroperabilitySchema, roles: dict[str, Span], index: _Index) -> Iterator[Problem]:
     if not s.nominal:
         return
+    by_name = index.by_name
     needs: dict[str, str] = {}  # each role's label, as graph.role() (a scan: n^2 here) gives
     for r in s.graph.roles:
         needs.setdefault(r.name, r.abstraction)
@@ -240,10 +308,12 @@ def _nominal(
 
 
 def _usage(
-    components: Sequence[Component], schemas: Sequence[InteroperabilitySchema]
+    components: Sequence[Component], schemas: Sequence[InteroperabilitySchema], index: _Index
 ) -> Iterator[Problem]:
     names = {s.name for s in schemas}
     used = {r.abstraction for s in schemas for r in s.graph.roles}
+    if _all_used(index, names, used):
+        return
     for c in components:
         for name in sorted(c.schemas - names):
             yield Problem(
@@ -263,74 +333,9 @@ def _usage(
             )
 
 
-def _qos(
-    components: Sequence[Component], schemas: Sequence[InteroperabilitySchema]
-) -> Iterator[Problem]:
-    """Report topic edges whose publisher's QoS cannot serve the subscription's (ROS 2).
-
-    Only where one side declares a QoS (the other then has the rmw default): a library
-    without ``qos:`` is not checked. For each schema edge, every provider and consumer
-    candidate pair sharing a topic is checked with ``rosreconf.model.qos.incompatibilities``
-    (rmw's rule): an error when the schema's nominal configuration chooses the pair (it would
-    run and exchange nothing), a warning otherwise (configurations choosing it are useless).
-    """
-    if not any(c.qos for c in components):
-        return
-    for schema in schemas:
-        fit: dict[str, list[Component]] = {
-            r.name: [
-                c
-                for c in components
-                if c.abstraction == r.abstraction and c.may_serve_in(schema.name)
-            ]
-            for r in schema.graph.roles
-        }
-        nominal = dict(schema.nominal)
-        for edge in schema.graph.edges:
-            for provider in fit.get(edge.provider, []):
-                for consumer in fit.get(edge.consumer, []):
-                    chosen = (
-                        nominal.get(edge.provider) == provider.name
-                        and nominal.get(edge.consumer) == consumer.name
-                    )
-                    yield from _qos_pair(schema, edge.provider, provider, consumer, chosen)
-
-
-def _qos_pair(
-    schema: InteroperabilitySchema,
-    role: str,
-    provider: Component,
-    consumer: Component,
-    chosen: bool,
-) -> Iterator[Problem]:
-    """Check the topics ``consumer`` subscribes that ``provider`` publishes."""
-    for req in consumer.requires:
-        for option in req.options:
-            if option.kind is not InterfaceKind.TOPIC or option not in provider.provides:
-                continue
-            label = option.label
-            if label not in provider.qos and label not in consumer.qos:
-                continue
-            offered = provider.qos.get(label, QosProfile())
-            requested = consumer.qos.get(label, QosProfile())
-            why = incompatibilities(offered, requested)
-            if not why:
-                continue
-            where = consumer.at(f"qos.{label}") if label in consumer.qos else req.span
-            if chosen:
-                scope = f"the nominal configuration of {schema.name}"
-            else:
-                scope = f"any configuration of {schema.name} choosing both"
-            yield Problem(
-                where,
-                f"topic '{label}': {provider.name} ({role}) offers QoS [{offered}] but "
-                f"{consumer.name} requests [{requested}]: "
-                f"{'; '.join(w.message for w in why)}; in {scope} no messages would flow",
-                "make the publisher offer at least what the subscription requests "
-                "(rmw's QoS compatibility rule), or relax the subscription's qos",
-                "qos-incompatible",
-                Severity.ERROR if chosen else Severity.WARNING,
-            )
+def _all_used(index: _Index, names: set[str], used: set[str]) -> bool:
+    """Tell whether every schema a component names exists and every abstraction is used."""
+    return index.named_schemas <= names and index.labels <= used
 
 
 def _closest(what: str, name: str, choices: set[str]) -> str:

@@ -1,690 +1,622 @@
-"""fastjsonschema's code for component-library.schema.json: written by
+"""The verdict of component-library.schema.json as code: written by
 scripts/fast_validators.py, do not edit (see structure.fast_validator).
 """
 
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = 'f080f95ed9b62a4219da8b0f8cae30f6c5b8fdd71833cdfc7a3afc3f796fe74e'
-VERSION = "2.22.3"
-from decimal import Decimal
+SOURCE = '7fe5490eac7c9f8a86b76bd69736c4e82258927dfeb3fa6c626f3c3de0422356'
 import re
-from fastjsonschema import JsonSchemaValueException, JsonSchemaValuesException
+
+_NUMBER = (int, float)
+_MISSING = object()
+_C0 = frozenset({'components', 'description', 'format', 'name', 'version'})
+_C1 = re.compile('^[A-Za-z][A-Za-z0-9_]*$').search
+_C2 = set()  # texts _C1 matched
+_C3 = frozenset({'abstraction', 'description', 'dynamics', 'excludes', 'failure_probability', 'metrics', 'name', 'needs', 'provides', 'requires', 'ros', 'schemas'})
+_C4 = frozenset({'qos', 'service', 'topic', 'type'})
+_C5 = re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$').search
+_C6 = set()  # texts _C5 matched
+_C7 = re.compile('^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*$').search
+_C8 = set()  # texts _C7 matched
+_C9 = frozenset({'deadline', 'depth', 'durability', 'lease_duration', 'liveliness', 'reliability'})
+_C10 = frozenset({'best_effort', 'reliable'})
+_C11 = frozenset({'transient_local', 'volatile'})
+_C12 = frozenset({'automatic', 'manual_by_topic'})
+_C13 = frozenset({'any_of'})
+_C14 = frozenset({'args', 'executable', 'lifecycle', 'namespace', 'node', 'package', 'parameters', 'remappings'})
+_C15 = re.compile('^[A-Za-z0-9_.\\-]+$').search
+_C16 = set()  # texts _C15 matched
+_C17 = frozenset({'substitution'})
+_C18 = frozenset({'delay', 'state_space', 'transfer_function'})
+_C19 = frozenset({'den', 'num'})
+_C20 = frozenset({'A', 'B', 'C', 'D'})
 
 
-REGEX_PATTERNS = {
-    '^[A-Za-z0-9_.\\-]+$': re.compile('^[A-Za-z0-9_.\\-]+\\Z'),
-    '^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$': re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*\\Z'),
-    '^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*$': re.compile('^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*\\Z'),
-    '^[A-Za-z][A-Za-z0-9_]*$': re.compile('^[A-Za-z][A-Za-z0-9_]*\\Z')
-}
-
-NoneType = type(None)
-
-def validate_urn_rosreconf_component_library_1(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (dict)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    data_is_dict = isinstance(data, dict)
-    if data_is_dict:
-        data__missing_keys = set(['format', 'version', 'name', 'components']) - data.keys()
-        if data__missing_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-        data_keys = set(data.keys())
-        if "format" in data_keys:
-            data_keys.remove("format")
-            data__format = data["format"]
-            if not (isinstance(data__format, str) and data__format == 'rosreconf/component-library'):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".format must be same as const definition: rosreconf/component-library", value=data__format, name="" + (name_prefix or "data") + ".format", definition=None, rule='const')
-        if "version" in data_keys:
-            data_keys.remove("version")
-            data__version = data["version"]
-            if not (isinstance(data__version, (int, float)) and not isinstance(data__version, bool) and data__version == 1):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".version must be same as const definition: 1", value=data__version, name="" + (name_prefix or "data") + ".version", definition=None, rule='const')
-        if "name" in data_keys:
-            data_keys.remove("name")
-            data__name = data["name"]
-            validate____defs_name(data__name, custom_formats, (name_prefix or "data") + ".name")
-        if "description" in data_keys:
-            data_keys.remove("description")
-            data__description = data["description"]
-            if not isinstance(data__description, (str)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".description must be string", value=data__description, name="" + (name_prefix or "data") + ".description", definition=None, rule='type')
-        if "components" in data_keys:
-            data_keys.remove("components")
-            data__components = data["components"]
-            if not isinstance(data__components, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".components must be array", value=data__components, name="" + (name_prefix or "data") + ".components", definition=None, rule='type')
-            data__components_is_list = isinstance(data__components, (list, tuple))
-            if data__components_is_list:
-                data__components_len = len(data__components)
-                if data__components_len < 1:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".components must contain at least 1 items", value=data__components, name="" + (name_prefix or "data") + ".components", definition=None, rule='minItems')
-                for data__components_x, data__components_item in enumerate(data__components):
-                    validate____defs_component(data__components_item, custom_formats, (name_prefix or "data"))
-        if data_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-    return data
-
-def validate____defs_component(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (dict)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    data_is_dict = isinstance(data, dict)
-    if data_is_dict:
-        data__missing_keys = set(['name', 'abstraction']) - data.keys()
-        if data__missing_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-        data_keys = set(data.keys())
-        if "name" in data_keys:
-            data_keys.remove("name")
-            data__name = data["name"]
-            validate____defs_name(data__name, custom_formats, (name_prefix or "data") + ".name")
-        if "abstraction" in data_keys:
-            data_keys.remove("abstraction")
-            data__abstraction = data["abstraction"]
-            validate____defs_name(data__abstraction, custom_formats, (name_prefix or "data") + ".abstraction")
-        if "description" in data_keys:
-            data_keys.remove("description")
-            data__description = data["description"]
-            if not isinstance(data__description, (str)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".description must be string", value=data__description, name="" + (name_prefix or "data") + ".description", definition=None, rule='type')
-        if "provides" in data_keys:
-            data_keys.remove("provides")
-            data__provides = data["provides"]
-            if not isinstance(data__provides, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".provides must be array", value=data__provides, name="" + (name_prefix or "data") + ".provides", definition=None, rule='type')
-            data__provides_is_list = isinstance(data__provides, (list, tuple))
-            if data__provides_is_list:
-                data__provides_len = len(data__provides)
-                for data__provides_x, data__provides_item in enumerate(data__provides):
-                    validate____defs_interface(data__provides_item, custom_formats, (name_prefix or "data"))
-        if "requires" in data_keys:
-            data_keys.remove("requires")
-            data__requires = data["requires"]
-            if not isinstance(data__requires, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".requires must be array", value=data__requires, name="" + (name_prefix or "data") + ".requires", definition=None, rule='type')
-            data__requires_is_list = isinstance(data__requires, (list, tuple))
-            if data__requires_is_list:
-                data__requires_len = len(data__requires)
-                for data__requires_x, data__requires_item in enumerate(data__requires):
-                    validate____defs_requirement(data__requires_item, custom_formats, (name_prefix or "data"))
-        if "failure_probability" in data_keys:
-            data_keys.remove("failure_probability")
-            data__failureprobability = data["failure_probability"]
-            if not isinstance(data__failureprobability, (int, float, Decimal)) or isinstance(data__failureprobability, bool):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".failure_probability must be number", value=data__failureprobability, name="" + (name_prefix or "data") + ".failure_probability", definition=None, rule='type')
-            if isinstance(data__failureprobability, (int, float, Decimal)) and not isinstance(data__failureprobability, bool):
-                if data__failureprobability < 0:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".failure_probability must be bigger than or equal to 0", value=data__failureprobability, name="" + (name_prefix or "data") + ".failure_probability", definition=None, rule='minimum')
-                if data__failureprobability > 1:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".failure_probability must be smaller than or equal to 1", value=data__failureprobability, name="" + (name_prefix or "data") + ".failure_probability", definition=None, rule='maximum')
-        if "needs" in data_keys:
-            data_keys.remove("needs")
-            data__needs = data["needs"]
-            if not isinstance(data__needs, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".needs must be array", value=data__needs, name="" + (name_prefix or "data") + ".needs", definition=None, rule='type')
-            data__needs_is_list = isinstance(data__needs, (list, tuple))
-            if data__needs_is_list:
-                def fn(var): return frozenset(dict((k, fn(v)) for k, v in var.items()).items()) if hasattr(var, "items") else tuple(fn(v) for v in var) if isinstance(var, (dict, list)) else (bool, var) if isinstance(var, bool) else var
-                data__needs_len = len(data__needs)
-                if data__needs_len > len(set(fn(data__needs_x) for data__needs_x in data__needs)):
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".needs must contain unique items", value=data__needs, name="" + (name_prefix or "data") + ".needs", definition=None, rule='uniqueItems')
-                for data__needs_x, data__needs_item in enumerate(data__needs):
-                    validate____defs_name(data__needs_item, custom_formats, (name_prefix or "data"))
-        if "excludes" in data_keys:
-            data_keys.remove("excludes")
-            data__excludes = data["excludes"]
-            if not isinstance(data__excludes, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".excludes must be array", value=data__excludes, name="" + (name_prefix or "data") + ".excludes", definition=None, rule='type')
-            data__excludes_is_list = isinstance(data__excludes, (list, tuple))
-            if data__excludes_is_list:
-                def fn(var): return frozenset(dict((k, fn(v)) for k, v in var.items()).items()) if hasattr(var, "items") else tuple(fn(v) for v in var) if isinstance(var, (dict, list)) else (bool, var) if isinstance(var, bool) else var
-                data__excludes_len = len(data__excludes)
-                if data__excludes_len > len(set(fn(data__excludes_x) for data__excludes_x in data__excludes)):
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".excludes must contain unique items", value=data__excludes, name="" + (name_prefix or "data") + ".excludes", definition=None, rule='uniqueItems')
-                for data__excludes_x, data__excludes_item in enumerate(data__excludes):
-                    validate____defs_name(data__excludes_item, custom_formats, (name_prefix or "data"))
-        if "schemas" in data_keys:
-            data_keys.remove("schemas")
-            data__schemas = data["schemas"]
-            if not isinstance(data__schemas, (list, tuple)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".schemas must be array", value=data__schemas, name="" + (name_prefix or "data") + ".schemas", definition=None, rule='type')
-            data__schemas_is_list = isinstance(data__schemas, (list, tuple))
-            if data__schemas_is_list:
-                def fn(var): return frozenset(dict((k, fn(v)) for k, v in var.items()).items()) if hasattr(var, "items") else tuple(fn(v) for v in var) if isinstance(var, (dict, list)) else (bool, var) if isinstance(var, bool) else var
-                data__schemas_len = len(data__schemas)
-                if data__schemas_len > len(set(fn(data__schemas_x) for data__schemas_x in data__schemas)):
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".schemas must contain unique items", value=data__schemas, name="" + (name_prefix or "data") + ".schemas", definition=None, rule='uniqueItems')
-                for data__schemas_x, data__schemas_item in enumerate(data__schemas):
-                    validate____defs_name(data__schemas_item, custom_formats, (name_prefix or "data"))
-        if "ros" in data_keys:
-            data_keys.remove("ros")
-            data__ros = data["ros"]
-            if not isinstance(data__ros, (dict)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros must be object", value=data__ros, name="" + (name_prefix or "data") + ".ros", definition=None, rule='type')
-            data__ros_is_dict = isinstance(data__ros, dict)
-            if data__ros_is_dict:
-                data__ros__missing_keys = set(['package', 'executable']) - data__ros.keys()
-                if data__ros__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros must contain " + (str(sorted(data__ros__missing_keys)) + " properties"), value=data__ros, name="" + (name_prefix or "data") + ".ros", definition=None, rule='required')
-                data__ros_keys = set(data__ros.keys())
-                if "package" in data__ros_keys:
-                    data__ros_keys.remove("package")
-                    data__ros__package = data__ros["package"]
-                    validate____defs_name(data__ros__package, custom_formats, (name_prefix or "data") + ".ros.package")
-                if "executable" in data__ros_keys:
-                    data__ros_keys.remove("executable")
-                    data__ros__executable = data__ros["executable"]
-                    if not isinstance(data__ros__executable, (str)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.executable must be string", value=data__ros__executable, name="" + (name_prefix or "data") + ".ros.executable", definition=None, rule='type')
-                    if isinstance(data__ros__executable, str):
-                        if not REGEX_PATTERNS['^[A-Za-z0-9_.\\-]+$'].search(data__ros__executable):
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.executable must match pattern ^[A-Za-z0-9_.\\-]+$", value=data__ros__executable, name="" + (name_prefix or "data") + ".ros.executable", definition=None, rule='pattern')
-                if "namespace" in data__ros_keys:
-                    data__ros_keys.remove("namespace")
-                    data__ros__namespace = data__ros["namespace"]
-                    validate____defs_label(data__ros__namespace, custom_formats, (name_prefix or "data") + ".ros.namespace")
-                if "node" in data__ros_keys:
-                    data__ros_keys.remove("node")
-                    data__ros__node = data__ros["node"]
-                    validate____defs_name(data__ros__node, custom_formats, (name_prefix or "data") + ".ros.node")
-                if "parameters" in data__ros_keys:
-                    data__ros_keys.remove("parameters")
-                    data__ros__parameters = data__ros["parameters"]
-                    if not isinstance(data__ros__parameters, (dict)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.parameters must be object", value=data__ros__parameters, name="" + (name_prefix or "data") + ".ros.parameters", definition=None, rule='type')
-                    data__ros__parameters_is_dict = isinstance(data__ros__parameters, dict)
-                    if data__ros__parameters_is_dict:
-                        data__ros__parameters_keys = set(data__ros__parameters.keys())
-                        for data__ros__parameters_key in data__ros__parameters_keys:
-                            if data__ros__parameters_key not in []:
-                                data__ros__parameters_value = data__ros__parameters.get(data__ros__parameters_key)
-                                data__ros__parameters_value_any_of_count1 = 0
-                                if not data__ros__parameters_value_any_of_count1:
-                                    try:
-                                        validate____defs_scalar(data__ros__parameters_value, custom_formats, (name_prefix or "data"))
-                                        data__ros__parameters_value_any_of_count1 += 1
-                                    except (JsonSchemaValueException, JsonSchemaValuesException): pass
-                                if not data__ros__parameters_value_any_of_count1:
-                                    try:
-                                        if not isinstance(data__ros__parameters_value, (dict)):
-                                            raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data__ros__parameters_value, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                                        data__ros__parameters_value_is_dict = isinstance(data__ros__parameters_value, dict)
-                                        if data__ros__parameters_value_is_dict:
-                                            data__ros__parameters_value__missing_keys = set(['substitution']) - data__ros__parameters_value.keys()
-                                            if data__ros__parameters_value__missing_keys:
-                                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__ros__parameters_value__missing_keys)) + " properties"), value=data__ros__parameters_value, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-                                            data__ros__parameters_value_keys = set(data__ros__parameters_value.keys())
-                                            if "substitution" in data__ros__parameters_value_keys:
-                                                data__ros__parameters_value_keys.remove("substitution")
-                                                data__ros__parameters_value__substitution = data__ros__parameters_value["substitution"]
-                                                if not isinstance(data__ros__parameters_value__substitution, (str)):
-                                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string", value=data__ros__parameters_value__substitution, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                                                if isinstance(data__ros__parameters_value__substitution, str):
-                                                    data__ros__parameters_value__substitution_len = len(data__ros__parameters_value__substitution)
-                                                    if data__ros__parameters_value__substitution_len < 1:
-                                                        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be longer than or equal to 1 characters", value=data__ros__parameters_value__substitution, name="" + (name_prefix or "data") + "", definition=None, rule='minLength')
-                                            if data__ros__parameters_value_keys:
-                                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data__ros__parameters_value_keys)+" properties", value=data__ros__parameters_value, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-                                        data__ros__parameters_value_any_of_count1 += 1
-                                    except (JsonSchemaValueException, JsonSchemaValuesException): pass
-                                if not data__ros__parameters_value_any_of_count1:
-                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " cannot be validated by any definition", value=data__ros__parameters_value, name="" + (name_prefix or "data") + "", definition=None, rule='anyOf')
-                        data__ros__parameters_len = len(data__ros__parameters)
-                        if data__ros__parameters_len != 0:
-                            data__ros__parameters_property_names = True
-                            for data__ros__parameters_key in data__ros__parameters:
-                                try:
-                                    validate____defs_name(data__ros__parameters_key, custom_formats, (name_prefix or "data") + ".ros.parameters")
-                                except (JsonSchemaValueException, JsonSchemaValuesException):
-                                    data__ros__parameters_property_names = False
-                            if not data__ros__parameters_property_names:
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.parameters must be named by propertyName definition", value=data__ros__parameters, name="" + (name_prefix or "data") + ".ros.parameters", definition=None, rule='propertyNames')
-                if "remappings" in data__ros_keys:
-                    data__ros_keys.remove("remappings")
-                    data__ros__remappings = data__ros["remappings"]
-                    if not isinstance(data__ros__remappings, (dict)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.remappings must be object", value=data__ros__remappings, name="" + (name_prefix or "data") + ".ros.remappings", definition=None, rule='type')
-                    data__ros__remappings_is_dict = isinstance(data__ros__remappings, dict)
-                    if data__ros__remappings_is_dict:
-                        data__ros__remappings_keys = set(data__ros__remappings.keys())
-                        for data__ros__remappings_key in data__ros__remappings_keys:
-                            if data__ros__remappings_key not in []:
-                                data__ros__remappings_value = data__ros__remappings.get(data__ros__remappings_key)
-                                validate____defs_label(data__ros__remappings_value, custom_formats, (name_prefix or "data"))
-                        data__ros__remappings_len = len(data__ros__remappings)
-                        if data__ros__remappings_len != 0:
-                            data__ros__remappings_property_names = True
-                            for data__ros__remappings_key in data__ros__remappings:
-                                try:
-                                    validate____defs_label(data__ros__remappings_key, custom_formats, (name_prefix or "data") + ".ros.remappings")
-                                except (JsonSchemaValueException, JsonSchemaValuesException):
-                                    data__ros__remappings_property_names = False
-                            if not data__ros__remappings_property_names:
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.remappings must be named by propertyName definition", value=data__ros__remappings, name="" + (name_prefix or "data") + ".ros.remappings", definition=None, rule='propertyNames')
-                if "lifecycle" in data__ros_keys:
-                    data__ros_keys.remove("lifecycle")
-                    data__ros__lifecycle = data__ros["lifecycle"]
-                    if not isinstance(data__ros__lifecycle, (bool)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.lifecycle must be boolean", value=data__ros__lifecycle, name="" + (name_prefix or "data") + ".ros.lifecycle", definition=None, rule='type')
-                if "args" in data__ros_keys:
-                    data__ros_keys.remove("args")
-                    data__ros__args = data__ros["args"]
-                    if not isinstance(data__ros__args, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros.args must be array", value=data__ros__args, name="" + (name_prefix or "data") + ".ros.args", definition=None, rule='type')
-                    data__ros__args_is_list = isinstance(data__ros__args, (list, tuple))
-                    if data__ros__args_is_list:
-                        data__ros__args_len = len(data__ros__args)
-                        for data__ros__args_x, data__ros__args_item in enumerate(data__ros__args):
-                            if not isinstance(data__ros__args_item, (str)):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string", value=data__ros__args_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if data__ros_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".ros must not contain "+str(data__ros_keys)+" properties", value=data__ros, name="" + (name_prefix or "data") + ".ros", definition=None, rule='additionalProperties')
-        if "metrics" in data_keys:
-            data_keys.remove("metrics")
-            data__metrics = data["metrics"]
-            if not isinstance(data__metrics, (dict)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".metrics must be object", value=data__metrics, name="" + (name_prefix or "data") + ".metrics", definition=None, rule='type')
-            data__metrics_is_dict = isinstance(data__metrics, dict)
-            if data__metrics_is_dict:
-                data__metrics_keys = set(data__metrics.keys())
-                for data__metrics_key in data__metrics_keys:
-                    if data__metrics_key not in []:
-                        data__metrics_value = data__metrics.get(data__metrics_key)
-                        if not isinstance(data__metrics_value, (int, float, Decimal)) or isinstance(data__metrics_value, bool):
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__metrics_value, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                data__metrics_len = len(data__metrics)
-                if data__metrics_len != 0:
-                    data__metrics_property_names = True
-                    for data__metrics_key in data__metrics:
-                        try:
-                            validate____defs_name(data__metrics_key, custom_formats, (name_prefix or "data") + ".metrics")
-                        except (JsonSchemaValueException, JsonSchemaValuesException):
-                            data__metrics_property_names = False
-                    if not data__metrics_property_names:
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".metrics must be named by propertyName definition", value=data__metrics, name="" + (name_prefix or "data") + ".metrics", definition=None, rule='propertyNames')
-        if "dynamics" in data_keys:
-            data_keys.remove("dynamics")
-            data__dynamics = data["dynamics"]
-            validate____defs_dynamics(data__dynamics, custom_formats, (name_prefix or "data") + ".dynamics")
-        if data_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-    return data
-
-def validate____defs_dynamics(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (dict)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    data_any_of_count2 = 0
-    if not data_any_of_count2:
-        try:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data__missing_keys = set(['transfer_function']) - data.keys()
-                if data__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-            data_any_of_count2 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count2:
-        try:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data__missing_keys = set(['state_space']) - data.keys()
-                if data__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-            data_any_of_count2 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count2:
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " cannot be validated by any definition", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='anyOf')
-    data_is_dict = isinstance(data, dict)
-    if data_is_dict:
-        if "transfer_function" in data:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data_keys = set(data.keys())
-                if "state_space" in data_keys:
-                    data_keys.remove("state_space")
-                    data__statespace = data["state_space"]
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space must not be there", value=data__statespace, name="" + (name_prefix or "data") + ".state_space", definition=False, rule=None)
-        if "state_space" in data:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data_keys = set(data.keys())
-                if "transfer_function" in data_keys:
-                    data_keys.remove("transfer_function")
-                    data__transferfunction = data["transfer_function"]
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function must not be there", value=data__transferfunction, name="" + (name_prefix or "data") + ".transfer_function", definition=False, rule=None)
-        data_keys = set(data.keys())
-        if "transfer_function" in data_keys:
-            data_keys.remove("transfer_function")
-            data__transferfunction = data["transfer_function"]
-            if not isinstance(data__transferfunction, (dict)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function must be object", value=data__transferfunction, name="" + (name_prefix or "data") + ".transfer_function", definition=None, rule='type')
-            data__transferfunction_is_dict = isinstance(data__transferfunction, dict)
-            if data__transferfunction_is_dict:
-                data__transferfunction__missing_keys = set(['num', 'den']) - data__transferfunction.keys()
-                if data__transferfunction__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function must contain " + (str(sorted(data__transferfunction__missing_keys)) + " properties"), value=data__transferfunction, name="" + (name_prefix or "data") + ".transfer_function", definition=None, rule='required')
-                data__transferfunction_keys = set(data__transferfunction.keys())
-                if "num" in data__transferfunction_keys:
-                    data__transferfunction_keys.remove("num")
-                    data__transferfunction__num = data__transferfunction["num"]
-                    if not isinstance(data__transferfunction__num, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function.num must be array", value=data__transferfunction__num, name="" + (name_prefix or "data") + ".transfer_function.num", definition=None, rule='type')
-                    data__transferfunction__num_is_list = isinstance(data__transferfunction__num, (list, tuple))
-                    if data__transferfunction__num_is_list:
-                        data__transferfunction__num_len = len(data__transferfunction__num)
-                        if data__transferfunction__num_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function.num must contain at least 1 items", value=data__transferfunction__num, name="" + (name_prefix or "data") + ".transfer_function.num", definition=None, rule='minItems')
-                        for data__transferfunction__num_x, data__transferfunction__num_item in enumerate(data__transferfunction__num):
-                            if not isinstance(data__transferfunction__num_item, (int, float, Decimal)) or isinstance(data__transferfunction__num_item, bool):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__transferfunction__num_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if "den" in data__transferfunction_keys:
-                    data__transferfunction_keys.remove("den")
-                    data__transferfunction__den = data__transferfunction["den"]
-                    if not isinstance(data__transferfunction__den, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function.den must be array", value=data__transferfunction__den, name="" + (name_prefix or "data") + ".transfer_function.den", definition=None, rule='type')
-                    data__transferfunction__den_is_list = isinstance(data__transferfunction__den, (list, tuple))
-                    if data__transferfunction__den_is_list:
-                        data__transferfunction__den_len = len(data__transferfunction__den)
-                        if data__transferfunction__den_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function.den must contain at least 1 items", value=data__transferfunction__den, name="" + (name_prefix or "data") + ".transfer_function.den", definition=None, rule='minItems')
-                        for data__transferfunction__den_x, data__transferfunction__den_item in enumerate(data__transferfunction__den):
-                            if not isinstance(data__transferfunction__den_item, (int, float, Decimal)) or isinstance(data__transferfunction__den_item, bool):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__transferfunction__den_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if data__transferfunction_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".transfer_function must not contain "+str(data__transferfunction_keys)+" properties", value=data__transferfunction, name="" + (name_prefix or "data") + ".transfer_function", definition=None, rule='additionalProperties')
-        if "state_space" in data_keys:
-            data_keys.remove("state_space")
-            data__statespace = data["state_space"]
-            if not isinstance(data__statespace, (dict)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space must be object", value=data__statespace, name="" + (name_prefix or "data") + ".state_space", definition=None, rule='type')
-            data__statespace_is_dict = isinstance(data__statespace, dict)
-            if data__statespace_is_dict:
-                data__statespace__missing_keys = set(['A', 'B', 'C', 'D']) - data__statespace.keys()
-                if data__statespace__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space must contain " + (str(sorted(data__statespace__missing_keys)) + " properties"), value=data__statespace, name="" + (name_prefix or "data") + ".state_space", definition=None, rule='required')
-                data__statespace_keys = set(data__statespace.keys())
-                if "A" in data__statespace_keys:
-                    data__statespace_keys.remove("A")
-                    data__statespace__A = data__statespace["A"]
-                    if not isinstance(data__statespace__A, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.A must be array", value=data__statespace__A, name="" + (name_prefix or "data") + ".state_space.A", definition=None, rule='type')
-                    data__statespace__A_is_list = isinstance(data__statespace__A, (list, tuple))
-                    if data__statespace__A_is_list:
-                        data__statespace__A_len = len(data__statespace__A)
-                        if data__statespace__A_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.A must contain at least 1 items", value=data__statespace__A, name="" + (name_prefix or "data") + ".state_space.A", definition=None, rule='minItems')
-                        for data__statespace__A_x, data__statespace__A_item in enumerate(data__statespace__A):
-                            if not isinstance(data__statespace__A_item, (list, tuple)):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be array", value=data__statespace__A_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                            data__statespace__A_item_is_list = isinstance(data__statespace__A_item, (list, tuple))
-                            if data__statespace__A_item_is_list:
-                                data__statespace__A_item_len = len(data__statespace__A_item)
-                                if data__statespace__A_item_len < 1:
-                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain at least 1 items", value=data__statespace__A_item, name="" + (name_prefix or "data") + "", definition=None, rule='minItems')
-                                for data__statespace__A_item_x, data__statespace__A_item_item in enumerate(data__statespace__A_item):
-                                    if not isinstance(data__statespace__A_item_item, (int, float, Decimal)) or isinstance(data__statespace__A_item_item, bool):
-                                        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__statespace__A_item_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if "B" in data__statespace_keys:
-                    data__statespace_keys.remove("B")
-                    data__statespace__B = data__statespace["B"]
-                    if not isinstance(data__statespace__B, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.B must be array", value=data__statespace__B, name="" + (name_prefix or "data") + ".state_space.B", definition=None, rule='type')
-                    data__statespace__B_is_list = isinstance(data__statespace__B, (list, tuple))
-                    if data__statespace__B_is_list:
-                        data__statespace__B_len = len(data__statespace__B)
-                        if data__statespace__B_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.B must contain at least 1 items", value=data__statespace__B, name="" + (name_prefix or "data") + ".state_space.B", definition=None, rule='minItems')
-                        for data__statespace__B_x, data__statespace__B_item in enumerate(data__statespace__B):
-                            if not isinstance(data__statespace__B_item, (list, tuple)):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be array", value=data__statespace__B_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                            data__statespace__B_item_is_list = isinstance(data__statespace__B_item, (list, tuple))
-                            if data__statespace__B_item_is_list:
-                                data__statespace__B_item_len = len(data__statespace__B_item)
-                                if data__statespace__B_item_len < 1:
-                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain at least 1 items", value=data__statespace__B_item, name="" + (name_prefix or "data") + "", definition=None, rule='minItems')
-                                for data__statespace__B_item_x, data__statespace__B_item_item in enumerate(data__statespace__B_item):
-                                    if not isinstance(data__statespace__B_item_item, (int, float, Decimal)) or isinstance(data__statespace__B_item_item, bool):
-                                        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__statespace__B_item_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if "C" in data__statespace_keys:
-                    data__statespace_keys.remove("C")
-                    data__statespace__C = data__statespace["C"]
-                    if not isinstance(data__statespace__C, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.C must be array", value=data__statespace__C, name="" + (name_prefix or "data") + ".state_space.C", definition=None, rule='type')
-                    data__statespace__C_is_list = isinstance(data__statespace__C, (list, tuple))
-                    if data__statespace__C_is_list:
-                        data__statespace__C_len = len(data__statespace__C)
-                        if data__statespace__C_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.C must contain at least 1 items", value=data__statespace__C, name="" + (name_prefix or "data") + ".state_space.C", definition=None, rule='minItems')
-                        for data__statespace__C_x, data__statespace__C_item in enumerate(data__statespace__C):
-                            if not isinstance(data__statespace__C_item, (list, tuple)):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be array", value=data__statespace__C_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                            data__statespace__C_item_is_list = isinstance(data__statespace__C_item, (list, tuple))
-                            if data__statespace__C_item_is_list:
-                                data__statespace__C_item_len = len(data__statespace__C_item)
-                                if data__statespace__C_item_len < 1:
-                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain at least 1 items", value=data__statespace__C_item, name="" + (name_prefix or "data") + "", definition=None, rule='minItems')
-                                for data__statespace__C_item_x, data__statespace__C_item_item in enumerate(data__statespace__C_item):
-                                    if not isinstance(data__statespace__C_item_item, (int, float, Decimal)) or isinstance(data__statespace__C_item_item, bool):
-                                        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__statespace__C_item_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if "D" in data__statespace_keys:
-                    data__statespace_keys.remove("D")
-                    data__statespace__D = data__statespace["D"]
-                    if not isinstance(data__statespace__D, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.D must be array", value=data__statespace__D, name="" + (name_prefix or "data") + ".state_space.D", definition=None, rule='type')
-                    data__statespace__D_is_list = isinstance(data__statespace__D, (list, tuple))
-                    if data__statespace__D_is_list:
-                        data__statespace__D_len = len(data__statespace__D)
-                        if data__statespace__D_len < 1:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space.D must contain at least 1 items", value=data__statespace__D, name="" + (name_prefix or "data") + ".state_space.D", definition=None, rule='minItems')
-                        for data__statespace__D_x, data__statespace__D_item in enumerate(data__statespace__D):
-                            if not isinstance(data__statespace__D_item, (list, tuple)):
-                                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be array", value=data__statespace__D_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                            data__statespace__D_item_is_list = isinstance(data__statespace__D_item, (list, tuple))
-                            if data__statespace__D_item_is_list:
-                                data__statespace__D_item_len = len(data__statespace__D_item)
-                                if data__statespace__D_item_len < 1:
-                                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain at least 1 items", value=data__statespace__D_item, name="" + (name_prefix or "data") + "", definition=None, rule='minItems')
-                                for data__statespace__D_item_x, data__statespace__D_item_item in enumerate(data__statespace__D_item):
-                                    if not isinstance(data__statespace__D_item_item, (int, float, Decimal)) or isinstance(data__statespace__D_item_item, bool):
-                                        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be number", value=data__statespace__D_item_item, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-                if data__statespace_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".state_space must not contain "+str(data__statespace_keys)+" properties", value=data__statespace, name="" + (name_prefix or "data") + ".state_space", definition=None, rule='additionalProperties')
-        if "delay" in data_keys:
-            data_keys.remove("delay")
-            data__delay = data["delay"]
-            if not isinstance(data__delay, (int, float, Decimal)) or isinstance(data__delay, bool):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".delay must be number", value=data__delay, name="" + (name_prefix or "data") + ".delay", definition=None, rule='type')
-            if isinstance(data__delay, (int, float, Decimal)) and not isinstance(data__delay, bool):
-                if data__delay < 0:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".delay must be bigger than or equal to 0", value=data__delay, name="" + (name_prefix or "data") + ".delay", definition=None, rule='minimum')
-        if data_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-    return data
-
-def validate____defs_scalar(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (str, int, float, Decimal, bool)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string or number or boolean", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    return data
-
-def validate____defs_label(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (str)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    if isinstance(data, str):
-        if not REGEX_PATTERNS['^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$'].search(data):
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must match pattern ^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='pattern')
-    return data
-
-def validate____defs_requirement(data, custom_formats={}, name_prefix=None):
-    data_any_of_count3 = 0
-    if not data_any_of_count3:
-        try:
-            validate____defs_interface(data, custom_formats, (name_prefix or "data") + "")
-            data_any_of_count3 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count3:
-        try:
-            if not isinstance(data, (dict)):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data__missing_keys = set(['any_of']) - data.keys()
-                if data__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-                data_keys = set(data.keys())
-                if "any_of" in data_keys:
-                    data_keys.remove("any_of")
-                    data__anyof = data["any_of"]
-                    if not isinstance(data__anyof, (list, tuple)):
-                        raise JsonSchemaValueException("" + (name_prefix or "data") + ".any_of must be array", value=data__anyof, name="" + (name_prefix or "data") + ".any_of", definition=None, rule='type')
-                    data__anyof_is_list = isinstance(data__anyof, (list, tuple))
-                    if data__anyof_is_list:
-                        data__anyof_len = len(data__anyof)
-                        if data__anyof_len < 2:
-                            raise JsonSchemaValueException("" + (name_prefix or "data") + ".any_of must contain at least 2 items", value=data__anyof, name="" + (name_prefix or "data") + ".any_of", definition=None, rule='minItems')
-                        for data__anyof_x, data__anyof_item in enumerate(data__anyof):
-                            validate____defs_interface(data__anyof_item, custom_formats, (name_prefix or "data"))
-                if data_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-            data_any_of_count3 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count3:
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " cannot be validated by any definition", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='anyOf')
-    return data
-
-def validate____defs_interface(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (dict)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    data_any_of_count4 = 0
-    if not data_any_of_count4:
-        try:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data__missing_keys = set(['topic']) - data.keys()
-                if data__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-            data_any_of_count4 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count4:
-        try:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data__missing_keys = set(['service']) - data.keys()
-                if data__missing_keys:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-            data_any_of_count4 += 1
-        except (JsonSchemaValueException, JsonSchemaValuesException): pass
-    if not data_any_of_count4:
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " cannot be validated by any definition", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='anyOf')
-    data_is_dict = isinstance(data, dict)
-    if data_is_dict:
-        data__missing_keys = set(['type']) - data.keys()
-        if data__missing_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must contain " + (str(sorted(data__missing_keys)) + " properties"), value=data, name="" + (name_prefix or "data") + "", definition=None, rule='required')
-        if "topic" in data:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data_keys = set(data.keys())
-                if "service" in data_keys:
-                    data_keys.remove("service")
-                    data__service = data["service"]
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".service must not be there", value=data__service, name="" + (name_prefix or "data") + ".service", definition=False, rule=None)
-        if "service" in data:
-            data_is_dict = isinstance(data, dict)
-            if data_is_dict:
-                data_keys = set(data.keys())
-                if "topic" in data_keys:
-                    data_keys.remove("topic")
-                    data__topic = data["topic"]
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".topic must not be there", value=data__topic, name="" + (name_prefix or "data") + ".topic", definition=False, rule=None)
-        data_keys = set(data.keys())
-        if "topic" in data_keys:
-            data_keys.remove("topic")
-            data__topic = data["topic"]
-            validate____defs_label(data__topic, custom_formats, (name_prefix or "data") + ".topic")
-        if "service" in data_keys:
-            data_keys.remove("service")
-            data__service = data["service"]
-            validate____defs_label(data__service, custom_formats, (name_prefix or "data") + ".service")
-        if "type" in data_keys:
-            data_keys.remove("type")
-            data__type = data["type"]
-            validate____defs_rostype(data__type, custom_formats, (name_prefix or "data") + ".type")
-        if "qos" in data_keys:
-            data_keys.remove("qos")
-            data__qos = data["qos"]
-            validate____defs_qos(data__qos, custom_formats, (name_prefix or "data") + ".qos")
-        if data_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-    return data
-
-def validate____defs_qos(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (dict)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be object", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    data_is_dict = isinstance(data, dict)
-    if data_is_dict:
-        data_keys = set(data.keys())
-        if "reliability" in data_keys:
-            data_keys.remove("reliability")
-            data__reliability = data["reliability"]
-            if not (isinstance(data__reliability, str) and data__reliability == 'reliable' or isinstance(data__reliability, str) and data__reliability == 'best_effort'):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".reliability must be one of ['reliable', 'best_effort']", value=data__reliability, name="" + (name_prefix or "data") + ".reliability", definition=None, rule='enum')
-        if "durability" in data_keys:
-            data_keys.remove("durability")
-            data__durability = data["durability"]
-            if not (isinstance(data__durability, str) and data__durability == 'volatile' or isinstance(data__durability, str) and data__durability == 'transient_local'):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".durability must be one of ['volatile', 'transient_local']", value=data__durability, name="" + (name_prefix or "data") + ".durability", definition=None, rule='enum')
-        if "deadline" in data_keys:
-            data_keys.remove("deadline")
-            data__deadline = data["deadline"]
-            if not isinstance(data__deadline, (int, float, Decimal, NoneType)) or isinstance(data__deadline, bool):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".deadline must be number or null", value=data__deadline, name="" + (name_prefix or "data") + ".deadline", definition=None, rule='type')
-            if isinstance(data__deadline, (int, float, Decimal)) and not isinstance(data__deadline, bool):
-                if data__deadline <= 0:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".deadline must be bigger than 0", value=data__deadline, name="" + (name_prefix or "data") + ".deadline", definition=None, rule='exclusiveMinimum')
-        if "liveliness" in data_keys:
-            data_keys.remove("liveliness")
-            data__liveliness = data["liveliness"]
-            if not (isinstance(data__liveliness, str) and data__liveliness == 'automatic' or isinstance(data__liveliness, str) and data__liveliness == 'manual_by_topic'):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".liveliness must be one of ['automatic', 'manual_by_topic']", value=data__liveliness, name="" + (name_prefix or "data") + ".liveliness", definition=None, rule='enum')
-        if "lease_duration" in data_keys:
-            data_keys.remove("lease_duration")
-            data__leaseduration = data["lease_duration"]
-            if not isinstance(data__leaseduration, (int, float, Decimal, NoneType)) or isinstance(data__leaseduration, bool):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".lease_duration must be number or null", value=data__leaseduration, name="" + (name_prefix or "data") + ".lease_duration", definition=None, rule='type')
-            if isinstance(data__leaseduration, (int, float, Decimal)) and not isinstance(data__leaseduration, bool):
-                if data__leaseduration <= 0:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".lease_duration must be bigger than 0", value=data__leaseduration, name="" + (name_prefix or "data") + ".lease_duration", definition=None, rule='exclusiveMinimum')
-        if "depth" in data_keys:
-            data_keys.remove("depth")
-            data__depth = data["depth"]
-            if not isinstance(data__depth, (int)) and not (isinstance(data__depth, float) and data__depth.is_integer()) or isinstance(data__depth, bool):
-                raise JsonSchemaValueException("" + (name_prefix or "data") + ".depth must be integer", value=data__depth, name="" + (name_prefix or "data") + ".depth", definition=None, rule='type')
-            if isinstance(data__depth, (int, float, Decimal)) and not isinstance(data__depth, bool):
-                if data__depth < 0:
-                    raise JsonSchemaValueException("" + (name_prefix or "data") + ".depth must be bigger than or equal to 0", value=data__depth, name="" + (name_prefix or "data") + ".depth", definition=None, rule='minimum')
-        if data_keys:
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must not contain "+str(data_keys)+" properties", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='additionalProperties')
-    return data
-
-def validate____defs_rostype(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (str)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    if isinstance(data, str):
-        if not REGEX_PATTERNS['^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*$'].search(data):
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must match pattern ^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*$", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='pattern')
-    return data
-
-def validate____defs_name(data, custom_formats={}, name_prefix=None):
-    if not isinstance(data, (str)):
-        raise JsonSchemaValueException("" + (name_prefix or "data") + " must be string", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='type')
-    if isinstance(data, str):
-        if not REGEX_PATTERNS['^[A-Za-z][A-Za-z0-9_]*$'].search(data):
-            raise JsonSchemaValueException("" + (name_prefix or "data") + " must match pattern ^[A-Za-z][A-Za-z0-9_]*$", value=data, name="" + (name_prefix or "data") + "", definition=None, rule='pattern')
-    return data
-
-from rosreconf.formats.schemamemo import remember_valid
-validate____defs_interface = remember_valid(validate____defs_interface)
-validate____defs_requirement = remember_valid(validate____defs_requirement)
+def _branch0(data):
+    if not type(data) is dict:
+        return False
+    if ((not ('topic' not in data)) + (not ('service' not in data))) != 1:
+        return False
+    if not data.keys() <= _C4:
+        return False
+    v34 = data.get('topic', _MISSING)
+    if v34 is not _MISSING:
+        if not type(v34) is str:
+            return False
+        if v34 not in _C6:
+            if _C5(v34) is None:
+                return False
+            if len(_C6) < 100000:
+                _C6.add(v34)
+    v35 = data.get('service', _MISSING)
+    if v35 is not _MISSING:
+        if not type(v35) is str:
+            return False
+        if v35 not in _C6:
+            if _C5(v35) is None:
+                return False
+            if len(_C6) < 100000:
+                _C6.add(v35)
+    v36 = data.get('type', _MISSING)
+    if v36 is _MISSING:
+        return False
+    if not type(v36) is str:
+        return False
+    if v36 not in _C8:
+        if _C7(v36) is None:
+            return False
+        if len(_C8) < 100000:
+            _C8.add(v36)
+    v37 = data.get('qos', _MISSING)
+    if v37 is not _MISSING:
+        if not type(v37) is dict:
+            return False
+        if not v37.keys() <= _C9:
+            return False
+        v38 = v37.get('reliability', _MISSING)
+        if v38 is not _MISSING:
+            if not (type(v38) is str and v38 in _C10):
+                return False
+        v39 = v37.get('durability', _MISSING)
+        if v39 is not _MISSING:
+            if not (type(v39) is str and v39 in _C11):
+                return False
+        v40 = v37.get('deadline', _MISSING)
+        if v40 is not _MISSING:
+            if not (type(v40) in _NUMBER or v40 is None):
+                return False
+            if type(v40) in _NUMBER and v40 <= 0:
+                return False
+        v41 = v37.get('liveliness', _MISSING)
+        if v41 is not _MISSING:
+            if not (type(v41) is str and v41 in _C12):
+                return False
+        v42 = v37.get('lease_duration', _MISSING)
+        if v42 is not _MISSING:
+            if not (type(v42) in _NUMBER or v42 is None):
+                return False
+            if type(v42) in _NUMBER and v42 <= 0:
+                return False
+        v43 = v37.get('depth', _MISSING)
+        if v43 is not _MISSING:
+            if not (type(v43) is int or (type(v43) is float and v43.is_integer())):
+                return False
+            if v43 < 0:
+                return False
+    return True
 
 
-VALIDATE = validate_urn_rosreconf_component_library_1
+def _branch1(data):
+    if not type(data) is dict:
+        return False
+    if not data.keys() <= _C13:
+        return False
+    v56 = data.get('any_of', _MISSING)
+    if v56 is _MISSING:
+        return False
+    if not type(v56) is list:
+        return False
+    if len(v56) < 2:
+        return False
+    for v57 in v56:
+        if not type(v57) is dict:
+            return False
+        if ((not ('topic' not in v57)) + (not ('service' not in v57))) != 1:
+            return False
+        if not v57.keys() <= _C4:
+            return False
+        v58 = v57.get('topic', _MISSING)
+        if v58 is not _MISSING:
+            if not type(v58) is str:
+                return False
+            if v58 not in _C6:
+                if _C5(v58) is None:
+                    return False
+                if len(_C6) < 100000:
+                    _C6.add(v58)
+        v59 = v57.get('service', _MISSING)
+        if v59 is not _MISSING:
+            if not type(v59) is str:
+                return False
+            if v59 not in _C6:
+                if _C5(v59) is None:
+                    return False
+                if len(_C6) < 100000:
+                    _C6.add(v59)
+        v60 = v57.get('type', _MISSING)
+        if v60 is _MISSING:
+            return False
+        if not type(v60) is str:
+            return False
+        if v60 not in _C8:
+            if _C7(v60) is None:
+                return False
+            if len(_C8) < 100000:
+                _C8.add(v60)
+        v61 = v57.get('qos', _MISSING)
+        if v61 is not _MISSING:
+            if not type(v61) is dict:
+                return False
+            if not v61.keys() <= _C9:
+                return False
+            v62 = v61.get('reliability', _MISSING)
+            if v62 is not _MISSING:
+                if not (type(v62) is str and v62 in _C10):
+                    return False
+            v63 = v61.get('durability', _MISSING)
+            if v63 is not _MISSING:
+                if not (type(v63) is str and v63 in _C11):
+                    return False
+            v64 = v61.get('deadline', _MISSING)
+            if v64 is not _MISSING:
+                if not (type(v64) in _NUMBER or v64 is None):
+                    return False
+                if type(v64) in _NUMBER and v64 <= 0:
+                    return False
+            v65 = v61.get('liveliness', _MISSING)
+            if v65 is not _MISSING:
+                if not (type(v65) is str and v65 in _C12):
+                    return False
+            v66 = v61.get('lease_duration', _MISSING)
+            if v66 is not _MISSING:
+                if not (type(v66) in _NUMBER or v66 is None):
+                    return False
+                if type(v66) in _NUMBER and v66 <= 0:
+                    return False
+            v67 = v61.get('depth', _MISSING)
+            if v67 is not _MISSING:
+                if not (type(v67) is int or (type(v67) is float and v67.is_integer())):
+                    return False
+                if v67 < 0:
+                    return False
+    return True
+
+
+def _branch2(data):
+    if not type(data) is dict:
+        return False
+    if not data.keys() <= _C17:
+        return False
+    v84 = data.get('substitution', _MISSING)
+    if v84 is _MISSING:
+        return False
+    if not type(v84) is str:
+        return False
+    if len(v84) < 1:
+        return False
+    return True
+
+
+def validate(data):
+    if not type(data) is dict:
+        return False
+    if not data.keys() <= _C0:
+        return False
+    v1 = data.get('format', _MISSING)
+    if v1 is _MISSING:
+        return False
+    if not (type(v1) is str and v1 == 'rosreconf/component-library'):
+        return False
+    v2 = data.get('version', _MISSING)
+    if v2 is _MISSING:
+        return False
+    if not (type(v2) in _NUMBER and v2 == 1):
+        return False
+    v3 = data.get('name', _MISSING)
+    if v3 is _MISSING:
+        return False
+    if not type(v3) is str:
+        return False
+    if v3 not in _C2:
+        if _C1(v3) is None:
+            return False
+        if len(_C2) < 100000:
+            _C2.add(v3)
+    v4 = data.get('description', _MISSING)
+    if v4 is not _MISSING:
+        if not type(v4) is str:
+            return False
+    v5 = data.get('components', _MISSING)
+    if v5 is _MISSING:
+        return False
+    if not type(v5) is list:
+        return False
+    if len(v5) < 1:
+        return False
+    for v6 in v5:
+        if not type(v6) is dict:
+            return False
+        if not v6.keys() <= _C3:
+            return False
+        v7 = v6.get('name', _MISSING)
+        if v7 is _MISSING:
+            return False
+        if not type(v7) is str:
+            return False
+        if v7 not in _C2:
+            if _C1(v7) is None:
+                return False
+            if len(_C2) < 100000:
+                _C2.add(v7)
+        v8 = v6.get('abstraction', _MISSING)
+        if v8 is _MISSING:
+            return False
+        if not type(v8) is str:
+            return False
+        if v8 not in _C2:
+            if _C1(v8) is None:
+                return False
+            if len(_C2) < 100000:
+                _C2.add(v8)
+        v9 = v6.get('description', _MISSING)
+        if v9 is not _MISSING:
+            if not type(v9) is str:
+                return False
+        v10 = v6.get('provides', _MISSING)
+        if v10 is not _MISSING:
+            if not type(v10) is list:
+                return False
+            for v11 in v10:
+                if not type(v11) is dict:
+                    return False
+                if ((not ('topic' not in v11)) + (not ('service' not in v11))) != 1:
+                    return False
+                if not v11.keys() <= _C4:
+                    return False
+                v12 = v11.get('topic', _MISSING)
+                if v12 is not _MISSING:
+                    if not type(v12) is str:
+                        return False
+                    if v12 not in _C6:
+                        if _C5(v12) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v12)
+                v13 = v11.get('service', _MISSING)
+                if v13 is not _MISSING:
+                    if not type(v13) is str:
+                        return False
+                    if v13 not in _C6:
+                        if _C5(v13) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v13)
+                v14 = v11.get('type', _MISSING)
+                if v14 is _MISSING:
+                    return False
+                if not type(v14) is str:
+                    return False
+                if v14 not in _C8:
+                    if _C7(v14) is None:
+                        return False
+                    if len(_C8) < 100000:
+                        _C8.add(v14)
+                v15 = v11.get('qos', _MISSING)
+                if v15 is not _MISSING:
+                    if not type(v15) is dict:
+                        return False
+                    if not v15.keys() <= _C9:
+                        return False
+                    v16 = v15.get('reliability', _MISSING)
+                    if v16 is not _MISSING:
+                        if not (type(v16) is str and v16 in _C10):
+                            return False
+                    v17 = v15.get('durability', _MISSING)
+                    if v17 is not _MISSING:
+                        if not (type(v17) is str and v17 in _C11):
+                            return False
+                    v18 = v15.get('deadline', _MISSING)
+                    if v18 is not _MISSING:
+                        if not (type(v18) in _NUMBER or v18 is None):
+                            return False
+                        if type(v18) in _NUMBER and v18 <= 0:
+                            return False
+                    v19 = v15.get('liveliness', _MISSING)
+                    if v19 is not _MISSING:
+                        if not (type(v19) is str and v19 in _C12):
+                            return False
+                    v20 = v15.get('lease_duration', _MISSING)
+                    if v20 is not _MISSING:
+                        if not (type(v20) in _NUMBER or v20 is None):
+                            return False
+                        if type(v20) in _NUMBER and v20 <= 0:
+                            return False
+                    v21 = v15.get('depth', _MISSING)
+                    if v21 is not _MISSING:
+                        if not (type(v21) is int or (type(v21) is float and v21.is_integer())):
+                            return False
+                        if v21 < 0:
+                            return False
+        v22 = v6.get('requires', _MISSING)
+        if v22 is not _MISSING:
+            if not type(v22) is list:
+                return False
+            for v23 in v22:
+                if (_branch0(v23) + _branch1(v23)) != 1:
+                    return False
+        v68 = v6.get('failure_probability', _MISSING)
+        if v68 is not _MISSING:
+            if not type(v68) in _NUMBER:
+                return False
+            if v68 < 0:
+                return False
+            if v68 > 1:
+                return False
+        v69 = v6.get('needs', _MISSING)
+        if v69 is not _MISSING:
+            if not type(v69) is list:
+                return False
+            for v70 in v69:
+                if not type(v70) is str:
+                    return False
+                if v70 not in _C2:
+                    if _C1(v70) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v70)
+            if len(set(v69)) != len(v69):
+                return False
+        v71 = v6.get('excludes', _MISSING)
+        if v71 is not _MISSING:
+            if not type(v71) is list:
+                return False
+            for v72 in v71:
+                if not type(v72) is str:
+                    return False
+                if v72 not in _C2:
+                    if _C1(v72) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v72)
+            if len(set(v71)) != len(v71):
+                return False
+        v73 = v6.get('schemas', _MISSING)
+        if v73 is not _MISSING:
+            if not type(v73) is list:
+                return False
+            for v74 in v73:
+                if not type(v74) is str:
+                    return False
+                if v74 not in _C2:
+                    if _C1(v74) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v74)
+            if len(set(v73)) != len(v73):
+                return False
+        v75 = v6.get('ros', _MISSING)
+        if v75 is not _MISSING:
+            if not type(v75) is dict:
+                return False
+            if not v75.keys() <= _C14:
+                return False
+            v76 = v75.get('package', _MISSING)
+            if v76 is _MISSING:
+                return False
+            if not type(v76) is str:
+                return False
+            if v76 not in _C2:
+                if _C1(v76) is None:
+                    return False
+                if len(_C2) < 100000:
+                    _C2.add(v76)
+            v77 = v75.get('executable', _MISSING)
+            if v77 is _MISSING:
+                return False
+            if not type(v77) is str:
+                return False
+            if v77 not in _C16:
+                if _C15(v77) is None:
+                    return False
+                if len(_C16) < 100000:
+                    _C16.add(v77)
+            v78 = v75.get('namespace', _MISSING)
+            if v78 is not _MISSING:
+                if not type(v78) is str:
+                    return False
+                if v78 not in _C6:
+                    if _C5(v78) is None:
+                        return False
+                    if len(_C6) < 100000:
+                        _C6.add(v78)
+            v79 = v75.get('node', _MISSING)
+            if v79 is not _MISSING:
+                if not type(v79) is str:
+                    return False
+                if v79 not in _C2:
+                    if _C1(v79) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v79)
+            v80 = v75.get('parameters', _MISSING)
+            if v80 is not _MISSING:
+                if not type(v80) is dict:
+                    return False
+                for v82 in v80.values():
+                    if ((not (not (type(v82) is str or type(v82) in _NUMBER or type(v82) is bool))) + _branch2(v82)) != 1:
+                        return False
+                for v85 in v80:
+                    if not type(v85) is str:
+                        return False
+                    if v85 not in _C2:
+                        if _C1(v85) is None:
+                            return False
+                        if len(_C2) < 100000:
+                            _C2.add(v85)
+            v86 = v75.get('remappings', _MISSING)
+            if v86 is not _MISSING:
+                if not type(v86) is dict:
+                    return False
+                for v88 in v86.values():
+                    if not type(v88) is str:
+                        return False
+                    if v88 not in _C6:
+                        if _C5(v88) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v88)
+                for v89 in v86:
+                    if not type(v89) is str:
+                        return False
+                    if v89 not in _C6:
+                        if _C5(v89) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v89)
+            v90 = v75.get('lifecycle', _MISSING)
+            if v90 is not _MISSING:
+                if not type(v90) is bool:
+                    return False
+            v91 = v75.get('args', _MISSING)
+            if v91 is not _MISSING:
+                if not type(v91) is list:
+                    return False
+                for v92 in v91:
+                    if not type(v92) is str:
+                        return False
+        v93 = v6.get('metrics', _MISSING)
+        if v93 is not _MISSING:
+            if not type(v93) is dict:
+                return False
+            for v95 in v93.values():
+                if not type(v95) in _NUMBER:
+                    return False
+            for v96 in v93:
+                if not type(v96) is str:
+                    return False
+                if v96 not in _C2:
+                    if _C1(v96) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v96)
+        v97 = v6.get('dynamics', _MISSING)
+        if v97 is not _MISSING:
+            if not type(v97) is dict:
+                return False
+            if ((not ('transfer_function' not in v97)) + (not ('state_space' not in v97))) != 1:
+                return False
+            if not v97.keys() <= _C18:
+                return False
+            v98 = v97.get('transfer_function', _MISSING)
+            if v98 is not _MISSING:
+                if not type(v98) is dict:
+                    return False
+                if not v98.keys() <= _C19:
+                    return False
+                v99 = v98.get('num', _MISSING)
+                if v99 is _MISSING:
+                    return False
+                if not type(v99) is list:
+                    return False
+                if len(v99) < 1:
+                    return False
+                for v100 in v99:
+                    if not type(v100) in _NUMBER:
+                        return False
+                v101 = v98.get('den', _MISSING)
+                if v101 is _MISSING:
+                    return False
+                if not type(v101) is list:
+                    return False
+                if len(v101) < 1:
+                    return False
+                for v102 in v101:
+                    if not type(v102) in _NUMBER:
+                        return False
+            v103 = v97.get('state_space', _MISSING)
+            if v103 is not _MISSING:
+                if not type(v103) is dict:
+                    return False
+                if not v103.keys() <= _C20:
+                    return False
+                v104 = v103.get('A', _MISSING)
+                if v104 is _MISSING:
+                    return False
+                if not type(v104) is list:
+                    return False
+                if len(v104) < 1:
+                    return False
+                for v105 in v104:
+                    if not type(v105) is list:
+                        return False
+                    if len(v105) < 1:
+                        return False
+                    for v106 in v105:
+                        if not type(v106) in _NUMBER:
+                            return False
+                v107 = v103.get('B', _MISSING)
+                if v107 is _MISSING:
+                    return False
+                if not type(v107) is list:
+                    return False
+                if len(v107) < 1:
+                    return False
+                for v108 in v107:
+                    if not type(v108) is list:
+                        return False
+                    if len(v108) < 1:
+                        return False
+                    for v109 in v108:
+                        if not type(v109) in _NUMBER:
+                            return False
+                v110 = v103.get('C', _MISSING)
+                if v110 is _MISSING:
+                    return False
+                if not type(v110) is list:
+                    return False
+                if len(v110) < 1:
+                    return False
+                for v111 in v110:
+                    if not type(v111) is list:
+                        return False
+                    if len(v111) < 1:
+                        return False
+                    for v112 in v111:
+                        if not type(v112) in _NUMBER:
+                            return False
+                v113 = v103.get('D', _MISSING)
+                if v113 is _MISSING:
+                    return False
+                if not type(v113) is list:
+                    return False
+                if len(v113) < 1:
+                    return False
+                for v114 in v113:
+                    if not type(v114) is list:
+                        return False
+                    if len(v114) < 1:
+                        return False
+                    for v115 in v114:
+                        if not type(v115) in _NUMBER:
+                            return False
+            v116 = v97.get('delay', _MISSING)
+            if v116 is not _MISSING:
+                if not type(v116) in _NUMBER:
+                    return False
+                if v116 < 0:
+                    return False
+    return True
+
+
+VALIDATE = validate

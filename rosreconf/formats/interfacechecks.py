@@ -7,7 +7,7 @@ of Lemma 4). ``checks.check`` runs these with the other semantic checks.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
 from rosreconf.model import Component, Interface, InterfaceKind, Requirement, Span
@@ -30,6 +30,62 @@ def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement 
             yield iface, i, req
 
 
+class InterfaceIndex:
+    """The distinct interfaces of a library: what a clean library's checks are decided on.
+
+    The loader builds each distinct interface once and shares it (``build.Interfaces``), so
+    a thousand-role library's 45,000 provisions and requirement options are a few thousand
+    objects. Provided interfaces are joined as sets (their hashes are stored in each
+    component's frozenset); requirement options are kept once per object (``id``), which
+    skips the interface's own hash (a Python function) for each repeat. Correct whether or
+    not interfaces are shared, only slower when they are not.
+
+    Attributes:
+        provided: every interface some component provides.
+        options: every option of every requirement, each object once.
+    """
+
+    def __init__(
+        self, provided: Iterable[frozenset[Interface]], options: Sequence[Interface]
+    ) -> None:
+        self.provided: set[Interface] = set().union(*provided)
+        once = dict(zip(map(id, options), options, strict=True))
+        self.options: list[Interface] = list(once.values())
+
+    @classmethod
+    def of(cls, components: Sequence[Component]) -> InterfaceIndex:
+        """Return the index of ``components`` (``checks.check`` gathers the same in its walk)."""
+        options = [o for c in components for r in c.requires for o in r.options]
+        return cls([c.provides for c in components], options)
+
+    def agree(self) -> bool:
+        """Tell whether each (kind, label) has one message class and each label one kind.
+
+        Exactly when ``interface_problems`` has nothing to report: it reports an interface
+        that differs from the first one seen with its key, in whatever order it walks.
+        """
+        types: dict[tuple[InterfaceKind, str], str] = {}
+        kinds: dict[str, InterfaceKind] = {}
+        for iface in (*self.provided, *self.options):
+            if types.setdefault((iface.kind, iface.label), iface.type) != iface.type:
+                return False
+            if kinds.setdefault(iface.label, iface.kind) is not iface.kind:
+                return False
+        return True
+
+    def all_met(self) -> bool:
+        """Tell whether every option of every requirement is provided (so every one is met)."""
+        return self.provided.issuperset(self.options)
+
+
+def index_problems(components: Sequence[Component], index: InterfaceIndex) -> Iterator[Problem]:
+    """Yield ``interface_problems`` and ``requirement_problems``, decided on ``index`` first."""
+    if not index.agree():
+        yield from _conflicts(components)
+    if not index.all_met():
+        yield from _unmet(components)
+
+
 def _where(c: Component, i: int, req: Requirement | None) -> Span:
     """Return where ``_all_interfaces`` found an interface (its provision or requirement)."""
     if req is None:
@@ -38,7 +94,16 @@ def _where(c: Component, i: int, req: Requirement | None) -> Span:
 
 
 def interface_problems(components: Sequence[Component]) -> Iterator[Problem]:
-    """Yield each label used with two message classes, or as a topic and a service."""
+    """Yield each label used with two message classes, or as a topic and a service.
+
+    A clean library is decided on its few distinct interfaces (``InterfaceIndex.agree``);
+    only a library with a conflict is walked, for each problem's position and order.
+    """
+    if not InterfaceIndex.of(components).agree():
+        yield from _conflicts(components)
+
+
+def _conflicts(components: Sequence[Component]) -> Iterator[Problem]:
     types: dict[tuple[InterfaceKind, str], tuple[str, str, Component, int, Requirement | None]]
     types = {}
     kinds: dict[str, tuple[InterfaceKind, str]] = {}
@@ -75,7 +140,16 @@ def interface_problems(components: Sequence[Component]) -> Iterator[Problem]:
 
 
 def requirement_problems(components: Sequence[Component]) -> Iterator[Problem]:
-    """Yield each requirement that no component of the library provides (Lemma 4)."""
+    """Yield each requirement that no component of the library provides (Lemma 4).
+
+    When every option of every requirement is provided (a clean library), no requirement is
+    unmet: that is decided on the few distinct options (``InterfaceIndex.all_met``).
+    """
+    if not InterfaceIndex.of(components).all_met():
+        yield from _unmet(components)
+
+
+def _unmet(components: Sequence[Component]) -> Iterator[Problem]:
     provided = {iface for c in components for iface in c.provides}
     for c in components:
         for i, req in enumerate(c.requires):

@@ -7,10 +7,11 @@ key or value (``file:line:column``), says what is wrong in words, and how to fix
 (``x-hint`` entries in the JSON Schemas, "did you mean" for unknown keys, "quote it" for
 names YAML read as numbers).
 
-Valid files are the common case and need no list of errors, so a document is first checked
-with ``fastjsonschema`` (the same JSON Schema compiled to Python code, several times faster
-on a thousand-role library); only a document it rejects goes through ``jsonschema``, which
-reports every error with its path. Tests hold the two to the same verdicts.
+Valid files are the common case and need no list of errors, so a document is first given
+a verdict by the same JSON Schema written as Python code (``schemacode``, shipped as
+``fastschema_*`` modules: ten times faster than ``jsonschema`` on a thousand-role library);
+only a document it rejects goes through ``jsonschema``, which reports every error with its
+path. Tests hold the two to the same verdicts.
 """
 
 from __future__ import annotations
@@ -20,19 +21,17 @@ import enum
 import hashlib
 import importlib
 import json
-import re
 from collections.abc import Callable, Iterator, Sequence
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
-import fastjsonschema
-
 from rosreconf.errors import Problem
+from rosreconf.formats import schemacode
 from rosreconf.formats import yamlsource as ys
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
 
-if TYPE_CHECKING:  # jsonschema is imported only for a document fastjsonschema rejects
+if TYPE_CHECKING:  # jsonschema is imported only for a document the fast verdict rejects
     import jsonschema.exceptions
 
 
@@ -96,27 +95,40 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
     ]
 
 
+def kind_of_plain(plain: ys.Plain) -> DocumentKind | None:
+    """Return the kind a document's plain data claims, or None for ``kind_of`` to report.
+
+    The same answer as ``kind_of`` whenever that finds no problem (a text ``format`` is
+    its own raw text), without a positioned tree; None asks for the tree, to say where the
+    problem is.
+    """
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    if type(fmt) is str:
+        for kind in DocumentKind:
+            if fmt == kind.value:
+                return kind
+    return None
+
+
 # --- structure: JSON Schema, with friendly positioned messages ---------------------------
 
 
 @cache
-def fast_validator(kind: DocumentKind) -> Callable[[Any], Any]:
-    """Return ``kind``'s JSON Schema compiled by fastjsonschema (raises on invalid data).
+def fast_validator(kind: DocumentKind) -> Callable[[Any], bool]:
+    """Return the verdict of ``kind``'s JSON Schema as a function: is the document valid?
 
-    Writing and compiling that code costs 0.1 CPU s in every process (more than reading
-    and checking the bundled example), so the package ships it as modules written by
-    ``scripts/fast_validators.py`` (``FAST_MODULES``); a shipped module whose JSON Schema
-    or fastjsonschema version is not the one in use is ignored and the code written here
-    instead, so a stale module can cost time but never change a verdict.
+    Writing and compiling that code costs time in every process, so the package ships it as
+    modules written by ``scripts/fast_validators.py`` (``FAST_MODULES``); a shipped module
+    whose JSON Schema or generator is not the one in use is ignored and the code written
+    here instead, so a stale module can cost time but never change a verdict.
     """
     module = importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}")
     if getattr(module, "SOURCE", None) == fast_validator_source(kind):
-        shipped: Callable[[Any], Any] = module.VALIDATE
+        shipped: Callable[[Any], bool] = module.VALIDATE
         return shipped
-    code = fast_validator_code(kind)
     namespace: dict[str, Any] = {}
-    exec(compile(code, f"<fastjsonschema: {kind.value}>", "exec"), namespace)
-    validate: Callable[[Any], Any] = namespace[_entry_point(code)]
+    exec(compile(fast_validator_code(kind), f"<verdict: {kind.value}>", "exec"), namespace)
+    validate: Callable[[Any], bool] = namespace["validate"]
     return validate
 
 
@@ -128,146 +140,44 @@ FAST_MODULES = {
 
 
 def fast_validator_source(kind: DocumentKind) -> str:
-    """Return what ``kind``'s validator code is written from: the Schema's text and tools.
+    """Return what ``kind``'s validator code is written from: the Schema and the generator.
 
-    A digest of the JSON Schema as compiled (``without_one_of``'s), fastjsonschema's
-    version, this module's trimming patterns and the ``$defs`` it remembers; a shipped
-    module records it as ``SOURCE``.
+    A digest of the JSON Schema file's bytes (no parsing: every process asks, and a valid
+    document needs nothing else of the file) and ``schemacode.GENERATOR_VERSION``; a
+    shipped module records it as ``SOURCE``.
     """
-    compiled = json.dumps(without_one_of(json_schema(kind)), sort_keys=True)
-    digest = hashlib.sha256(compiled.encode("utf-8"))
-    digest.update(fastjsonschema.VERSION.encode("ascii"))
-    digest.update(_ITEM_NAME.pattern.encode("utf-8") + _DEFINITION.pattern.encode("utf-8"))
-    digest.update(" ".join(REMEMBERED).encode("utf-8"))
+    digest = hashlib.sha256(bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_bytes())
+    digest.update(schemacode.GENERATOR_VERSION.encode("ascii"))
     return digest.hexdigest()
 
 
 def fast_validator_module(kind: DocumentKind) -> str:
     """Return the text of ``kind``'s shipped validator module (see ``fast_validator``)."""
-    code = fast_validator_code(kind)
     return (
-        f'"""fastjsonschema\'s code for {JSON_SCHEMA_FILES[kind]}: written by\n'
+        f'"""The verdict of {JSON_SCHEMA_FILES[kind]} as code: written by\n'
         f"scripts/fast_validators.py, do not edit (see structure.fast_validator).\n"
         f'"""\n\n# ruff: noqa\n# fmt: off\n# mypy: ignore-errors\n'
         f"SOURCE = {fast_validator_source(kind)!r}\n"
-        f"{code.rstrip()}\n\n\nVALIDATE = {_entry_point(code)}\n"
+        f"{fast_validator_code(kind).rstrip()}\n\n\nVALIDATE = validate\n"
     )
 
 
-def _entry_point(code: str) -> str:
-    """Return the name of the validation function fastjsonschema's ``code`` defines first."""
-    entry = re.search(r"^def (\w+)\(", code, re.MULTILINE)
-    assert entry is not None, "fastjsonschema wrote no validation function"
-    return entry.group(1)
-
-
 def fast_validator_code(kind: DocumentKind) -> str:
-    """Return the Python code of ``fast_validator``, trimmed to what a verdict needs.
+    """Return the Python code of ``fast_validator``: ``validate(data) -> bool``.
 
-    The code fastjsonschema writes (``compile_to_code``, its documented way to keep a
-    validator as a module) names each list item for its messages before validating it, as
-    ``"...[{x}]".format(**locals())``: a dict of every local variable per item, about a third
-    of the check on a thousand-role library. Only the verdict of this validator is used
-    (jsonschema words the messages), so each item is given its parent's name instead.
-
-    For the same reason every ``raise`` loses its ``definition=`` argument: a literal copy
-    of the JSON Schema's part it checks (two thirds of the code), which Python had to compile
-    (``detailed_exceptions=False``, made for this, fails on a ``const`` in fastjsonschema
-    2.22).
-
-    Last, the ``REMEMBERED`` validators are wrapped to check each distinct valid content
-    once (``rosreconf.formats.schemamemo``): the code calls them by their global names.
+    ``rosreconf.formats.schemacode`` writes it from the published JSON Schema itself (the
+    file jsonschema reads for the messages), so the two judge the same rules.
     """
-    code = fastjsonschema.compile_to_code(without_one_of(json_schema(kind)))
-    code = _ITEM_NAME.sub('(name_prefix or "data")', code)
-    code = _DEFINITION.sub(r"\1None\2", code)
-    remembered = [f"validate____defs_{d}" for d in REMEMBERED]
-    remembered = [name for name in remembered if f"\ndef {name}(" in code]
-    if remembered:
-        code += "\n\nfrom rosreconf.formats.schemamemo import remember_valid\n"
-        code += "".join(f"{name} = remember_valid({name})\n" for name in remembered)
-    return code
+    return schemacode.verdict_code(json_schema(kind))
 
 
-REMEMBERED = ("interface", "requirement")
-"""The ``$defs`` whose valid contents the fast validator checks once (``schemamemo``): a
-large library repeats a few thousand distinct ones tens of thousands of times."""
+def structure_valid(kind: DocumentKind, plain: ys.Plain) -> bool:
+    """Tell whether ``plain`` satisfies ``kind``'s JSON Schema (no tree needed to say yes).
 
-
-_ITEM_NAME = re.compile(r'\(name_prefix or "data"\) \+ "[^"\n]*"\.format\(\*\*locals\(\)\)')
-"""How fastjsonschema's code names a list item for a message (see ``fast_validator``)."""
-
-_DEFINITION = re.compile(r"(, definition=).*(, rule='\w+'\)$)", re.MULTILINE)
-"""The literal JSON Schema part a ``raise`` of fastjsonschema's code carries (its last
-arguments on its one line; see ``fast_validator``)."""
-
-
-EXCLUSIVE_ONE_OF = {
-    "/$defs/requirement": "an interface has no 'any_of' key, an any_of object no other key",
-    "/$defs/component/properties/ros/properties/parameters/additionalProperties": (
-        "a scalar is not an object"
-    ),
-}
-"""The ``oneOf``s whose branches no value can satisfy together, and why: ``anyOf`` says the
-same there. fastjsonschema's ``oneOf`` tries every branch and builds an exception with its
-message for each failing one (most of the structure check's time on a large library);
-``anyOf`` stops at the first branch that holds."""
-
-
-def without_one_of(schema: dict[str, Any]) -> dict[str, Any]:
-    """Return a copy of the JSON Schema with the same verdicts and no ``oneOf`` on hot paths.
-
-    Two kinds are rewritten: those listed in ``EXCLUSIVE_ONE_OF`` become ``anyOf``; and a
-    ``oneOf`` of single required keys (``{required: [topic]}``, ``{required: [service]}``:
-    exactly one of them) becomes their ``anyOf`` (at least one) with each key forbidding the
-    others (``dependencies``: at most one). Only for the fast validator: jsonschema keeps the
-    published Schema for its messages. Every other ``oneOf`` stays as it is;
-    tests/test_fast_paths.py holds the two validators to the same verdicts.
+    ``structure_problems`` (which needs the positioned tree, for positions) reports why
+    when the answer is no.
     """
-    fast: dict[str, Any] = json.loads(json.dumps(schema))
-    for pointer in EXCLUSIVE_ONE_OF:
-        node = _at(fast, pointer)
-        if node is not None and "oneOf" in node:
-            node["anyOf"] = node.pop("oneOf")
-    stack: list[Any] = [fast]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, list):
-            stack.extend(node)
-            continue
-        if not isinstance(node, dict):
-            continue
-        stack.extend(node.values())
-        keys = _single_required_keys(node.get("oneOf"))
-        if keys and "dependencies" not in node:
-            node["anyOf"] = node.pop("oneOf")
-            node["dependencies"] = {
-                k: {"properties": {other: False for other in keys if other != k}} for k in keys
-            }
-    return fast
-
-
-def _single_required_keys(branches: Any) -> list[str] | None:
-    """Return the keys of a ``oneOf`` whose every branch is ``{required: [one key]}``."""
-    if not isinstance(branches, list) or len(branches) < 2:
-        return None
-    keys = []
-    for branch in branches:
-        if not (isinstance(branch, dict) and list(branch) == ["required"]):
-            return None
-        required = branch["required"]
-        if not (isinstance(required, list) and len(required) == 1):
-            return None
-        keys.append(str(required[0]))
-    return keys if len(set(keys)) == len(keys) else None
-
-
-def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
-    """Return the sub-schema at a JSON pointer (``/a/b``), or None when it is not there."""
-    node: Any = schema
-    for step in pointer.strip("/").split("/"):
-        node = node.get(step) if isinstance(node, dict) else None
-    return node if isinstance(node, dict) else None
+    return fast_validator(kind)(plain)
 
 
 def structure_problems(
@@ -279,12 +189,11 @@ def structure_problems(
     """
     if plain is None:
         plain = ys.to_plain(tree)
-    try:
-        fast_validator(kind)(plain)
+    if structure_valid(kind, plain):
         return
-    except fastjsonschema.JsonSchemaException:
-        pass  # invalid: let jsonschema find every error, with paths
-    import jsonschema  # here: valid files (the common case) never pay its import time
+    # Invalid: jsonschema finds every error, with paths (imported here: valid files, the
+    # common case, never pay its import time).
+    import jsonschema
 
     validator = jsonschema.Draft202012Validator(json_schema(kind))
     for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):

@@ -40,7 +40,8 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
 
     ``plain`` is the tree as plain data when the reader built it (``parse_plain``): a
     component whose plain values ``_clean`` passes has no problem to report, and only the
-    others are walked in the positioned tree, for their positions.
+    others are walked in the positioned tree, for their positions. A caller holding only
+    the plain data asks ``clean_values`` first, and builds the tree only when it says no.
     """
     problems: list[Problem] = []
     components = _items(tree.items.get("components"))
@@ -67,19 +68,49 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
     return problems
 
 
+def clean_values(plain: ys.Plain) -> bool:
+    """Tell whether ``value_problems`` has nothing to report, from the plain data alone.
+
+    For a structurally valid library (the JSON Schema passed); no positioned tree is
+    needed to say yes, only to report a problem when the answer is no.
+    """
+    components = plain.get("components") if isinstance(plain, dict) else None
+    if not isinstance(components, list):
+        return False
+    clean = _clean
+    return all([type(c) is dict and clean(c) for c in components])
+
+
+_NUMBERS = (int, float)
+"""The exact types of a YAML number (``bool`` is not one: the Schema reports it)."""
+
+
 def _clean(component: dict[str, ys.Plain]) -> bool:
     """Tell whether a component's plain values give ``value_problems`` nothing to report.
 
     The same tests as ``_number`` and ``_parameter`` on plain values, without building
     problems: a comparison with NaN is false, so NaN is never clean. A large library's
-    components are almost all clean, and need no walk through their positioned tree.
+    components are almost all clean, and need no walk through their positioned tree. A
+    plain int or float is tested inline; anything else goes through ``_within``.
     """
-    if not _within(component.get("failure_probability"), 1.0):
-        return False
+    fp = component.get("failure_probability")
+    if fp is not None:
+        if type(fp) in _NUMBERS:
+            if not 0.0 <= fp <= 1.0:  # type: ignore[operator]
+                return False
+        elif not _within(fp, 1.0):
+            return False
     metrics = component.get("metrics")
-    if isinstance(metrics, dict) and not all(_within(v, MAX_METRIC) for v in metrics.values()):
-        return False
+    if isinstance(metrics, dict):
+        for value in metrics.values():
+            if type(value) in _NUMBERS:
+                if not 0.0 <= value <= MAX_METRIC:  # type: ignore[operator]
+                    return False
+            elif not _within(value, MAX_METRIC):
+                return False
     ros = component.get("ros")
+    if ros is None:
+        return True
     params = ros.get("parameters") if isinstance(ros, dict) else None
     if isinstance(params, dict):
         for value in params.values():
@@ -167,6 +198,32 @@ def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
 def _shown(raw: str) -> str:
     """Quote a number as written, shortened when it is very long (a 401-digit integer)."""
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
+
+
+def repeated_edges(plain: ys.Plain) -> bool:
+    """Tell whether ``duplicate_edges`` may find a pair listed twice, from the plain data.
+
+    False (nothing to report) needs no positioned tree: a schema's tree is needed only
+    to say where a repeated pair is. True when some value is not a text (the structure
+    check's to report) or a pair repeats.
+    """
+    edges = plain.get("edges", []) if isinstance(plain, dict) else None
+    if not isinstance(edges, list):
+        return True
+    pairs: set[tuple[str, str]] = set()
+    count = 0
+    for entry in edges:
+        if not isinstance(entry, dict):
+            return True
+        consumer, providers = entry.get("consumer"), entry.get("providers", [])
+        if type(consumer) is not str or not isinstance(providers, list):
+            return True
+        for provider in providers:
+            if type(provider) is not str:
+                return True
+            pairs.add((consumer, provider))
+        count += len(providers)
+    return len(pairs) != count
 
 
 def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
