@@ -21,6 +21,11 @@
  * a callable) propagates. tests/test_fast_paths.py holds it to yamlfast and to the pure
  * reader on every case.
  *
+ * Given None for the four types, it builds the plain data alone (no node, no Span, no key
+ * position): positions are needed only to report a problem, and a clean file has none
+ * (formats/loader.py reads every file this way first, and again with positions only when
+ * there is something to report). The declines are the same in both modes.
+ *
  * The caller pauses the cyclic garbage collector (yamlsource.parse_plain): the tree only
  * grows here.
  */
@@ -29,8 +34,10 @@
 #include <string.h>
 #include <yaml.h>
 
-/* What one open collection is filling; all references owned. */
+/* What one open collection is filling; all references owned. Without positions (plain
+ * only) items, spans and key_span stay NULL. */
 typedef struct {
+    int mapping;      /* a mapping (1) or a sequence (0) */
     PyObject *items;  /* a mapping's dict of nodes, or a sequence's list of nodes */
     PyObject *spans;  /* a mapping's dict of key positions; NULL for a sequence */
     PyObject *plains; /* the plain dict or list */
@@ -40,6 +47,7 @@ typedef struct {
 
 /* The callables and types the tree is made of, borrowed from the caller's arguments. */
 typedef struct {
+    int positions; /* build the positioned tree (1) or the plain data only (0) */
     PyObject *text;
     PyObject *file;
     PyObject *span_type;
@@ -109,37 +117,43 @@ new_span(Reader *r, yaml_mark_t mark)
     return span;
 }
 
-/* Put a finished node and its plain value where the open collection wants it (borrowed). */
+/* Put a finished node and its plain value where the open collection wants it (borrowed;
+ * node is NULL without positions). */
 static int
 attach(Reader *r, PyObject *node, PyObject *plain)
 {
     Frame *c = &r->cur;
-    if (c->spans != NULL) { /* a value in a mapping */
+    if (c->mapping) { /* a value in a mapping */
         if (c->key == NULL) {
             return DECLINE; /* never: a collection as a key is declined where it opens */
         }
-        int known = PyDict_Contains(c->items, c->key);
+        int known = PyDict_Contains(c->plains, c->key);
         if (known < 0) {
             return FAILED;
         }
         if (known) {
             return DECLINE; /* a duplicate key */
         }
-        if (PyDict_SetItem(c->items, c->key, node) < 0 ||
-            PyDict_SetItem(c->spans, c->key, c->key_span) < 0 ||
-            PyDict_SetItem(c->plains, c->key, plain) < 0) {
+        if (r->positions && (PyDict_SetItem(c->items, c->key, node) < 0 ||
+                             PyDict_SetItem(c->spans, c->key, c->key_span) < 0)) {
+            return FAILED;
+        }
+        if (PyDict_SetItem(c->plains, c->key, plain) < 0) {
             return FAILED;
         }
         Py_CLEAR(c->key);
         Py_CLEAR(c->key_span);
     }
-    else if (c->items != NULL) { /* an item in a sequence */
-        if (PyList_Append(c->items, node) < 0 || PyList_Append(c->plains, plain) < 0) {
+    else if (c->plains != NULL) { /* an item in a sequence */
+        if (r->positions && PyList_Append(c->items, node) < 0) {
+            return FAILED;
+        }
+        if (PyList_Append(c->plains, plain) < 0) {
             return FAILED;
         }
     }
     else { /* the document's root */
-        Py_INCREF(node);
+        Py_XINCREF(node);
         Py_XSETREF(r->root, node);
         Py_INCREF(plain);
         Py_XSETREF(r->root_plain, plain);
@@ -219,13 +233,16 @@ on_scalar(Reader *r, yaml_event_t *event)
     if (value == NULL) {
         return FAILED;
     }
-    PyObject *span = new_span(r, mark);
-    if (span == NULL) {
-        Py_DECREF(value);
-        return FAILED;
+    PyObject *span = NULL;
+    if (r->positions) {
+        span = new_span(r, mark);
+        if (span == NULL) {
+            Py_DECREF(value);
+            return FAILED;
+        }
     }
     Frame *c = &r->cur;
-    if (c->spans != NULL && c->key == NULL) { /* a mapping's key: its text, as written */
+    if (c->mapping && c->key == NULL) { /* a mapping's key: its text, as written */
         c->key = value;
         c->key_span = span;
         return GO_ON;
@@ -235,7 +252,7 @@ on_scalar(Reader *r, yaml_event_t *event)
     if (resolved) {
         plain = resolve(r, value);
         if (plain == NULL) {
-            Py_DECREF(span);
+            Py_XDECREF(span);
             Py_DECREF(value);
             return FAILED;
         }
@@ -244,16 +261,20 @@ on_scalar(Reader *r, yaml_event_t *event)
         Py_INCREF(value);
         plain = value;
     }
-    PyObject *args[4] = {span, plain, value, resolved ? Py_True : Py_False};
-    PyObject *node = PyObject_Vectorcall(r->scalar_type, args, 4, NULL);
-    Py_DECREF(span);
-    Py_DECREF(value);
-    if (node == NULL) {
-        Py_DECREF(plain);
-        return FAILED;
+    PyObject *node = NULL;
+    if (r->positions) {
+        PyObject *args[4] = {span, plain, value, resolved ? Py_True : Py_False};
+        node = PyObject_Vectorcall(r->scalar_type, args, 4, NULL);
+        Py_DECREF(span);
+        if (node == NULL) {
+            Py_DECREF(value);
+            Py_DECREF(plain);
+            return FAILED;
+        }
     }
+    Py_DECREF(value);
     int status = attach(r, node, plain);
-    Py_DECREF(node);
+    Py_XDECREF(node);
     Py_DECREF(plain);
     return status;
 }
@@ -279,42 +300,47 @@ on_collection_start(Reader *r, yaml_event_t *event)
     if (r->depth >= r->max_depth) {
         return DECLINE;
     }
-    if (r->cur.spans != NULL && r->cur.key == NULL) {
+    if (r->cur.mapping && r->cur.key == NULL) {
         return DECLINE; /* a complex key */
     }
     if (r->flow || flow_style) {
         r->flow++;
     }
-    Frame open = {NULL, NULL, NULL, NULL, NULL};
+    Frame open = {mapping, NULL, NULL, NULL, NULL, NULL};
     PyObject *node = NULL;
-    PyObject *span = new_span(r, event->start_mark);
-    if (span == NULL) {
+    open.plains = mapping ? PyDict_New() : PyList_New(0);
+    if (open.plains == NULL) {
         return FAILED;
     }
-    if (mapping) {
-        open.items = PyDict_New();
-        open.spans = PyDict_New();
-        open.plains = PyDict_New();
-        if (open.items != NULL && open.spans != NULL && open.plains != NULL) {
-            PyObject *args[3] = {span, open.items, open.spans};
-            node = PyObject_Vectorcall(r->mapping_type, args, 3, NULL);
+    if (r->positions) {
+        PyObject *span = new_span(r, event->start_mark);
+        if (span == NULL) {
+            frame_clear(&open);
+            return FAILED;
         }
-    }
-    else {
-        open.items = PyList_New(0);
-        open.plains = PyList_New(0);
-        if (open.items != NULL && open.plains != NULL) {
-            PyObject *args[2] = {span, open.items};
-            node = PyObject_Vectorcall(r->sequence_type, args, 2, NULL);
+        if (mapping) {
+            open.items = PyDict_New();
+            open.spans = PyDict_New();
+            if (open.items != NULL && open.spans != NULL) {
+                PyObject *args[3] = {span, open.items, open.spans};
+                node = PyObject_Vectorcall(r->mapping_type, args, 3, NULL);
+            }
         }
-    }
-    Py_DECREF(span);
-    if (node == NULL) {
-        frame_clear(&open);
-        return FAILED;
+        else {
+            open.items = PyList_New(0);
+            if (open.items != NULL) {
+                PyObject *args[2] = {span, open.items};
+                node = PyObject_Vectorcall(r->sequence_type, args, 2, NULL);
+            }
+        }
+        Py_DECREF(span);
+        if (node == NULL) {
+            frame_clear(&open);
+            return FAILED;
+        }
     }
     int status = attach(r, node, open.plains);
-    Py_DECREF(node);
+    Py_XDECREF(node);
     if (status != GO_ON) {
         frame_clear(&open);
         return status;
@@ -393,9 +419,10 @@ PyDoc_STRVAR(read_doc,
              "header_comment, /)\n--\n\n"
              "Return (tree, plain data) for text, or None where yamlfast declines.\n\n"
              "text must have passed yamlfast.fast_path_safe. span, scalar, mapping and\n"
-             "sequence are yamltree's Span, YScalar, YMapping and YSequence; resolve_plain\n"
-             "resolves a plain scalar's text; header_comment(text, index) tells whether a\n"
-             "block scalar's header at index is followed by '#'.");
+             "sequence are yamltree's Span, YScalar, YMapping and YSequence, or all None\n"
+             "for the plain data alone (then the tree is None: no node, no position is\n"
+             "made); resolve_plain resolves a plain scalar's text; header_comment(text,\n"
+             "index) tells whether a block scalar's header at index is followed by '#'.");
 
 static PyObject *
 read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
@@ -419,8 +446,16 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
         PyErr_SetString(PyExc_TypeError, "read(): text and file must be str");
         return NULL;
     }
-    if (!PyType_Check(r.span_type) ||
-        !PyType_IsSubtype((PyTypeObject *)r.span_type, &PyTuple_Type)) {
+    int nones = (r.span_type == Py_None) + (r.scalar_type == Py_None) +
+                (r.mapping_type == Py_None) + (r.sequence_type == Py_None);
+    if (nones != 0 && nones != 4) {
+        PyErr_SetString(PyExc_TypeError,
+                        "read(): span, scalar, mapping and sequence must be all given or all None");
+        return NULL;
+    }
+    r.positions = nones == 0;
+    if (r.positions && (!PyType_Check(r.span_type) ||
+                        !PyType_IsSubtype((PyTypeObject *)r.span_type, &PyTuple_Type))) {
         PyErr_SetString(PyExc_TypeError, "read(): span must be a tuple type");
         return NULL;
     }

@@ -270,6 +270,19 @@ def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
     return node if isinstance(node, dict) else None
 
 
+def structure_clean(plain: ys.Plain, kind: DocumentKind) -> bool:
+    """Tell whether plain data passes ``kind``'s JSON Schema: no structural problem to report.
+
+    The loader's first, position-free pass asks only this; when it is true,
+    ``structure_problems`` yields nothing.
+    """
+    try:
+        fast_validator(kind)(plain)
+    except fastjsonschema.JsonSchemaException:
+        return False
+    return True
+
+
 def structure_problems(
     tree: ys.YNode, kind: DocumentKind, plain: ys.Plain | None = None
 ) -> Iterator[Problem]:
@@ -279,12 +292,11 @@ def structure_problems(
     """
     if plain is None:
         plain = ys.to_plain(tree)
-    try:
-        fast_validator(kind)(plain)
+    if structure_clean(plain, kind):
         return
-    except fastjsonschema.JsonSchemaException:
-        pass  # invalid: let jsonschema find every error, with paths
-    import jsonschema  # here: valid files (the common case) never pay its import time
+    # Invalid: jsonschema finds every error, with paths. Imported here: valid files (the
+    # common case) never pay its import time.
+    import jsonschema
 
     validator = jsonschema.Draft202012Validator(json_schema(kind))
     for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):

@@ -67,6 +67,18 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
     return problems
 
 
+def library_values_clean(plain: ys.Plain) -> bool:
+    """Tell whether a structurally valid library's plain data gives ``value_problems`` nothing.
+
+    The loader's first, position-free pass asks only this: true exactly when every
+    component passes ``_clean``, the test ``value_problems`` skips clean components by.
+    """
+    components = plain.get("components") if isinstance(plain, dict) else None
+    if not isinstance(components, list):
+        return False
+    return all(isinstance(values, dict) and _clean(values) for values in components)
+
+
 def _clean(component: dict[str, ys.Plain]) -> bool:
     """Tell whether a component's plain values give ``value_problems`` nothing to report.
 
@@ -167,6 +179,28 @@ def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
 def _shown(raw: str) -> str:
     """Quote a number as written, shortened when it is very long (a 401-digit integer)."""
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
+
+
+def edges_unique(plain: ys.Plain) -> bool:
+    """Tell whether a structurally valid schema's plain data gives ``duplicate_edges`` nothing.
+
+    The same pairs as ``duplicate_edges`` compares: a name's plain value is its text as
+    written when it is a string; anything else is not known to be unique, so it is false.
+    """
+    edges = plain.get("edges", []) if isinstance(plain, dict) else None
+    if not isinstance(edges, list):
+        return False
+    seen: set[tuple[str, str]] = set()
+    for entry in edges:
+        consumer = entry.get("consumer") if isinstance(entry, dict) else None
+        providers = entry.get("providers", []) if isinstance(entry, dict) else None
+        if type(consumer) is not str or not isinstance(providers, list):
+            return False
+        for provider in providers:
+            if type(provider) is not str or (consumer, provider) in seen:
+                return False
+            seen.add((consumer, provider))
+    return True
 
 
 def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
