@@ -92,17 +92,43 @@ def _fast(text: str, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
     return _dump(tree), repr(plain)
 
 
+def _plain_only(text: str, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
+    """Return what ``fast_read`` gives without positions: the plain data's repr, or "declined"."""
+    _use(reader, monkeypatch)
+    got = fast_read(text, "f.yaml", yaml.CSafeLoader, positions=False)
+    if isinstance(got, Declined):
+        return "declined"
+    tree, plain = got
+    assert tree is None  # no node was built
+    return repr(plain)
+
+
 def _readers_agree(data: bytes) -> None:
-    """Assert that the three readers give one answer and the two fast loops one decline."""
+    """Assert that the three readers give one answer and the two fast loops one decline.
+
+    Read without positions (the loader's first try), the two fast loops give the plain data
+    they give with positions, and decline exactly where they decline with positions.
+    """
     with pytest.MonkeyPatch.context() as mp:
         pure = _parse(data, "pure", mp)
         assert _parse(data, "c", mp) == pure
         assert _parse(data, "python", mp) == pure
+        _use("c", mp)
+        only = ys.parse_plain_only(data, "f.yaml")
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError:
+            assert isinstance(only, Declined)
             return  # refused before any reader runs
-        assert _fast(text, "c", mp) == _fast(text, "python", mp)
+        fast = _fast(text, "c", mp)
+        assert _fast(text, "python", mp) == fast
+        plain = "declined" if fast == "declined" else fast[1]
+        assert _plain_only(text, "c", mp) == plain
+        assert _plain_only(text, "python", mp) == plain
+        # the loader's first try: declined wherever there is a problem or the pure reader reads
+        assert ("declined" if isinstance(only, Declined) else repr(only)) == plain
+        if isinstance(pure, tuple) and pure[0] == "error":
+            assert isinstance(only, Declined)
 
 
 def test_libyaml_is_available() -> None:
