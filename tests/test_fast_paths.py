@@ -131,6 +131,23 @@ def _readers_agree(data: bytes) -> None:
             assert isinstance(only, Declined)
 
 
+def _three_searches(text: str) -> bool:
+    """Return ``fast_path_safe``'s answer as the three searches its doc names give it."""
+    return (
+        "\t" not in text
+        and "\ufeff" not in text
+        and not yaml.reader.Reader.NON_PRINTABLE.search(text)
+    )
+
+
+@pytest.mark.parametrize("other", ["", "\u00e9", "\u2028", "\U0001f600"])
+def test_the_text_check_is_the_three_searches_on_every_ascii_character(other: str) -> None:
+    # ASCII text takes a shortcut (one pass over its bytes); with `other` it does not.
+    for code in range(128):
+        text = f"a: x{chr(code)}y{other}\n"
+        assert yamlfast.fast_path_safe(text) == _three_searches(text), (code, other)
+
+
 def test_libyaml_is_available() -> None:
     assert ys.FAST_LOADER is not None, "PyYAML without libyaml: parsing is 6x slower"
 

@@ -8,8 +8,9 @@
  * libyaml's marks exactly as PyYAML's CParser hands them over (line + 1, column + 1), and
  * the plain data, with plain scalars resolved by ``resolve_plain`` once per distinct text.
  * Equal scalar texts share one str object (a library repeats its keys and interface types
- * tens of thousands of times), and events on one line share their line number's int: equal
- * values, less memory, which no comparison can tell apart.
+ * tens of thousands of times), found by libyaml's bytes in a table of their own (``Texts``)
+ * without decoding or hashing a new str, and events on one line share their line number's
+ * int: equal values, less memory, which no comparison can tell apart.
  *
  * It declines (returns None) in exactly the cases yamlfast declines: a second document, an
  * anchor, an alias, a tag, a complex key, a duplicate key, nesting deeper than max_depth, a
@@ -45,6 +46,25 @@ typedef struct {
     PyObject *key_span;
 } Frame;
 
+/* One distinct scalar text: its str object and, once asked for, its resolved value as a
+ * plain scalar (both owned). */
+typedef struct {
+    size_t hash;        /* FNV-1a of the UTF-8 bytes; 0 = an empty slot */
+    PyObject *text;     /* the str */
+    const char *utf8;   /* its UTF-8 bytes, held by text (PyUnicode_AsUTF8AndSize) */
+    Py_ssize_t size;    /* their number */
+    PyObject *resolved; /* resolve_plain(text), or NULL until first asked */
+} Text;
+
+/* The distinct scalar texts read so far, by their UTF-8 bytes (open addressing): a repeated
+ * text (most are: keys, interface types, layer names) is found from libyaml's bytes without
+ * decoding them, making a str or hashing it, and its resolved value with it. */
+typedef struct {
+    Text *slots;
+    size_t mask; /* slots - 1, a power of two minus one */
+    size_t used;
+} Texts;
+
 /* The callables and types the tree is made of, borrowed from the caller's arguments. */
 typedef struct {
     int positions; /* build the positioned tree (1) or the plain data only (0) */
@@ -59,8 +79,7 @@ typedef struct {
     Py_ssize_t end;       /* len(text), in characters as libyaml's mark.index counts */
     Py_ssize_t max_depth; /* most collections open at once */
     /* State of the loop. */
-    PyObject *resolved; /* plain scalar text -> resolved value */
-    PyObject *texts;    /* scalar text -> the one str object of that text */
+    Texts texts;        /* scalar text -> the one str object of that text, and its value */
     PyObject *line;     /* the int line + 1 of the last Span made, or NULL */
     size_t line_index;  /* its libyaml line */
     PyObject *root;
@@ -127,18 +146,17 @@ attach(Reader *r, PyObject *node, PyObject *plain)
         if (c->key == NULL) {
             return DECLINE; /* never: a collection as a key is declined where it opens */
         }
-        int known = PyDict_Contains(c->plains, c->key);
-        if (known < 0) {
+        /* one lookup: a key already there leaves the size as it was (and the whole read
+         * is declined, so what it replaced does not matter) */
+        Py_ssize_t before = PyDict_GET_SIZE(c->plains);
+        if (PyDict_SetItem(c->plains, c->key, plain) < 0) {
             return FAILED;
         }
-        if (known) {
+        if (PyDict_GET_SIZE(c->plains) == before) {
             return DECLINE; /* a duplicate key */
         }
         if (r->positions && (PyDict_SetItem(c->items, c->key, node) < 0 ||
                              PyDict_SetItem(c->spans, c->key, c->key_span) < 0)) {
-            return FAILED;
-        }
-        if (PyDict_SetItem(c->plains, c->key, plain) < 0) {
             return FAILED;
         }
         Py_CLEAR(c->key);
@@ -161,27 +179,112 @@ attach(Reader *r, PyObject *node, PyObject *plain)
     return GO_ON;
 }
 
+static void
+texts_clear(Texts *t)
+{
+    if (t->slots != NULL) {
+        for (size_t i = 0; i <= t->mask; i++) {
+            Py_XDECREF(t->slots[i].text);
+            Py_XDECREF(t->slots[i].resolved);
+        }
+        PyMem_Free(t->slots);
+    }
+    memset(t, 0, sizeof(*t));
+}
+
+/* Double the table (or make its first 1024 slots); 0 on success. */
+static int
+texts_grow(Texts *t)
+{
+    size_t size = t->slots == NULL ? 1024 : 2 * (t->mask + 1);
+    Text *slots = PyMem_Calloc(size, sizeof(Text));
+    if (slots == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    if (t->slots != NULL) {
+        for (size_t i = 0; i <= t->mask; i++) {
+            Text *old = &t->slots[i];
+            if (old->hash != 0) {
+                size_t j = old->hash & (size - 1);
+                while (slots[j].hash != 0) {
+                    j = (j + 1) & (size - 1);
+                }
+                slots[j] = *old;
+            }
+        }
+        PyMem_Free(t->slots);
+    }
+    t->slots = slots;
+    t->mask = size - 1;
+    return 0;
+}
+
+/* Return the entry of the scalar text ``bytes`` (borrowed), made on first sight; NULL with
+ * an exception set on failure (not UTF-8, out of memory). */
+static Text *
+text_of(Texts *t, const char *bytes, size_t size)
+{
+    size_t hash = 14695981039346656037u; /* FNV-1a, 64 bits */
+    for (size_t i = 0; i < size; i++) {
+        hash = (hash ^ (unsigned char)bytes[i]) * 1099511628211u;
+    }
+    hash |= 1; /* never 0, the mark of an empty slot */
+    if (t->slots == NULL && texts_grow(t) < 0) {
+        return NULL;
+    }
+    size_t i = hash & t->mask;
+    for (;;) {
+        Text *e = &t->slots[i];
+        if (e->hash == 0) {
+            break;
+        }
+        if (e->hash == hash && (size_t)e->size == size && memcmp(e->utf8, bytes, size) == 0) {
+            return e;
+        }
+        i = (i + 1) & t->mask;
+    }
+    PyObject *text = PyUnicode_DecodeUTF8(bytes, (Py_ssize_t)size, "strict");
+    if (text == NULL) {
+        return NULL;
+    }
+    Py_ssize_t utf8_size;
+    const char *utf8 = PyUnicode_AsUTF8AndSize(text, &utf8_size);
+    if (utf8 == NULL) {
+        Py_DECREF(text);
+        return NULL;
+    }
+    if (2 * (t->used + 1) > t->mask + 1) { /* keep at most half the slots used */
+        if (texts_grow(t) < 0) {
+            Py_DECREF(text);
+            return NULL;
+        }
+        i = hash & t->mask;
+        while (t->slots[i].hash != 0) {
+            i = (i + 1) & t->mask;
+        }
+    }
+    Text *e = &t->slots[i];
+    e->hash = hash;
+    e->text = text;
+    e->utf8 = utf8;
+    e->size = utf8_size;
+    e->resolved = NULL;
+    t->used++;
+    return e;
+}
+
 /* Return the resolved value of a plain scalar's text (new reference), once per text. */
 static PyObject *
-resolve(Reader *r, PyObject *value)
+resolve(Reader *r, Text *e)
 {
-    PyObject *plain = PyDict_GetItemWithError(r->resolved, value);
-    if (plain != NULL) {
-        Py_INCREF(plain);
-        return plain;
+    if (e->resolved == NULL) {
+        e->resolved = PyObject_CallOneArg(r->resolve_plain, e->text);
+        if (e->resolved == NULL) {
+            return NULL;
+        }
     }
-    if (PyErr_Occurred()) {
-        return NULL;
-    }
-    plain = PyObject_CallOneArg(r->resolve_plain, value);
-    if (plain == NULL) {
-        return NULL;
-    }
-    if (PyDict_SetItem(r->resolved, value, plain) < 0) {
-        Py_DECREF(plain);
-        return NULL;
-    }
-    return plain;
+    return Py_NewRef(e->resolved);
 }
 
 static int
@@ -223,16 +326,11 @@ on_scalar(Reader *r, yaml_event_t *event)
             return DECLINE;
         }
     }
-    PyObject *decoded = PyUnicode_DecodeUTF8(text, (Py_ssize_t)length, "strict");
-    if (decoded == NULL) {
+    Text *entry = text_of(&r->texts, text, length);
+    if (entry == NULL) {
         return FAILED;
     }
-    PyObject *value = PyDict_SetDefault(r->texts, decoded, decoded); /* borrowed */
-    Py_XINCREF(value);
-    Py_DECREF(decoded);
-    if (value == NULL) {
-        return FAILED;
-    }
+    PyObject *value = Py_NewRef(entry->text);
     PyObject *span = NULL;
     if (r->positions) {
         span = new_span(r, mark);
@@ -250,7 +348,7 @@ on_scalar(Reader *r, yaml_event_t *event)
     int resolved = plain_style && event->data.scalar.plain_implicit;
     PyObject *plain;
     if (resolved) {
-        plain = resolve(r, value);
+        plain = resolve(r, entry);
         if (plain == NULL) {
             Py_XDECREF(span);
             Py_DECREF(value);
@@ -477,12 +575,10 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     }
     PyObject *result = NULL;
     r.stack = PyMem_Calloc(r.max_depth > 0 ? (size_t)r.max_depth : 1, sizeof(Frame));
-    r.resolved = PyDict_New();
-    r.texts = PyDict_New();
     if (r.stack == NULL) {
         PyErr_NoMemory();
     }
-    else if (r.resolved != NULL && r.texts != NULL) {
+    else {
         int status = run(&r, PyBytes_AS_STRING(encoded), PyBytes_GET_SIZE(encoded));
         if (status == DONE) {
             result = PyTuple_Pack(2, r.root != NULL ? r.root : Py_None,
@@ -501,8 +597,7 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     frame_clear(&r.cur);
     Py_XDECREF(r.root);
     Py_XDECREF(r.root_plain);
-    Py_XDECREF(r.resolved);
-    Py_XDECREF(r.texts);
+    texts_clear(&r.texts);
     Py_XDECREF(r.line);
     Py_DECREF(encoded);
     return result;

@@ -95,8 +95,19 @@ COMPILED_READ: CompiledRead | None = _compiled_read()
 """The C loop (``_yamlc.read``) that ``fast_read`` uses, or None for the Python loop."""
 
 
+_ASCII_READABLE = b"\n\r" + bytes(range(0x20, 0x7F))
+"""The ASCII characters both parsers read alike: line breaks and the printable ones (no tab)."""
+
+
 def fast_path_safe(text: str) -> bool:
-    """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would."""
+    """Tell whether the text alone lets libyaml read it as PyYAML's pure parser would.
+
+    Most files are ASCII: for them one pass over the bytes, deleting the readable ones,
+    tells the same as the three searches (a tab, a byte order mark, a character PyYAML's
+    reader refuses), several times faster than the regular expression.
+    """
+    if text.isascii():
+        return not text.encode("ascii").translate(None, _ASCII_READABLE)
     return (
         "\t" not in text
         and "\ufeff" not in text
