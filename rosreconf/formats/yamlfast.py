@@ -34,6 +34,11 @@ reads libyaml's events without PyYAML's Python event objects, several times fast
 here in Python (``_events``), used when the extension is not built or when the environment
 variable ``ROSRECONF_PURE_YAML`` is set to anything but ``""`` or ``0`` (for debugging and
 for comparing the two). Both give the same trees, plain data, positions and declines.
+
+Either loop can also build the plain data alone (``positions=False``: no node, no Span, no
+key position), which is how the loader reads every file first (``loader.load_reported``):
+positions serve only to report problems, and a clean file has none. It declines in exactly
+the same cases, so a file with anything to report is read again, with positions.
 """
 
 from __future__ import annotations
