@@ -26,8 +26,20 @@ from types import MappingProxyType
 from typing import TypeAlias
 
 from rosreconf.formats import yamlsource as ys
+from rosreconf.formats.nodes import (
+    NUMBER,
+    SCALAR,
+    NeedsPositions,
+    Node,
+    field_text,
+    map_of,
+    scalars_of,
+    seq_of,
+    span_of,
+    text_of,
+    value_of,
+)
 from rosreconf.model import (
-    NOWHERE,
     Component,
     ComponentLibrary,
     ControlLoop,
@@ -49,62 +61,7 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-Node: TypeAlias = "ys.YNode | ys.Plain"
-"""What the builder reads: a node of the positioned tree, or a value of the plain data."""
-
-
-class NeedsPositions(Exception):
-    """Plain data cannot give what the positioned tree would: build from the tree instead."""
-
-
-def _text(node: Node) -> str:
-    """Return a scalar as the text the user wrote (so names are never turned into numbers).
-
-    A string's plain value is its text as written (quoted or not: ``resolve_plain`` returns
-    the text itself for every string); any other plain value is not, so the builder asks
-    for the tree rather than guess whether ``1.0`` was written ``1.0`` or ``1.00``.
-    """
-    if type(node) is str:
-        return node
-    if isinstance(node, ys.YScalar):
-        return node.raw
-    if isinstance(node, ys.YNode):
-        return ""
-    raise NeedsPositions(f"the text of {node!r} as written")
-
-
-def _field(items: Mapping[str, Node], key: str, default: str = "") -> str:
-    """Return the text of ``items[key]`` as written, or ``default`` when the key is absent."""
-    return _text(items[key]) if key in items else default
-
-
-def _span(node: Node) -> Span:
-    """Return where ``node`` was written: ``NOWHERE`` for plain data."""
-    return node.span if isinstance(node, ys.YNode) else NOWHERE
-
-
-def _value(node: Node) -> ys.Plain:
-    """Return a scalar's resolved value."""
-    return node.value if isinstance(node, ys.YScalar) else node  # type: ignore[return-value]
-
-
-def _seq(node: Node) -> Sequence[Node]:
-    if type(node) is list:
-        return node
-    return node.items if isinstance(node, ys.YSequence) else []
-
-
-def _map(node: Node) -> Mapping[str, Node]:
-    if type(node) is dict:
-        return node
-    return node.items if isinstance(node, ys.YMapping) else {}
-
-
-def _plain(node: Node) -> dict[str, object]:
-    """Return a (schema-checked) mapping of scalars as plain Python values."""
-    collections = (dict, list, ys.YMapping, ys.YSequence)
-    return {k: _value(v) for k, v in _map(node).items() if not isinstance(v, collections)}
-
+__all__ = ["Interfaces", "NeedsPositions", "Node", "build_library", "build_schema"]
 
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
@@ -113,8 +70,8 @@ frozenset is a 216-byte object of its own, 60 MB over a 10,000-role library."""
 
 def _names(node: Node) -> frozenset[str]:
     """Return a list of names as a set (the shared empty set when there are none)."""
-    items = _seq(node)
-    return frozenset(_text(n) for n in items) if items else _NO_NAMES
+    items = seq_of(node)
+    return frozenset(text_of(n) for n in items) if items else _NO_NAMES
 
 
 Interfaces: TypeAlias = dict[tuple[bool, str, str], Interface]
@@ -125,28 +82,28 @@ library writes each of its few distinct interfaces many times, and one shared, e
 
 def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
-    items = _map(node)
+    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
     service = "service" in items
-    label = _text(items["service" if service else "topic"])
-    key = (service, label, _text(items["type"]))
+    label = text_of(items["service" if service else "topic"])
+    key = (service, label, text_of(items["type"]))
     interface = seen.get(key)
     if interface is None:
         kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
         interface = seen[key] = Interface(kind, label, key[2])
     if "qos" in items:
         spec = items["qos"]
-        found.qos[label] = QosProfile.from_dict(_plain(spec))
+        found.qos[label] = QosProfile.from_dict(scalars_of(spec))
         if found.where is not None:
-            found.where[f"qos.{label}"] = _span(spec)
+            found.where[f"qos.{label}"] = span_of(spec)
     return interface
 
 
 def _requirement(node: Node, seen: Interfaces, found: _Found) -> Requirement:
-    items = _map(node)
+    items = map_of(node)
     if "any_of" in items:
-        options = tuple([_interface(o, seen, found) for o in _seq(items["any_of"])])
-        return Requirement(options, _span(node))
-    return Requirement((_interface(node, seen, found),), _span(node))
+        options = tuple([_interface(o, seen, found) for o in seq_of(items["any_of"])])
+        return Requirement(options, span_of(node))
+    return Requirement((_interface(node, seen, found),), span_of(node))
 
 
 class _Found:
@@ -165,95 +122,95 @@ class _Found:
 
 
 def _launch(node: Node) -> RosLaunch | None:
-    items = _map(node)
+    items = map_of(node)
     params: dict[str, str | int | float | bool] = {}
-    for key, value in _map(items.get("parameters")).items():
+    for key, value in map_of(items.get("parameters")).items():
         if isinstance(value, dict | ys.YMapping):  # {substitution: ...}, marked by the user
-            params[key] = Substitution(_text(_map(value)["substitution"]))
+            params[key] = Substitution(text_of(map_of(value)["substitution"]))
             continue
-        scalar = _value(value)
-        assert isinstance(scalar, str | int | float | bool)
+        scalar = value_of(value)
+        assert isinstance(scalar, SCALAR)
         params[key] = scalar
-    remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
+    remaps = {k: text_of(v) for k, v in map_of(items.get("remappings")).items()}
     return RosLaunch(
-        package=_text(items["package"]),
-        executable=_text(items["executable"]),
+        package=text_of(items["package"]),
+        executable=text_of(items["executable"]),
         parameters=MappingProxyType(params),
         remappings=MappingProxyType(remaps),
-        namespace=_text(items["namespace"]) if "namespace" in items else None,
-        lifecycle=_value(items.get("lifecycle")) is True,
-        node=_text(items["node"]) if "node" in items else None,
-        args=tuple(_text(a) for a in _seq(items.get("args"))),
+        namespace=text_of(items["namespace"]) if "namespace" in items else None,
+        lifecycle=value_of(items.get("lifecycle")) is True,
+        node=text_of(items["node"]) if "node" in items else None,
+        args=tuple(text_of(a) for a in seq_of(items.get("args"))),
     )
 
 
 def _number(node: Node, default: float) -> float:
-    value = _value(node)
-    return float(value) if isinstance(value, int | float) else default
+    value = value_of(node)
+    return float(value) if isinstance(value, NUMBER) else default
 
 
 def _dynamics(node: Node, key: str, where: dict[str, Span] | None) -> Dynamics:
     """Build a transfer function or state-space model; record where its values are."""
-    items = _map(node)
+    items = map_of(node)
     if where is None:
         where = {}  # without positions: every span is NOWHERE, and these are dropped
-    where[key] = _span(node)
+    where[key] = span_of(node)
     if "delay" in items:
-        where[f"{key}.delay"] = _span(items["delay"])
+        where[f"{key}.delay"] = span_of(items["delay"])
     delay = _number(items.get("delay"), 0.0)
     if "state_space" in items:
-        ss = _map(items["state_space"])
-        where[f"{key}.state_space"] = _span(items["state_space"])
+        ss = map_of(items["state_space"])
+        where[f"{key}.state_space"] = span_of(items["state_space"])
         matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
         for part in ("A", "B", "C", "D"):
             path = f"{key}.state_space.{part}"
-            where[path] = _span(ss[part])
+            where[path] = span_of(ss[part])
             rows = []
-            for i, row in enumerate(_seq(ss[part])):
-                where[f"{path}.{i}"] = _span(row)
-                cells = _seq(row)
+            for i, row in enumerate(seq_of(ss[part])):
+                where[f"{path}.{i}"] = span_of(row)
+                cells = seq_of(row)
                 for j, n in enumerate(cells):
-                    where[f"{path}.{i}.{j}"] = _span(n)
+                    where[f"{path}.{i}.{j}"] = span_of(n)
                 rows.append(tuple(_number(n, 0.0) for n in cells))
             matrices[part] = tuple(rows)
         return StateSpace(matrices["A"], matrices["B"], matrices["C"], matrices["D"], delay)
-    tf = _map(items["transfer_function"])
+    tf = map_of(items["transfer_function"])
     coefficients: dict[str, tuple[float, ...]] = {}
     for part in ("num", "den"):
-        where[f"{key}.{part}"] = _span(tf[part])
-        values = _seq(tf[part])
+        where[f"{key}.{part}"] = span_of(tf[part])
+        values = seq_of(tf[part])
         for i, n in enumerate(values):
-            where[f"{key}.{part}.{i}"] = _span(n)
+            where[f"{key}.{part}.{i}"] = span_of(n)
         coefficients[part] = tuple(_number(n, 0.0) for n in values)
     return TransferFunction(coefficients["num"], coefficients["den"], delay)
 
 
 def _simulation(node: Node, where: dict[str, Span] | None) -> Simulation:
     """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
-    items = _map(node)
+    items = map_of(node)
     if where is None:
         where = {}  # without positions: every span is NOWHERE, and these are dropped
-    where["simulation"] = _span(node)
+    where["simulation"] = span_of(node)
     loops = []
-    for i, n in enumerate(_seq(items["loops"])):
-        loop = _map(n)
+    for i, n in enumerate(seq_of(items["loops"])):
+        loop = map_of(n)
         key = f"simulation.loops.{i}"
-        where[key] = _span(n)
-        where[f"{key}.name"] = _span(loop["name"])
+        where[key] = span_of(n)
+        where[f"{key}.name"] = span_of(loop["name"])
         paths: dict[str, tuple[str, ...]] = {}
         for path in ("forward", "feedback"):
-            roles = _seq(loop.get(path))
+            roles = seq_of(loop.get(path))
             for j, r in enumerate(roles):
-                where[f"{key}.{path}.{j}"] = _span(r)
-            paths[path] = tuple(_text(r) for r in roles)
+                where[f"{key}.{path}.{j}"] = span_of(r)
+            paths[path] = tuple(text_of(r) for r in roles)
         plant = _dynamics(loop["plant"], f"{key}.plant", where)
-        loops.append(ControlLoop(_text(loop["name"]), paths["forward"], plant, paths["feedback"]))
-    limits = _map(items.get("requirements"))
+        loops.append(ControlLoop(text_of(loop["name"]), paths["forward"], plant, paths["feedback"]))
+    limits = map_of(items.get("requirements"))
     for metric, value in limits.items():
-        where[f"simulation.requirements.{metric}"] = _span(value)
+        where[f"simulation.requirements.{metric}"] = span_of(value)
     for key in ("reference", "duration"):
         if key in items:
-            where[f"simulation.{key}"] = _span(items[key])
+            where[f"simulation.{key}"] = span_of(items[key])
     return Simulation(
         loops=tuple(loops),
         reference=_number(items.get("reference"), 1.0),
@@ -280,48 +237,48 @@ def _where_listed(where: dict[str, Span] | None, kind: str, listed: Sequence[Nod
         return
     names = _LIST_KEYS[kind]
     for i, n in enumerate(listed):
-        where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = _span(n)
+        where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = span_of(n)
 
 
 def _component(node: Node, seen: Interfaces) -> Component:
-    items = _map(node)
+    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
     get = items.get
     metrics: dict[str, float] = {}
-    for key, value in _map(get("metrics")).items():
-        metric = _value(value)
-        assert isinstance(metric, int | float)
+    for key, value in map_of(get("metrics")).items():
+        metric = value_of(value)
+        assert isinstance(metric, NUMBER)
         metrics[key] = float(metric)
-    provides, requires = _seq(get("provides")), _seq(get("requires"))
+    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
     where: dict[str, Span] | None = None
     if isinstance(node, ys.YNode):  # positions: where each value of the component is
-        where = {"name": _span(items["name"]), "abstraction": _span(items["abstraction"])}
+        where = {"name": span_of(items["name"]), "abstraction": span_of(items["abstraction"])}
         for key in ("needs", "excludes", "schemas"):
-            for n in _seq(get(key)):
-                where[f"{key}.{_text(n)}"] = _span(n)
+            for n in seq_of(get(key)):
+                where[f"{key}.{text_of(n)}"] = span_of(n)
     found = _Found(where)
     _where_listed(where, "provides", provides)
     provided = frozenset([_interface(n, seen, found) for n in provides])
     _where_listed(where, "requires", requires)
     required = tuple([_requirement(n, seen, found) for n in requires])
     if where is not None:
-        for i, n in enumerate(_seq(_map(get("ros")).get("args"))):
-            where[f"ros.args.{i}"] = _span(n)
-    fp = _value(get("failure_probability"))
+        for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
+            where[f"ros.args.{i}"] = span_of(n)
+    fp = value_of(get("failure_probability"))
     return Component(
-        name=_text(items["name"]),
-        abstraction=_text(items["abstraction"]),
+        name=text_of(items["name"]),
+        abstraction=text_of(items["abstraction"]),
         provides=provided,
         requires=required,
-        failure_probability=float(fp) if isinstance(fp, int | float) else None,
-        needs=_names(get("needs")),
-        excludes=_names(get("excludes")),
-        schemas=_names(get("schemas")),
+        failure_probability=float(fp) if isinstance(fp, NUMBER) else None,
+        needs=_names(get("needs")) if "needs" in items else _NO_NAMES,
+        excludes=_names(get("excludes")) if "excludes" in items else _NO_NAMES,
+        schemas=_names(get("schemas")) if "schemas" in items else _NO_NAMES,
         launch=_launch(items["ros"]) if "ros" in items else None,
         metrics=MappingProxyType(metrics),
         qos=MappingProxyType(found.qos),
         dynamics=_dynamics(items["dynamics"], "dynamics", where) if "dynamics" in items else None,
-        description=_field(items, "description"),
-        span=_span(node),
+        description=field_text(items, "description"),
+        span=span_of(node),
         where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
     )
 
@@ -337,13 +294,13 @@ def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> Comp
     Raises:
         NeedsPositions: plain data where only the tree can give the text as written.
     """
-    items = _map(tree)
+    items = map_of(tree)
     if seen is None:
         seen = {}
     return ComponentLibrary(
-        name=_text(items["name"]),
-        components=tuple([_component(n, seen) for n in _seq(items["components"])]),
-        description=_field(items, "description"),
+        name=text_of(items["name"]),
+        components=tuple([_component(n, seen) for n in seq_of(items["components"])]),
+        description=field_text(items, "description"),
         source=(name,),
     )
 
@@ -354,40 +311,42 @@ def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
     Raises:
         NeedsPositions: plain data where only the tree can give the text as written.
     """
-    items = _map(tree)
+    items = map_of(tree)
     roles = tuple(
         Role(
-            name=_text(_map(n)["name"]),
-            abstraction=_text(_map(n)["abstraction"]),
-            description=_field(_map(n), "description"),
-            span=_span(n),
+            name=text_of(map_of(n)["name"]),
+            abstraction=text_of(map_of(n)["abstraction"]),
+            description=field_text(map_of(n), "description"),
+            span=span_of(n),
         )
-        for n in _seq(items["roles"])
+        for n in seq_of(items["roles"])
     )
     edges = []
-    for n in _seq(items.get("edges")):
-        e = _map(n)
-        interfaces = frozenset(_text(i) for i in _seq(e.get("interfaces")))
-        optional = _value(e.get("optional")) is True
-        for p in _seq(e["providers"]):
-            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, _span(p), optional))
-    nominal = {k: _text(v) for k, v in _map(items.get("nominal")).items()}
+    for n in seq_of(items.get("edges")):
+        e = map_of(n)
+        interfaces = frozenset(text_of(i) for i in seq_of(e.get("interfaces")))
+        optional = value_of(e.get("optional")) is True
+        for p in seq_of(e["providers"]):
+            edges.append(Edge(text_of(e["consumer"]), text_of(p), interfaces, span_of(p), optional))
+    nominal = {k: text_of(v) for k, v in map_of(items.get("nominal")).items()}
     where: dict[str, Span] | None = None
     if isinstance(tree, ys.YNode):  # positions: where each value of the schema is
-        where = {"name": _span(items["name"])}
-        where.update({f"nominal.{k}": _span(v) for k, v in _map(items.get("nominal")).items()})
-        for n in _seq(items["roles"]):
-            where[f"role.{_text(_map(n)['name'])}.abstraction"] = _span(_map(n)["abstraction"])
+        where = {"name": span_of(items["name"])}
+        where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
+        for n in seq_of(items["roles"]):
+            where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(
+                map_of(n)["abstraction"]
+            )
     simulation = _simulation(items["simulation"], where) if "simulation" in items else None
     return InteroperabilitySchema(
-        name=_text(items["name"]),
-        title=_field(items, "title"),
+        name=text_of(items["name"]),
+        title=field_text(items, "title"),
         graph=SystemGraph(roles, tuple(edges)),
-        skill=_text(items["skill"]).strip(),
-        environment=_text(items["environment"]).strip(),
+        skill=text_of(items["skill"]).strip(),
+        environment=text_of(items["environment"]).strip(),
         nominal=MappingProxyType(nominal),
         simulation=simulation,
-        span=_span(tree),
+        span=span_of(tree),
         source=name,
         where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
     )
