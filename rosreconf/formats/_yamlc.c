@@ -49,7 +49,7 @@ typedef struct {
 /* One distinct scalar text: its str object and, once asked for, its resolved value as a
  * plain scalar (both owned). */
 typedef struct {
-    size_t hash;        /* FNV-1a of the UTF-8 bytes; 0 = an empty slot */
+    size_t hash;        /* Python's hash of the UTF-8 bytes, made odd; 0 = an empty slot */
     PyObject *text;     /* the str */
     const char *utf8;   /* its UTF-8 bytes, held by text (PyUnicode_AsUTF8AndSize) */
     Py_ssize_t size;    /* their number */
@@ -225,10 +225,13 @@ texts_grow(Texts *t)
 static Text *
 text_of(Texts *t, const char *bytes, size_t size)
 {
-    size_t hash = 14695981039346656037u; /* FNV-1a, 64 bits */
-    for (size_t i = 0; i < size; i++) {
-        hash = (hash ^ (unsigned char)bytes[i]) * 1099511628211u;
-    }
+    /* Python's own (keyed, randomised) hash of bytes: a file cannot be written to make many
+     * texts collide and the table's probes quadratic, as with a fixed hash it could. */
+#if PY_VERSION_HEX >= 0x030E0000
+    size_t hash = (size_t)Py_HashBuffer(bytes, (Py_ssize_t)size);
+#else
+    size_t hash = (size_t)_Py_HashBytes(bytes, (Py_ssize_t)size);
+#endif
     hash |= 1; /* never 0, the mark of an empty slot */
     if (t->slots == NULL && texts_grow(t) < 0) {
         return NULL;
