@@ -38,8 +38,8 @@ def child(folder: str) -> dict[str, float]:
     from rosreconf.formats import yamlsource as ys
     from rosreconf.formats.build import build_library, build_schema
     from rosreconf.formats.checks import check
-    from rosreconf.formats.structure import DocumentKind, structure_clean
-    from rosreconf.formats.values import edges_unique, library_values_clean
+    from rosreconf.formats.structure import DocumentKind, kind_of_plain, structure_valid
+    from rosreconf.formats.values import clean_values, repeated_edges
 
     d = Path(folder)
     seconds = dict.fromkeys(STAGES, 0.0)
@@ -56,11 +56,12 @@ def child(folder: str) -> dict[str, float]:
         seconds["parse"] += clock() - t
         assert isinstance(plain, dict), f"{src.name}: declined"
         t = clock()
-        kind = DocumentKind(plain["format"])
-        assert structure_clean(plain, kind), f"{src.name}: a structure problem"
+        kind = kind_of_plain(plain)
+        assert kind is not None and structure_valid(kind, plain), f"{src.name}: structure"
         seconds["structure"] += clock() - t
         t = clock()
-        clean = library_values_clean(plain) if kind is DocumentKind.LIBRARY else edges_unique(plain)
+        library = kind is DocumentKind.LIBRARY
+        clean = clean_values(plain) if library else not repeated_edges(plain)
         assert clean, f"{src.name}: a value problem"
         seconds["values"] += clock() - t
         t = clock()

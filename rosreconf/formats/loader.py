@@ -33,13 +33,14 @@ from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sour
 from rosreconf.formats.structure import (
     DocumentKind,
     kind_of,
-    structure_clean,
+    kind_of_plain,
     structure_problems,
+    structure_valid,
 )
 from rosreconf.formats.values import (
+    clean_values,
     duplicate_edges,
-    edges_unique,
-    library_values_clean,
+    repeated_edges,
     value_problems,
 )
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
@@ -144,16 +145,15 @@ def _load_plain(sources: Iterable[Source]) -> Loaded:
         plain = ys.DECLINED if src.size > ys.MAX_BYTES else ys.parse_plain_only(src.data, src.name)
         if isinstance(plain, ys.Declined):
             raise NeedsPositions(f"{src.name}: the fast reader declined it")
-        fmt = plain.get("format") if isinstance(plain, dict) else None
-        kind = next((k for k in DocumentKind if type(fmt) is str and fmt == k.value), None)
-        if kind is None or not structure_clean(plain, kind) or _has_todo(src):
+        kind = kind_of_plain(plain)
+        if kind is None or not structure_valid(kind, plain) or _has_todo(src):
             raise NeedsPositions(f"{src.name}: a format, structure or TODO problem")
         if kind is DocumentKind.LIBRARY:
-            if not library_values_clean(plain):
+            if not clean_values(plain):
                 raise NeedsPositions(f"{src.name}: a value problem")
             loaded.libraries.append(build_library(plain, src.name, interfaces))
         else:
-            if not edges_unique(plain):
+            if repeated_edges(plain):
                 raise NeedsPositions(f"{src.name}: a duplicate edge")
             loaded.schemas.append(build_schema(plain, src.name))
     return loaded

@@ -96,6 +96,21 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
     ]
 
 
+def kind_of_plain(plain: ys.Plain) -> DocumentKind | None:
+    """Return the kind a document's plain data claims, or None for ``kind_of`` to report.
+
+    The same answer as ``kind_of`` whenever that finds no problem (a text ``format`` is
+    its own raw text), without a positioned tree; None asks for the tree, to say where the
+    problem is.
+    """
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    if type(fmt) is str:
+        for kind in DocumentKind:
+            if fmt == kind.value:
+                return kind
+    return None
+
+
 # --- structure: JSON Schema, with friendly positioned messages ---------------------------
 
 
@@ -270,11 +285,11 @@ def _at(schema: dict[str, Any], pointer: str) -> dict[str, Any] | None:
     return node if isinstance(node, dict) else None
 
 
-def structure_clean(plain: ys.Plain, kind: DocumentKind) -> bool:
-    """Tell whether plain data passes ``kind``'s JSON Schema: no structural problem to report.
+def structure_valid(kind: DocumentKind, plain: ys.Plain) -> bool:
+    """Tell whether ``plain`` satisfies ``kind``'s JSON Schema (no tree needed to say yes).
 
-    The loader's first, position-free pass asks only this; when it is true,
-    ``structure_problems`` yields nothing.
+    ``structure_problems`` (which needs the positioned tree, for positions) reports why
+    when the answer is no.
     """
     try:
         fast_validator(kind)(plain)
@@ -292,7 +307,7 @@ def structure_problems(
     """
     if plain is None:
         plain = ys.to_plain(tree)
-    if structure_clean(plain, kind):
+    if structure_valid(kind, plain):
         return
     # Invalid: jsonschema finds every error, with paths. Imported here: valid files (the
     # common case) never pay its import time.

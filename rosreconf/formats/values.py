@@ -67,11 +67,12 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
     return problems
 
 
-def library_values_clean(plain: ys.Plain) -> bool:
-    """Tell whether a structurally valid library's plain data gives ``value_problems`` nothing.
+def clean_values(plain: ys.Plain) -> bool:
+    """Tell whether ``value_problems`` has nothing to report, from the plain data alone.
 
-    The loader's first, position-free pass asks only this: true exactly when every
-    component passes ``_clean``, the test ``value_problems`` skips clean components by.
+    For a structurally valid library (the JSON Schema passed); no positioned tree is
+    needed to say yes, only to report a problem when the answer is no: true exactly when
+    every component passes ``_clean``, the test ``value_problems`` skips clean ones by.
     """
     components = plain.get("components") if isinstance(plain, dict) else None
     if not isinstance(components, list):
@@ -181,26 +182,28 @@ def _shown(raw: str) -> str:
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
 
 
-def edges_unique(plain: ys.Plain) -> bool:
-    """Tell whether a structurally valid schema's plain data gives ``duplicate_edges`` nothing.
+def repeated_edges(plain: ys.Plain) -> bool:
+    """Tell whether ``duplicate_edges`` may find a pair listed twice, from the plain data.
 
-    The same pairs as ``duplicate_edges`` compares: a name's plain value is its text as
-    written when it is a string; anything else is not known to be unique, so it is false.
+    False (nothing to report) needs no positioned tree: a schema's tree is needed only
+    to say where a repeated pair is. True when some value is not a text (the structure
+    check's to report; a name's plain value is its text as written only for a text) or a
+    pair repeats.
     """
     edges = plain.get("edges", []) if isinstance(plain, dict) else None
     if not isinstance(edges, list):
-        return False
+        return True
     seen: set[tuple[str, str]] = set()
     for entry in edges:
         consumer = entry.get("consumer") if isinstance(entry, dict) else None
         providers = entry.get("providers", []) if isinstance(entry, dict) else None
         if type(consumer) is not str or not isinstance(providers, list):
-            return False
+            return True
         for provider in providers:
             if type(provider) is not str or (consumer, provider) in seen:
-                return False
+                return True
             seen.add((consumer, provider))
-    return True
+    return False
 
 
 def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
