@@ -91,17 +91,60 @@ def _fast(text: str, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
     return _dump(tree), repr(plain)
 
 
+def _plain_only(text: str, reader: str, monkeypatch: pytest.MonkeyPatch) -> Any:
+    """Return what ``fast_read`` gives without positions: the plain data's repr, or "declined"."""
+    _use(reader, monkeypatch)
+    got = fast_read(text, "f.yaml", yaml.CSafeLoader, positions=False)
+    if isinstance(got, Declined):
+        return "declined"
+    tree, plain = got
+    assert tree is None  # no node was built
+    return repr(plain)
+
+
 def _readers_agree(data: bytes) -> None:
-    """Assert that the three readers give one answer and the two fast loops one decline."""
+    """Assert that the three readers give one answer and the two fast loops one decline.
+
+    Read without positions (the loader's first try), the two fast loops give the plain data
+    they give with positions, and decline exactly where they decline with positions.
+    """
     with pytest.MonkeyPatch.context() as mp:
         pure = _parse(data, "pure", mp)
         assert _parse(data, "c", mp) == pure
         assert _parse(data, "python", mp) == pure
+        _use("c", mp)
+        only = ys.parse_plain_only(data, "f.yaml")
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError:
+            assert isinstance(only, Declined)
             return  # refused before any reader runs
-        assert _fast(text, "c", mp) == _fast(text, "python", mp)
+        fast = _fast(text, "c", mp)
+        assert _fast(text, "python", mp) == fast
+        plain = "declined" if fast == "declined" else fast[1]
+        assert _plain_only(text, "c", mp) == plain
+        assert _plain_only(text, "python", mp) == plain
+        # the loader's first try: declined wherever there is a problem or the pure reader reads
+        assert ("declined" if isinstance(only, Declined) else repr(only)) == plain
+        if isinstance(pure, tuple) and pure[0] == "error":
+            assert isinstance(only, Declined)
+
+
+def _three_searches(text: str) -> bool:
+    """Return ``fast_path_safe``'s answer as the three searches its doc names give it."""
+    return (
+        "\t" not in text
+        and "\ufeff" not in text
+        and not yaml.reader.Reader.NON_PRINTABLE.search(text)
+    )
+
+
+@pytest.mark.parametrize("other", ["", "\u00e9", "\u2028", "\U0001f600"])
+def test_the_text_check_is_the_three_searches_on_every_ascii_character(other: str) -> None:
+    # ASCII text takes a shortcut (one pass over its bytes); with `other` it does not.
+    for code in range(128):
+        text = f"a: x{chr(code)}y{other}\n"
+        assert yamlfast.fast_path_safe(text) == _three_searches(text), (code, other)
 
 
 def test_libyaml_is_available() -> None:

@@ -50,11 +50,16 @@ def _read(
     scalar: Any = YScalar,
     resolve: Callable[[str], Scalar] = resolve_plain,
     header_comment: Callable[[str, int], object] = HEADER_COMMENT,
+    positions: bool = True,
 ) -> Any:
     """Call the extension as ``yamlfast.fast_read`` does, with any part replaced."""
-    return _yamlc.read(
-        text, "f.yaml", max_depth, Span, scalar, YMapping, YSequence, resolve, header_comment
-    )
+    types = (Span, scalar, YMapping, YSequence) if positions else (None, None, None, None)
+    return _yamlc.read(text, "f.yaml", max_depth, *types, resolve, header_comment)
+
+
+def _plain(text: str, **changes: Any) -> Any:
+    """Call the extension without positions (the loader's first try), with any part replaced."""
+    return _read(text, positions=False, **changes)
 
 
 def _python_loop(text: str) -> Any:
@@ -184,6 +189,16 @@ LEAK_CASES: dict[str, Callable[[], object]] = {
     "raised in the middle": lambda: _raised(
         lambda: _read("a:\n  b: [x, {c: fail}]\n", resolve=_fake_failing_resolve)
     ),
+    "plain only, accepted": lambda: _plain(LIBRARY),
+    "plain only, declined, duplicate key deep inside": lambda: _plain(
+        "a:\n  b: [1, {c: 2, c: 3}]\n"
+    ),
+    "plain only, declined, too deep": lambda: _plain("a: " + "[" * 40 + "]" * 40 + "\n"),
+    "plain only, declined, libyaml's syntax error": lambda: _plain("a: {b: [1, 2\nc: d\n"),
+    "plain only, declined, key waiting": lambda: _plain("a:\n  b: {c: *x}\n"),
+    "plain only, raised in the middle": lambda: _raised(
+        lambda: _plain("a:\n  b: [x, {c: fail}]\n", resolve=_fake_failing_resolve)
+    ),
 }
 
 
@@ -275,3 +290,41 @@ def test_bad_arguments_are_refused(args: tuple[Any, ...], error: type[Exception]
 def test_an_empty_text_is_no_tree() -> None:
     assert _read("") == (None, None)
     assert _read("# only a comment\n") == (None, None)
+    assert _plain("") == (None, None)
+
+
+@pytest.mark.parametrize("path", BUNDLED, ids=lambda p: p.name)
+def test_without_positions_the_plain_data_is_the_same_and_no_node_is_made(path: Path) -> None:
+    # A spy in place of every node type and Span: without positions none is ever called.
+    def never(*args: Any) -> Any:
+        raise AssertionError("a node was built without positions")
+
+    text = path.read_text(encoding="utf-8")
+    full = _read(text)
+    with pytest.raises(AssertionError, match="a node was built"):
+        _read(text, scalar=never)  # the spy works: with positions it is called
+    plain = _plain(text, scalar=never)
+    assert plain is not None and plain[0] is None
+    assert repr(plain[1]) == repr(full[1])
+    saved = yamlfast.COMPILED_READ
+    yamlfast.COMPILED_READ = None
+    try:  # the Python loop, its twin and reference, gives the same
+        python = yamlfast.fast_read(text, "f.yaml", yaml.CSafeLoader, positions=False)
+    finally:
+        yamlfast.COMPILED_READ = saved
+    assert repr(python) == repr(plain)
+
+
+@pytest.mark.parametrize("depth", [0, 2, MAX_DEPTH])
+def test_without_positions_the_depth_limit_is_the_same(depth: int) -> None:
+    nested = "[" * depth + "]" * depth + "\n" if depth else "x\n"
+    deeper = "[" * (depth + 1) + "]" * (depth + 1) + "\n"
+    assert _plain(nested, max_depth=depth) is not None
+    assert _plain(deeper, max_depth=depth) is None
+
+
+def test_the_node_types_are_all_given_or_all_none() -> None:
+    rest = (resolve_plain, HEADER_COMMENT)
+    for mixed in [(None, YScalar, YMapping, YSequence), (Span, YScalar, None, YSequence)]:
+        with pytest.raises(TypeError, match="all given or all None"):
+            _yamlc.read("a: 1\n", "f.yaml", MAX_DEPTH, *mixed, *rest)

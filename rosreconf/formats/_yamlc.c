@@ -8,8 +8,9 @@
  * libyaml's marks exactly as PyYAML's CParser hands them over (line + 1, column + 1), and
  * the plain data, with plain scalars resolved by ``resolve_plain`` once per distinct text.
  * Equal scalar texts share one str object (a library repeats its keys and interface types
- * tens of thousands of times), and events on one line share their line number's int: equal
- * values, less memory, which no comparison can tell apart.
+ * tens of thousands of times), found by libyaml's bytes in a table of their own (``Texts``)
+ * without decoding or hashing a new str, and events on one line share their line number's
+ * int: equal values, less memory, which no comparison can tell apart.
  *
  * It declines (returns None) in exactly the cases yamlfast declines: a second document, an
  * anchor, an alias, a tag, a complex key, a duplicate key, nesting deeper than max_depth, a
@@ -21,6 +22,11 @@
  * a callable) propagates. tests/test_fast_paths.py holds it to yamlfast and to the pure
  * reader on every case.
  *
+ * Given None for the four types, it builds the plain data alone (no node, no Span, no key
+ * position): positions are needed only to report a problem, and a clean file has none
+ * (formats/loader.py reads every file this way first, and again with positions only when
+ * there is something to report). The declines are the same in both modes.
+ *
  * The caller pauses the cyclic garbage collector (yamlsource.parse_plain): the tree only
  * grows here.
  */
@@ -29,8 +35,10 @@
 #include <string.h>
 #include <yaml.h>
 
-/* What one open collection is filling; all references owned. */
+/* What one open collection is filling; all references owned. Without positions (plain
+ * only) items, spans and key_span stay NULL. */
 typedef struct {
+    int mapping;      /* a mapping (1) or a sequence (0) */
     PyObject *items;  /* a mapping's dict of nodes, or a sequence's list of nodes */
     PyObject *spans;  /* a mapping's dict of key positions; NULL for a sequence */
     PyObject *plains; /* the plain dict or list */
@@ -38,8 +46,28 @@ typedef struct {
     PyObject *key_span;
 } Frame;
 
+/* One distinct scalar text: its str object and, once asked for, its resolved value as a
+ * plain scalar (both owned). */
+typedef struct {
+    size_t hash;        /* Python's hash of the UTF-8 bytes, made odd; 0 = an empty slot */
+    PyObject *text;     /* the str */
+    const char *utf8;   /* its UTF-8 bytes, held by text (PyUnicode_AsUTF8AndSize) */
+    Py_ssize_t size;    /* their number */
+    PyObject *resolved; /* resolve_plain(text), or NULL until first asked */
+} Text;
+
+/* The distinct scalar texts read so far, by their UTF-8 bytes (open addressing): a repeated
+ * text (most are: keys, interface types, layer names) is found from libyaml's bytes without
+ * decoding them, making a str or hashing it, and its resolved value with it. */
+typedef struct {
+    Text *slots;
+    size_t mask; /* slots - 1, a power of two minus one */
+    size_t used;
+} Texts;
+
 /* The callables and types the tree is made of, borrowed from the caller's arguments. */
 typedef struct {
+    int positions; /* build the positioned tree (1) or the plain data only (0) */
     PyObject *text;
     PyObject *file;
     PyObject *span_type;
@@ -51,8 +79,7 @@ typedef struct {
     Py_ssize_t end;       /* len(text), in characters as libyaml's mark.index counts */
     Py_ssize_t max_depth; /* most collections open at once */
     /* State of the loop. */
-    PyObject *resolved; /* plain scalar text -> resolved value */
-    PyObject *texts;    /* scalar text -> the one str object of that text */
+    Texts texts;        /* scalar text -> the one str object of that text, and its value */
     PyObject *line;     /* the int line + 1 of the last Span made, or NULL */
     size_t line_index;  /* its libyaml line */
     PyObject *root;
@@ -109,37 +136,42 @@ new_span(Reader *r, yaml_mark_t mark)
     return span;
 }
 
-/* Put a finished node and its plain value where the open collection wants it (borrowed). */
+/* Put a finished node and its plain value where the open collection wants it (borrowed;
+ * node is NULL without positions). */
 static int
 attach(Reader *r, PyObject *node, PyObject *plain)
 {
     Frame *c = &r->cur;
-    if (c->spans != NULL) { /* a value in a mapping */
+    if (c->mapping) { /* a value in a mapping */
         if (c->key == NULL) {
             return DECLINE; /* never: a collection as a key is declined where it opens */
         }
-        int known = PyDict_Contains(c->items, c->key);
-        if (known < 0) {
+        /* one lookup: a key already there leaves the size as it was (and the whole read
+         * is declined, so what it replaced does not matter) */
+        Py_ssize_t before = PyDict_GET_SIZE(c->plains);
+        if (PyDict_SetItem(c->plains, c->key, plain) < 0) {
             return FAILED;
         }
-        if (known) {
+        if (PyDict_GET_SIZE(c->plains) == before) {
             return DECLINE; /* a duplicate key */
         }
-        if (PyDict_SetItem(c->items, c->key, node) < 0 ||
-            PyDict_SetItem(c->spans, c->key, c->key_span) < 0 ||
-            PyDict_SetItem(c->plains, c->key, plain) < 0) {
+        if (r->positions && (PyDict_SetItem(c->items, c->key, node) < 0 ||
+                             PyDict_SetItem(c->spans, c->key, c->key_span) < 0)) {
             return FAILED;
         }
         Py_CLEAR(c->key);
         Py_CLEAR(c->key_span);
     }
-    else if (c->items != NULL) { /* an item in a sequence */
-        if (PyList_Append(c->items, node) < 0 || PyList_Append(c->plains, plain) < 0) {
+    else if (c->plains != NULL) { /* an item in a sequence */
+        if (r->positions && PyList_Append(c->items, node) < 0) {
+            return FAILED;
+        }
+        if (PyList_Append(c->plains, plain) < 0) {
             return FAILED;
         }
     }
     else { /* the document's root */
-        Py_INCREF(node);
+        Py_XINCREF(node);
         Py_XSETREF(r->root, node);
         Py_INCREF(plain);
         Py_XSETREF(r->root_plain, plain);
@@ -147,27 +179,115 @@ attach(Reader *r, PyObject *node, PyObject *plain)
     return GO_ON;
 }
 
+static void
+texts_clear(Texts *t)
+{
+    if (t->slots != NULL) {
+        for (size_t i = 0; i <= t->mask; i++) {
+            Py_XDECREF(t->slots[i].text);
+            Py_XDECREF(t->slots[i].resolved);
+        }
+        PyMem_Free(t->slots);
+    }
+    memset(t, 0, sizeof(*t));
+}
+
+/* Double the table (or make its first 1024 slots); 0 on success. */
+static int
+texts_grow(Texts *t)
+{
+    size_t size = t->slots == NULL ? 1024 : 2 * (t->mask + 1);
+    Text *slots = PyMem_Calloc(size, sizeof(Text));
+    if (slots == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    if (t->slots != NULL) {
+        for (size_t i = 0; i <= t->mask; i++) {
+            Text *old = &t->slots[i];
+            if (old->hash != 0) {
+                size_t j = old->hash & (size - 1);
+                while (slots[j].hash != 0) {
+                    j = (j + 1) & (size - 1);
+                }
+                slots[j] = *old;
+            }
+        }
+        PyMem_Free(t->slots);
+    }
+    t->slots = slots;
+    t->mask = size - 1;
+    return 0;
+}
+
+/* Return the entry of the scalar text ``bytes`` (borrowed), made on first sight; NULL with
+ * an exception set on failure (not UTF-8, out of memory). */
+static Text *
+text_of(Texts *t, const char *bytes, size_t size)
+{
+    /* Python's own (keyed, randomised) hash of bytes: a file cannot be written to make many
+     * texts collide and the table's probes quadratic, as with a fixed hash it could. */
+#if PY_VERSION_HEX >= 0x030E0000
+    size_t hash = (size_t)Py_HashBuffer(bytes, (Py_ssize_t)size);
+#else
+    size_t hash = (size_t)_Py_HashBytes(bytes, (Py_ssize_t)size);
+#endif
+    hash |= 1; /* never 0, the mark of an empty slot */
+    if (t->slots == NULL && texts_grow(t) < 0) {
+        return NULL;
+    }
+    size_t i = hash & t->mask;
+    for (;;) {
+        Text *e = &t->slots[i];
+        if (e->hash == 0) {
+            break;
+        }
+        if (e->hash == hash && (size_t)e->size == size && memcmp(e->utf8, bytes, size) == 0) {
+            return e;
+        }
+        i = (i + 1) & t->mask;
+    }
+    PyObject *text = PyUnicode_DecodeUTF8(bytes, (Py_ssize_t)size, "strict");
+    if (text == NULL) {
+        return NULL;
+    }
+    Py_ssize_t utf8_size;
+    const char *utf8 = PyUnicode_AsUTF8AndSize(text, &utf8_size);
+    if (utf8 == NULL) {
+        Py_DECREF(text);
+        return NULL;
+    }
+    if (2 * (t->used + 1) > t->mask + 1) { /* keep at most half the slots used */
+        if (texts_grow(t) < 0) {
+            Py_DECREF(text);
+            return NULL;
+        }
+        i = hash & t->mask;
+        while (t->slots[i].hash != 0) {
+            i = (i + 1) & t->mask;
+        }
+    }
+    Text *e = &t->slots[i];
+    e->hash = hash;
+    e->text = text;
+    e->utf8 = utf8;
+    e->size = utf8_size;
+    e->resolved = NULL;
+    t->used++;
+    return e;
+}
+
 /* Return the resolved value of a plain scalar's text (new reference), once per text. */
 static PyObject *
-resolve(Reader *r, PyObject *value)
+resolve(Reader *r, Text *e)
 {
-    PyObject *plain = PyDict_GetItemWithError(r->resolved, value);
-    if (plain != NULL) {
-        Py_INCREF(plain);
-        return plain;
+    if (e->resolved == NULL) {
+        e->resolved = PyObject_CallOneArg(r->resolve_plain, e->text);
+        if (e->resolved == NULL) {
+            return NULL;
+        }
     }
-    if (PyErr_Occurred()) {
-        return NULL;
-    }
-    plain = PyObject_CallOneArg(r->resolve_plain, value);
-    if (plain == NULL) {
-        return NULL;
-    }
-    if (PyDict_SetItem(r->resolved, value, plain) < 0) {
-        Py_DECREF(plain);
-        return NULL;
-    }
-    return plain;
+    return Py_NewRef(e->resolved);
 }
 
 static int
@@ -209,23 +329,21 @@ on_scalar(Reader *r, yaml_event_t *event)
             return DECLINE;
         }
     }
-    PyObject *decoded = PyUnicode_DecodeUTF8(text, (Py_ssize_t)length, "strict");
-    if (decoded == NULL) {
+    Text *entry = text_of(&r->texts, text, length);
+    if (entry == NULL) {
         return FAILED;
     }
-    PyObject *value = PyDict_SetDefault(r->texts, decoded, decoded); /* borrowed */
-    Py_XINCREF(value);
-    Py_DECREF(decoded);
-    if (value == NULL) {
-        return FAILED;
-    }
-    PyObject *span = new_span(r, mark);
-    if (span == NULL) {
-        Py_DECREF(value);
-        return FAILED;
+    PyObject *value = Py_NewRef(entry->text);
+    PyObject *span = NULL;
+    if (r->positions) {
+        span = new_span(r, mark);
+        if (span == NULL) {
+            Py_DECREF(value);
+            return FAILED;
+        }
     }
     Frame *c = &r->cur;
-    if (c->spans != NULL && c->key == NULL) { /* a mapping's key: its text, as written */
+    if (c->mapping && c->key == NULL) { /* a mapping's key: its text, as written */
         c->key = value;
         c->key_span = span;
         return GO_ON;
@@ -233,9 +351,9 @@ on_scalar(Reader *r, yaml_event_t *event)
     int resolved = plain_style && event->data.scalar.plain_implicit;
     PyObject *plain;
     if (resolved) {
-        plain = resolve(r, value);
+        plain = resolve(r, entry);
         if (plain == NULL) {
-            Py_DECREF(span);
+            Py_XDECREF(span);
             Py_DECREF(value);
             return FAILED;
         }
@@ -244,16 +362,20 @@ on_scalar(Reader *r, yaml_event_t *event)
         Py_INCREF(value);
         plain = value;
     }
-    PyObject *args[4] = {span, plain, value, resolved ? Py_True : Py_False};
-    PyObject *node = PyObject_Vectorcall(r->scalar_type, args, 4, NULL);
-    Py_DECREF(span);
-    Py_DECREF(value);
-    if (node == NULL) {
-        Py_DECREF(plain);
-        return FAILED;
+    PyObject *node = NULL;
+    if (r->positions) {
+        PyObject *args[4] = {span, plain, value, resolved ? Py_True : Py_False};
+        node = PyObject_Vectorcall(r->scalar_type, args, 4, NULL);
+        Py_DECREF(span);
+        if (node == NULL) {
+            Py_DECREF(value);
+            Py_DECREF(plain);
+            return FAILED;
+        }
     }
+    Py_DECREF(value);
     int status = attach(r, node, plain);
-    Py_DECREF(node);
+    Py_XDECREF(node);
     Py_DECREF(plain);
     return status;
 }
@@ -279,42 +401,47 @@ on_collection_start(Reader *r, yaml_event_t *event)
     if (r->depth >= r->max_depth) {
         return DECLINE;
     }
-    if (r->cur.spans != NULL && r->cur.key == NULL) {
+    if (r->cur.mapping && r->cur.key == NULL) {
         return DECLINE; /* a complex key */
     }
     if (r->flow || flow_style) {
         r->flow++;
     }
-    Frame open = {NULL, NULL, NULL, NULL, NULL};
+    Frame open = {mapping, NULL, NULL, NULL, NULL, NULL};
     PyObject *node = NULL;
-    PyObject *span = new_span(r, event->start_mark);
-    if (span == NULL) {
+    open.plains = mapping ? PyDict_New() : PyList_New(0);
+    if (open.plains == NULL) {
         return FAILED;
     }
-    if (mapping) {
-        open.items = PyDict_New();
-        open.spans = PyDict_New();
-        open.plains = PyDict_New();
-        if (open.items != NULL && open.spans != NULL && open.plains != NULL) {
-            PyObject *args[3] = {span, open.items, open.spans};
-            node = PyObject_Vectorcall(r->mapping_type, args, 3, NULL);
+    if (r->positions) {
+        PyObject *span = new_span(r, event->start_mark);
+        if (span == NULL) {
+            frame_clear(&open);
+            return FAILED;
         }
-    }
-    else {
-        open.items = PyList_New(0);
-        open.plains = PyList_New(0);
-        if (open.items != NULL && open.plains != NULL) {
-            PyObject *args[2] = {span, open.items};
-            node = PyObject_Vectorcall(r->sequence_type, args, 2, NULL);
+        if (mapping) {
+            open.items = PyDict_New();
+            open.spans = PyDict_New();
+            if (open.items != NULL && open.spans != NULL) {
+                PyObject *args[3] = {span, open.items, open.spans};
+                node = PyObject_Vectorcall(r->mapping_type, args, 3, NULL);
+            }
         }
-    }
-    Py_DECREF(span);
-    if (node == NULL) {
-        frame_clear(&open);
-        return FAILED;
+        else {
+            open.items = PyList_New(0);
+            if (open.items != NULL) {
+                PyObject *args[2] = {span, open.items};
+                node = PyObject_Vectorcall(r->sequence_type, args, 2, NULL);
+            }
+        }
+        Py_DECREF(span);
+        if (node == NULL) {
+            frame_clear(&open);
+            return FAILED;
+        }
     }
     int status = attach(r, node, open.plains);
-    Py_DECREF(node);
+    Py_XDECREF(node);
     if (status != GO_ON) {
         frame_clear(&open);
         return status;
@@ -393,9 +520,10 @@ PyDoc_STRVAR(read_doc,
              "header_comment, /)\n--\n\n"
              "Return (tree, plain data) for text, or None where yamlfast declines.\n\n"
              "text must have passed yamlfast.fast_path_safe. span, scalar, mapping and\n"
-             "sequence are yamltree's Span, YScalar, YMapping and YSequence; resolve_plain\n"
-             "resolves a plain scalar's text; header_comment(text, index) tells whether a\n"
-             "block scalar's header at index is followed by '#'.");
+             "sequence are yamltree's Span, YScalar, YMapping and YSequence, or all None\n"
+             "for the plain data alone (then the tree is None: no node, no position is\n"
+             "made); resolve_plain resolves a plain scalar's text; header_comment(text,\n"
+             "index) tells whether a block scalar's header at index is followed by '#'.");
 
 static PyObject *
 read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
@@ -419,8 +547,16 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
         PyErr_SetString(PyExc_TypeError, "read(): text and file must be str");
         return NULL;
     }
-    if (!PyType_Check(r.span_type) ||
-        !PyType_IsSubtype((PyTypeObject *)r.span_type, &PyTuple_Type)) {
+    int nones = (r.span_type == Py_None) + (r.scalar_type == Py_None) +
+                (r.mapping_type == Py_None) + (r.sequence_type == Py_None);
+    if (nones != 0 && nones != 4) {
+        PyErr_SetString(PyExc_TypeError,
+                        "read(): span, scalar, mapping and sequence must be all given or all None");
+        return NULL;
+    }
+    r.positions = nones == 0;
+    if (r.positions && (!PyType_Check(r.span_type) ||
+                        !PyType_IsSubtype((PyTypeObject *)r.span_type, &PyTuple_Type))) {
         PyErr_SetString(PyExc_TypeError, "read(): span must be a tuple type");
         return NULL;
     }
@@ -442,12 +578,10 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     }
     PyObject *result = NULL;
     r.stack = PyMem_Calloc(r.max_depth > 0 ? (size_t)r.max_depth : 1, sizeof(Frame));
-    r.resolved = PyDict_New();
-    r.texts = PyDict_New();
     if (r.stack == NULL) {
         PyErr_NoMemory();
     }
-    else if (r.resolved != NULL && r.texts != NULL) {
+    else {
         int status = run(&r, PyBytes_AS_STRING(encoded), PyBytes_GET_SIZE(encoded));
         if (status == DONE) {
             result = PyTuple_Pack(2, r.root != NULL ? r.root : Py_None,
@@ -466,8 +600,7 @@ read_tree(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     frame_clear(&r.cur);
     Py_XDECREF(r.root);
     Py_XDECREF(r.root_plain);
-    Py_XDECREF(r.resolved);
-    Py_XDECREF(r.texts);
+    texts_clear(&r.texts);
     Py_XDECREF(r.line);
     Py_DECREF(encoded);
     return result;

@@ -9,12 +9,15 @@ def read(
     text: str,
     file: str,
     max_depth: int,
-    span: type[Span],
-    scalar: type[YScalar],
-    mapping: type[YMapping],
-    sequence: type[YSequence],
+    span: type[Span] | None,
+    scalar: type[YScalar] | None,
+    mapping: type[YMapping] | None,
+    sequence: type[YSequence] | None,
     resolve_plain: Callable[[str], Scalar],
     header_comment: Callable[[str, int], object],
     /,
 ) -> tuple[YNode | None, Plain] | None:
-    """Return (tree, plain data) for ``text``, or None where ``yamlfast`` declines."""
+    """Return (tree, plain data) for ``text``, or None where ``yamlfast`` declines.
+
+    With the four types all None, only the plain data is built and the tree is None.
+    """

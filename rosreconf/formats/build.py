@@ -1,19 +1,44 @@
-"""Build the paper's model objects from well-formed positioned trees.
+"""Build the paper's model objects from well-formed files, with or without positions.
 
 The loader calls these only after a file passed its JSON Schema and value checks, so every
 key the Schema requires is present and every value has its type; what is left here is to
 turn YAML's shapes into the model (components, requirements, launch data, dynamics, system
-graphs) and to record where each value was written (``where``), so that the semantic checks
-and the solvers' explanations can point at ``file:line:column``.
+graphs) and to record where each value was written (``span``, ``where``), so that the
+semantic checks can point at ``file:line:column``.
+
+A document reaches this one builder in either of two forms (``Node``): the positioned tree
+(``yamlsource.parse_plain``), or its plain data alone (``yamlsource.parse_plain_only``, the
+loader's first try, several times cheaper to read). Positions are read only to report
+problems, so from plain data every span is ``NOWHERE`` and every ``where`` is empty; the
+loader reads a file again with positions whenever there is anything to report, and every
+compared field of the model is the same from either form (tests/test_lazy_positions.py).
+One thing plain data cannot give is the text as written of a scalar that is not a string
+(``1.0`` written as a name is "1.0"; its plain value is the float 1.0): there the builder
+does not guess but raises ``NeedsPositions`` (the JSON Schema makes every such field a
+string, so a checked file never gets there).
 """
 
 from __future__ import annotations
 
 import sys
+from collections.abc import Mapping, Sequence
 from types import MappingProxyType
 from typing import TypeAlias
 
 from rosreconf.formats import yamlsource as ys
+from rosreconf.formats.nodes import (
+    NUMBER,
+    SCALAR,
+    NeedsPositions,
+    Node,
+    field_text,
+    map_of,
+    scalars_of,
+    seq_of,
+    span_of,
+    text_of,
+    value_of,
+)
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -36,36 +61,17 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-
-def _text(node: ys.YNode | None, default: str = "") -> str:
-    """Return a scalar as the text the user wrote (so names are never turned into numbers)."""
-    if isinstance(node, ys.YScalar):
-        return node.raw
-    return default
-
-
-def _seq(node: ys.YNode | None) -> list[ys.YNode]:
-    return node.items if isinstance(node, ys.YSequence) else []
-
-
-def _map(node: ys.YNode | None) -> dict[str, ys.YNode]:
-    return node.items if isinstance(node, ys.YMapping) else {}
-
-
-def _plain(node: ys.YNode) -> dict[str, object]:
-    """Return a (schema-checked) mapping of scalars as plain Python values."""
-    return {k: v.value for k, v in _map(node).items() if isinstance(v, ys.YScalar)}
-
+__all__ = ["Interfaces", "NeedsPositions", "Node", "build_library", "build_schema"]
 
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
 frozenset is a 216-byte object of its own, 60 MB over a 10,000-role library."""
 
 
-def _names(node: ys.YNode | None) -> frozenset[str]:
+def _names(node: Node) -> frozenset[str]:
     """Return a list of names as a set (the shared empty set when there are none)."""
-    items = _seq(node)
-    return frozenset(_text(n) for n in items) if items else _NO_NAMES
+    items = seq_of(node)
+    return frozenset(text_of(n) for n in items) if items else _NO_NAMES
 
 
 Interfaces: TypeAlias = dict[tuple[bool, str, str], Interface]
@@ -74,141 +80,137 @@ library writes each of its few distinct interfaces many times, and one shared, e
 (frozen) object per distinct interface saves building and hashing a new one each time."""
 
 
-def _interface(node: ys.YNode, seen: Interfaces, found: _Found) -> Interface:
+def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
-    items = _map(node)
+    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
     service = "service" in items
-    label = _text(items["service" if service else "topic"])
-    key = (service, label, _text(items["type"]))
+    label = text_of(items["service" if service else "topic"])
+    key = (service, label, text_of(items["type"]))
     interface = seen.get(key)
     if interface is None:
         kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
         interface = seen[key] = Interface(kind, label, key[2])
-    spec = items.get("qos")
-    if spec is not None:
-        found.qos[label] = QosProfile.from_dict(_plain(spec))
-        found.where[f"qos.{label}"] = spec.span
+    if "qos" in items:
+        spec = items["qos"]
+        found.qos[label] = QosProfile.from_dict(scalars_of(spec))
+        if found.where is not None:
+            found.where[f"qos.{label}"] = span_of(spec)
     return interface
 
 
-def _requirement(node: ys.YNode, seen: Interfaces, found: _Found) -> Requirement:
-    items = _map(node)
+def _requirement(node: Node, seen: Interfaces, found: _Found) -> Requirement:
+    items = map_of(node)
     if "any_of" in items:
-        options = tuple([_interface(o, seen, found) for o in _seq(items["any_of"])])
-        return Requirement(options, node.span)
-    return Requirement((_interface(node, seen, found),), node.span)
+        options = tuple([_interface(o, seen, found) for o in seq_of(items["any_of"])])
+        return Requirement(options, span_of(node))
+    return Requirement((_interface(node, seen, found),), span_of(node))
 
 
 class _Found:
     """What building a component's interfaces finds on the way: QoS profiles and positions.
 
     Interfaces, their QoS and the positions of both are collected in one walk over a
-    component's provisions and requirements (a large library has 35,000 of them).
+    component's provisions and requirements (a large library has 35,000 of them); ``where``
+    is None when building without positions.
     """
 
     __slots__ = ("qos", "where")
 
-    def __init__(self, where: dict[str, Span]) -> None:
+    def __init__(self, where: dict[str, Span] | None) -> None:
         self.qos: dict[str, QosProfile] = {}
         self.where = where
 
 
-def _launch(node: ys.YNode | None) -> RosLaunch | None:
-    if node is None:
-        return None
-    items = _map(node)
+def _launch(node: Node) -> RosLaunch | None:
+    items = map_of(node)
     params: dict[str, str | int | float | bool] = {}
-    for key, value in _map(items.get("parameters")).items():
-        if isinstance(value, ys.YMapping):  # {substitution: ...}, marked by the user
-            params[key] = Substitution(_text(value.items["substitution"]))
+    for key, value in map_of(items.get("parameters")).items():
+        if isinstance(value, dict | ys.YMapping):  # {substitution: ...}, marked by the user
+            params[key] = Substitution(text_of(map_of(value)["substitution"]))
             continue
-        assert isinstance(value, ys.YScalar) and value.value is not None
-        params[key] = value.value
-    remaps = {k: _text(v) for k, v in _map(items.get("remappings")).items()}
-    ns = items.get("namespace")
-    lifecycle = items.get("lifecycle")
-    node_name = items.get("node")
+        scalar = value_of(value)
+        assert isinstance(scalar, SCALAR)
+        params[key] = scalar
+    remaps = {k: text_of(v) for k, v in map_of(items.get("remappings")).items()}
     return RosLaunch(
-        package=_text(items["package"]),
-        executable=_text(items["executable"]),
+        package=text_of(items["package"]),
+        executable=text_of(items["executable"]),
         parameters=MappingProxyType(params),
         remappings=MappingProxyType(remaps),
-        namespace=_text(ns) if ns is not None else None,
-        lifecycle=isinstance(lifecycle, ys.YScalar) and lifecycle.value is True,
-        node=_text(node_name) if node_name is not None else None,
-        args=tuple(_text(a) for a in _seq(items.get("args"))),
+        namespace=text_of(items["namespace"]) if "namespace" in items else None,
+        lifecycle=value_of(items.get("lifecycle")) is True,
+        node=text_of(items["node"]) if "node" in items else None,
+        args=tuple(text_of(a) for a in seq_of(items.get("args"))),
     )
 
 
-def _number(node: ys.YNode | None, default: float) -> float:
-    if isinstance(node, ys.YScalar) and isinstance(node.value, int | float):
-        return float(node.value)
-    return default
+def _number(node: Node, default: float) -> float:
+    value = value_of(node)
+    return float(value) if isinstance(value, NUMBER) else default
 
 
-def _dynamics(node: ys.YNode | None, key: str, where: dict[str, Span]) -> Dynamics | None:
+def _dynamics(node: Node, key: str, where: dict[str, Span] | None) -> Dynamics:
     """Build a transfer function or state-space model; record where its values are."""
-    if node is None:
-        return None
-    items = _map(node)
-    where[key] = node.span
+    items = map_of(node)
+    if where is None:
+        where = {}  # without positions: every span is NOWHERE, and these are dropped
+    where[key] = span_of(node)
     if "delay" in items:
-        where[f"{key}.delay"] = items["delay"].span
+        where[f"{key}.delay"] = span_of(items["delay"])
     delay = _number(items.get("delay"), 0.0)
     if "state_space" in items:
-        ss = _map(items["state_space"])
-        where[f"{key}.state_space"] = items["state_space"].span
+        ss = map_of(items["state_space"])
+        where[f"{key}.state_space"] = span_of(items["state_space"])
         matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
         for part in ("A", "B", "C", "D"):
             path = f"{key}.state_space.{part}"
-            where[path] = ss[part].span
+            where[path] = span_of(ss[part])
             rows = []
-            for i, row in enumerate(_seq(ss[part])):
-                where[f"{path}.{i}"] = row.span
-                cells = _seq(row)
+            for i, row in enumerate(seq_of(ss[part])):
+                where[f"{path}.{i}"] = span_of(row)
+                cells = seq_of(row)
                 for j, n in enumerate(cells):
-                    where[f"{path}.{i}.{j}"] = n.span
+                    where[f"{path}.{i}.{j}"] = span_of(n)
                 rows.append(tuple(_number(n, 0.0) for n in cells))
             matrices[part] = tuple(rows)
         return StateSpace(matrices["A"], matrices["B"], matrices["C"], matrices["D"], delay)
-    tf = _map(items["transfer_function"])
+    tf = map_of(items["transfer_function"])
     coefficients: dict[str, tuple[float, ...]] = {}
     for part in ("num", "den"):
-        where[f"{key}.{part}"] = tf[part].span
-        values = _seq(tf[part])
+        where[f"{key}.{part}"] = span_of(tf[part])
+        values = seq_of(tf[part])
         for i, n in enumerate(values):
-            where[f"{key}.{part}.{i}"] = n.span
+            where[f"{key}.{part}.{i}"] = span_of(n)
         coefficients[part] = tuple(_number(n, 0.0) for n in values)
     return TransferFunction(coefficients["num"], coefficients["den"], delay)
 
 
-def _simulation(node: ys.YNode | None, where: dict[str, Span]) -> Simulation | None:
+def _simulation(node: Node, where: dict[str, Span] | None) -> Simulation:
     """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
-    if node is None:
-        return None
-    items = _map(node)
-    where["simulation"] = node.span
+    items = map_of(node)
+    if where is None:
+        where = {}  # without positions: every span is NOWHERE, and these are dropped
+    where["simulation"] = span_of(node)
     loops = []
-    for i, n in enumerate(_seq(items["loops"])):
-        loop = _map(n)
+    for i, n in enumerate(seq_of(items["loops"])):
+        loop = map_of(n)
         key = f"simulation.loops.{i}"
-        where[key] = n.span
-        where[f"{key}.name"] = loop["name"].span
+        where[key] = span_of(n)
+        where[f"{key}.name"] = span_of(loop["name"])
         paths: dict[str, tuple[str, ...]] = {}
         for path in ("forward", "feedback"):
-            roles = _seq(loop.get(path))
+            roles = seq_of(loop.get(path))
             for j, r in enumerate(roles):
-                where[f"{key}.{path}.{j}"] = r.span
-            paths[path] = tuple(_text(r) for r in roles)
+                where[f"{key}.{path}.{j}"] = span_of(r)
+            paths[path] = tuple(text_of(r) for r in roles)
         plant = _dynamics(loop["plant"], f"{key}.plant", where)
-        assert plant is not None
-        loops.append(ControlLoop(_text(loop["name"]), paths["forward"], plant, paths["feedback"]))
-    limits = _map(items.get("requirements"))
+        loops.append(ControlLoop(text_of(loop["name"]), paths["forward"], plant, paths["feedback"]))
+    limits = map_of(items.get("requirements"))
     for metric, value in limits.items():
-        where[f"simulation.requirements.{metric}"] = value.span
+        where[f"simulation.requirements.{metric}"] = span_of(value)
     for key in ("reference", "duration"):
         if key in items:
-            where[f"simulation.{key}"] = items[key].span
+            where[f"simulation.{key}"] = span_of(items[key])
     return Simulation(
         loops=tuple(loops),
         reference=_number(items.get("reference"), 1.0),
@@ -225,108 +227,126 @@ _LIST_KEYS = {
 """The ``where`` keys of a component's first provisions and requirements: one string per key
 for the whole library, not one per component."""
 
+_NOWHERE_ELSE: Mapping[str, Span] = MappingProxyType({})
+"""The ``where`` of every component and schema built without positions."""
 
-def _component(node: ys.YNode, seen: Interfaces) -> Component:
-    items = _map(node)
+
+def _where_listed(where: dict[str, Span] | None, kind: str, listed: Sequence[Node]) -> None:
+    """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
+    if where is None:
+        return
+    names = _LIST_KEYS[kind]
+    for i, n in enumerate(listed):
+        where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = span_of(n)
+
+
+def _component(node: Node, seen: Interfaces) -> Component:
+    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
     get = items.get
-    fp = get("failure_probability")
     metrics: dict[str, float] = {}
-    for key, value in _map(get("metrics")).items():
-        assert isinstance(value, ys.YScalar) and isinstance(value.value, int | float)
-        metrics[key] = float(value.value)
-    where = {"name": items["name"].span, "abstraction": items["abstraction"].span}
-    for key in ("needs", "excludes", "schemas"):
-        if key in items:
-            for n in _seq(items[key]):
-                where[f"{key}.{_text(n)}"] = n.span
+    for key, value in map_of(get("metrics")).items():
+        metric = value_of(value)
+        assert isinstance(metric, NUMBER)
+        metrics[key] = float(metric)
+    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
+    where: dict[str, Span] | None = None
+    if isinstance(node, ys.YNode):  # positions: where each value of the component is
+        where = {"name": span_of(items["name"]), "abstraction": span_of(items["abstraction"])}
+        for key in ("needs", "excludes", "schemas"):
+            for n in seq_of(get(key)):
+                where[f"{key}.{text_of(n)}"] = span_of(n)
     found = _Found(where)
-    provides, requires = _seq(get("provides")), _seq(get("requires"))
-    names = _LIST_KEYS["provides"]
-    for i, n in enumerate(provides):
-        where[names[i] if i < len(names) else sys.intern(f"provides.{i}")] = n.span
+    _where_listed(where, "provides", provides)
     provided = frozenset([_interface(n, seen, found) for n in provides])
-    names = _LIST_KEYS["requires"]
-    for i, n in enumerate(requires):
-        where[names[i] if i < len(names) else sys.intern(f"requires.{i}")] = n.span
+    _where_listed(where, "requires", requires)
     required = tuple([_requirement(n, seen, found) for n in requires])
-    ros = get("ros")
-    if ros is not None:
-        for i, n in enumerate(_seq(_map(ros).get("args"))):
-            where[f"ros.args.{i}"] = n.span
-    dynamics = _dynamics(get("dynamics"), "dynamics", where)
+    if where is not None:
+        for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
+            where[f"ros.args.{i}"] = span_of(n)
+    fp = value_of(get("failure_probability"))
     return Component(
-        name=_text(items["name"]),
-        abstraction=_text(items["abstraction"]),
+        name=text_of(items["name"]),
+        abstraction=text_of(items["abstraction"]),
         provides=provided,
         requires=required,
-        failure_probability=(
-            float(fp.value) if isinstance(fp, ys.YScalar) and fp.value is not None else None
-        ),
-        needs=_names(get("needs")),
-        excludes=_names(get("excludes")),
-        schemas=_names(get("schemas")),
-        launch=_launch(ros),
+        failure_probability=float(fp) if isinstance(fp, NUMBER) else None,
+        needs=_names(get("needs")) if "needs" in items else _NO_NAMES,
+        excludes=_names(get("excludes")) if "excludes" in items else _NO_NAMES,
+        schemas=_names(get("schemas")) if "schemas" in items else _NO_NAMES,
+        launch=_launch(items["ros"]) if "ros" in items else None,
         metrics=MappingProxyType(metrics),
         qos=MappingProxyType(found.qos),
-        dynamics=dynamics,
-        description=_text(get("description")),
-        span=node.span,
-        where=MappingProxyType(where),
+        dynamics=_dynamics(items["dynamics"], "dynamics", where) if "dynamics" in items else None,
+        description=field_text(items, "description"),
+        span=span_of(node),
+        where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
     )
 
 
-def build_library(tree: ys.YMapping, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
+def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
     """Build a library file's model; ``seen`` shares interfaces with files built before.
 
-    One ``seen`` for all the library files of a load makes every use of an interface, in
-    any file, the same object: a requirement in one file and the provision meeting it in
+    ``tree`` is the file's positioned tree or its plain data (see the module doc). One
+    ``seen`` for all the library files of a load makes every use of an interface, in any
+    file, the same object: a requirement in one file and the provision meeting it in
     another then match by identity in every set and dict, without a comparison.
+
+    Raises:
+        NeedsPositions: plain data where only the tree can give the text as written.
     """
-    items = tree.items
+    items = map_of(tree)
     if seen is None:
         seen = {}
     return ComponentLibrary(
-        name=_text(items["name"]),
-        components=tuple([_component(n, seen) for n in _seq(items["components"])]),
-        description=_text(items.get("description")),
+        name=text_of(items["name"]),
+        components=tuple([_component(n, seen) for n in seq_of(items["components"])]),
+        description=field_text(items, "description"),
         source=(name,),
     )
 
 
-def build_schema(tree: ys.YMapping, name: str) -> InteroperabilitySchema:
-    items = tree.items
+def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
+    """Build a schema file's model from its positioned tree or its plain data.
+
+    Raises:
+        NeedsPositions: plain data where only the tree can give the text as written.
+    """
+    items = map_of(tree)
     roles = tuple(
         Role(
-            name=_text(_map(n)["name"]),
-            abstraction=_text(_map(n)["abstraction"]),
-            description=_text(_map(n).get("description")),
-            span=n.span,
+            name=text_of(map_of(n)["name"]),
+            abstraction=text_of(map_of(n)["abstraction"]),
+            description=field_text(map_of(n), "description"),
+            span=span_of(n),
         )
-        for n in _seq(items["roles"])
+        for n in seq_of(items["roles"])
     )
     edges = []
-    for n in _seq(items.get("edges")):
-        e = _map(n)
-        interfaces = frozenset(_text(i) for i in _seq(e.get("interfaces")))
-        opt = e.get("optional")
-        optional = isinstance(opt, ys.YScalar) and opt.value is True
-        for p in _seq(e["providers"]):
-            edges.append(Edge(_text(e["consumer"]), _text(p), interfaces, p.span, optional))
-    nominal = {k: _text(v) for k, v in _map(items.get("nominal")).items()}
-    where = {"name": items["name"].span}
-    where.update({f"nominal.{k}": v.span for k, v in _map(items.get("nominal")).items()})
-    for n in _seq(items["roles"]):
-        where[f"role.{_text(_map(n)['name'])}.abstraction"] = _map(n)["abstraction"].span
-    simulation = _simulation(items.get("simulation"), where)
+    for n in seq_of(items.get("edges")):
+        e = map_of(n)
+        interfaces = frozenset(text_of(i) for i in seq_of(e.get("interfaces")))
+        optional = value_of(e.get("optional")) is True
+        for p in seq_of(e["providers"]):
+            edges.append(Edge(text_of(e["consumer"]), text_of(p), interfaces, span_of(p), optional))
+    nominal = {k: text_of(v) for k, v in map_of(items.get("nominal")).items()}
+    where: dict[str, Span] | None = None
+    if isinstance(tree, ys.YNode):  # positions: where each value of the schema is
+        where = {"name": span_of(items["name"])}
+        where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
+        for n in seq_of(items["roles"]):
+            where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(
+                map_of(n)["abstraction"]
+            )
+    simulation = _simulation(items["simulation"], where) if "simulation" in items else None
     return InteroperabilitySchema(
-        name=_text(items["name"]),
-        title=_text(items.get("title")),
+        name=text_of(items["name"]),
+        title=field_text(items, "title"),
         graph=SystemGraph(roles, tuple(edges)),
-        skill=_text(items["skill"]).strip(),
-        environment=_text(items["environment"]).strip(),
+        skill=text_of(items["skill"]).strip(),
+        environment=text_of(items["environment"]).strip(),
         nominal=MappingProxyType(nominal),
         simulation=simulation,
-        span=tree.span,
+        span=span_of(tree),
         source=name,
-        where=MappingProxyType(where),
+        where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
     )

@@ -6,40 +6,62 @@ structure checked against the shipped JSON Schema (``structure``, errors mapped 
 Problems are collected per file and across files; the caller gets the model of every
 well-formed file *and* the list of problems, so ``validate`` can report everything in one
 run while ``enumerate`` can refuse to work on invalid input.
+
+Positions are needed only to report a problem, and building them is most of the cost of
+reading a large library. So the commands load through ``load_reported``: every file is
+first read as plain data alone (``positions=False``: no tree, no span), checked (structure,
+values, TODO marks, then the semantic checks) and built; at the first thing to report, of
+any severity, anywhere (``NeedsPositions``), every file is loaded again the positioned way,
+and that load and its problems are the answer, so every message and position is the one the
+positioned load gives. A file with problems costs two reads; a clean one, one cheap read.
 """
 
 from __future__ import annotations
 
 import contextlib
-import errno
 import gc
-import os
 import re
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rosreconf.errors import InvalidInputError, Problem, Severity, UsageError
+from rosreconf.errors import InvalidInputError, Problem, Severity
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.build import Interfaces, build_library, build_schema
+from rosreconf.formats.build import Interfaces, NeedsPositions, build_library, build_schema
 from rosreconf.formats.checks import check
-from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
-from rosreconf.formats.values import duplicate_edges, value_problems
+from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
+from rosreconf.formats.structure import (
+    DocumentKind,
+    kind_of,
+    kind_of_plain,
+    structure_problems,
+    structure_valid,
+)
+from rosreconf.formats.values import (
+    clean_values,
+    duplicate_edges,
+    repeated_edges,
+    value_problems,
+)
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
-from rosreconf.outfiles import special_kind
 from rosreconf.resources import Bundle, bundled
 
-YAML_SUFFIXES = (".yaml", ".yml")
-
-
-@dataclass(frozen=True)
-class Source:
-    """One input file: its name as shown to the user and its bytes."""
-
-    name: str
-    data: bytes
-    size: int = -1
-    """The file's size when only its first bytes were read (over the limit); else -1."""
+__all__ = [
+    "YAML_SUFFIXES",
+    "Loaded",
+    "Source",
+    "check_loaded",
+    "discover",
+    "load_bundled",
+    "load_checked",
+    "load_paths",
+    "load_reported",
+    "load_selection",
+    "load_sources",
+    "load_split",
+    "read_sources",
+    "todo_marks",
+]
 
 
 @dataclass
@@ -74,75 +96,6 @@ class Loaded:
         return ConfigurationLibrary(tuple(self.schemas))
 
 
-def discover(paths: Iterable[Path]) -> list[Path]:
-    """Expand folders into their YAML files (sorted, recursive); keep files as given.
-
-    A FIFO, a device or a symlink loop is named for what it is, given directly or found in a
-    folder under a YAML name: reading one would block, never end, or fail obscurely. A folder
-    without YAML files is an error too: a CI job pointed at the wrong folder must fail, not
-    report "0 file(s) valid".
-
-    Raises:
-        UsageError: a path does not exist, is not a regular file or folder, or a folder holds
-            no YAML file.
-    """
-    out: list[Path] = []
-    for p in paths:
-        kind = _file_kind(p)
-        if kind == "a folder":
-            found = []
-            for f in sorted(p.rglob("*")):
-                if f.suffix not in YAML_SUFFIXES or f.is_dir():
-                    continue
-                inner = _file_kind(f)
-                if inner != "a regular file":
-                    raise UsageError(f"{f}: is {inner}, not a YAML file (remove or rename it)")
-                found.append(f)
-            if not found:
-                raise UsageError(
-                    f"{p}: folder has no .yaml or .yml files (is it the right folder?)"
-                )
-            out.extend(found)
-        elif kind == "a regular file":
-            out.append(p)
-        elif kind is None:
-            raise UsageError(f"{p}: no such file or folder")
-        else:
-            raise UsageError(f"{p}: is {kind}, not a YAML file or folder")
-    return out
-
-
-def _file_kind(path: Path) -> str | None:
-    """Name what ``path`` is ("a regular file", "a FIFO (named pipe)"...); None if nothing."""
-    try:
-        info = os.stat(path)
-    except OSError as exc:
-        if exc.errno == errno.ELOOP:
-            return "a symlink loop"
-        if os.path.islink(path):
-            return "a broken symlink"
-        return None
-    return special_kind(info.st_mode)
-
-
-def read_sources(paths: Iterable[Path]) -> list[Source]:
-    """Read files as bytes, at most one byte over the parser's limit, failing clearly.
-
-    Reading stops after ``MAX_BYTES + 1`` bytes, so a 200 MB file costs no more than the limit
-    and the parser still reports it as too large (with its real size from ``stat``).
-    """
-    sources = []
-    for p in paths:
-        try:
-            with open(p, "rb") as f:
-                data = f.read(ys.MAX_BYTES + 1)
-                size = max(len(data), os.fstat(f.fileno()).st_size)
-            sources.append(Source(str(p), data, size))
-        except OSError as exc:
-            raise UsageError(f"{p}: cannot read: {exc.strerror}") from None
-    return sources
-
-
 @contextlib.contextmanager
 def _paused_gc() -> Iterator[None]:
     """Pause the cyclic garbage collector while a library's tree and model are built.
@@ -168,10 +121,42 @@ def _paused_gc() -> Iterator[None]:
             gc.enable()
 
 
-def load_sources(sources: Iterable[Source]) -> Loaded:
-    """Parse and build every source, collecting problems instead of stopping at the first."""
+def load_sources(sources: Iterable[Source], *, positions: bool = True) -> Loaded:
+    """Parse and build every source, collecting problems instead of stopping at the first.
+
+    With ``positions=False`` the files are read as plain data and the model has no
+    positions (``load_reported``); the first thing to report raises ``NeedsPositions``.
+    """
     with _paused_gc():
-        return _load_sources(sources)
+        return _load_sources(sources) if positions else _load_plain(sources)
+
+
+def _load_plain(sources: Iterable[Source]) -> Loaded:
+    """Load clean files without positions; raise ``NeedsPositions`` at anything to report.
+
+    The same steps as ``_load_sources``, each asking only whether there is a problem: a
+    file the fast reader declines, an unknown ``format``, a JSON Schema, value or TODO
+    problem, or a duplicate edge sends every file back to be loaded with positions.
+    """
+    loaded = Loaded()
+    interfaces: Interfaces = {}  # shared by every library file (see build_library)
+    for src in sources:
+        loaded.files.append(src.name)
+        plain = ys.DECLINED if src.size > ys.MAX_BYTES else ys.parse_plain_only(src.data, src.name)
+        if isinstance(plain, ys.Declined):
+            raise NeedsPositions(f"{src.name}: the fast reader declined it")
+        kind = kind_of_plain(plain)
+        if kind is None or not structure_valid(kind, plain) or _has_todo(src):
+            raise NeedsPositions(f"{src.name}: a format, structure or TODO problem")
+        if kind is DocumentKind.LIBRARY:
+            if not clean_values(plain):
+                raise NeedsPositions(f"{src.name}: a value problem")
+            loaded.libraries.append(build_library(plain, src.name, interfaces))
+        else:
+            if repeated_edges(plain):
+                raise NeedsPositions(f"{src.name}: a duplicate edge")
+            loaded.schemas.append(build_schema(plain, src.name))
+    return loaded
 
 
 def _load_sources(sources: Iterable[Source]) -> Loaded:
@@ -215,6 +200,11 @@ TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")
 """A ``# TODO`` comment or a ``TODO_...`` placeholder, as ``rosreconf import`` writes them."""
 
 
+def _has_todo(src: Source) -> bool:
+    """Tell whether ``todo_marks`` has anything to report for ``src``."""
+    return b"TODO" in src.data and next(todo_marks(src), None) is not None
+
+
 def todo_marks(src: Source) -> Iterator[Problem]:
     """Yield one warning per line still holding a TODO mark (an unfinished import draft).
 
@@ -237,19 +227,19 @@ def todo_marks(src: Source) -> Iterator[Problem]:
         )
 
 
-def load_paths(paths: Sequence[Path]) -> Loaded:
+def load_paths(paths: Sequence[Path], *, positions: bool = True) -> Loaded:
     """Load the YAML files at ``paths`` (files or folders)."""
-    return load_sources(read_sources(discover(paths)))
+    return load_sources(read_sources(discover(paths)), positions=positions)
 
 
-def load_bundled() -> Loaded:
+def load_bundled(*, positions: bool = True) -> Loaded:
     """Load the bundled example (the paper's robot arm and the mobile robot)."""
     sources = []
     for kind in (Bundle.LIBRARIES, Bundle.SCHEMAS):
         for f in sorted(bundled(kind).iterdir(), key=lambda t: t.name):
             if f.is_file() and f.name.endswith(YAML_SUFFIXES):
                 sources.append(Source(f"<bundled>/{kind.value}/{f.name}", f.read_bytes()))
-    loaded = load_sources(sources)
+    loaded = load_sources(sources, positions=positions)
     loaded.note = "no libraries/ or schemas/ here: using the bundled example"
     return loaded
 
@@ -257,36 +247,42 @@ def load_bundled() -> Loaded:
 DEFAULT_FOLDERS = (Path("libraries"), Path("schemas"))
 
 
-def load_selection(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
+def load_selection(
+    paths: Sequence[Path], *, base: Path | None = None, positions: bool = True
+) -> Loaded:
     """Load what the user named, else ``libraries/`` and ``schemas/`` here, else the bundle.
 
     This is the one rule every command uses to pick its input, so that ``rosreconf
     validate``, ``enumerate`` and ``plan`` always look at the same files.
     """
     if paths:
-        return load_paths(paths)
+        return load_paths(paths, positions=positions)
     here = base or Path()
     folders = [here / f for f in DEFAULT_FOLDERS if (here / f).is_dir()]
     if folders:
-        loaded = load_paths(folders)
+        loaded = load_paths(folders, positions=positions)
         loaded.note = "using " + " and ".join(f"{f.name}/" for f in folders)
         return loaded
-    return load_bundled()
+    return load_bundled(positions=positions)
 
 
 def load_split(
-    library_paths: Sequence[Path], schema_paths: Sequence[Path], *, base: Path | None = None
+    library_paths: Sequence[Path],
+    schema_paths: Sequence[Path],
+    *,
+    base: Path | None = None,
+    positions: bool = True,
 ) -> Loaded:
     """Load libraries and schemas chosen separately (``--library``/``--schema`` options).
 
     Whichever side is not given comes from the default rule of ``load_selection``.
     """
     if not library_paths and not schema_paths:
-        return load_selection([], base=base)
+        return load_selection([], base=base, positions=positions)
     if library_paths and schema_paths:  # both given: the defaults are not read at all
-        return load_paths([*library_paths, *schema_paths])
-    default = load_selection([], base=base)
-    given = load_paths([*library_paths, *schema_paths])
+        return load_paths([*library_paths, *schema_paths], positions=positions)
+    default = load_selection([], base=base, positions=positions)
+    given = load_paths([*library_paths, *schema_paths], positions=positions)
     if not library_paths:
         given.libraries = default.libraries + given.libraries
         given.files = [f for f in default.files if "librar" in f] + given.files
@@ -303,6 +299,23 @@ def check_loaded(loaded: Loaded) -> list[Problem]:
         return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
 
 
+def load_reported(load: Callable[[bool], Loaded]) -> tuple[Loaded, list[Problem]]:
+    """Load with ``load(positions)`` and check; return what was loaded and every problem.
+
+    The one place where the rule of this module's doc is applied: ``load(False)`` and the
+    semantic checks first; on anything to report, ``load(True)`` and its checks are the
+    answer, so problems and the model they point into always carry their positions.
+    """
+    try:
+        loaded = load(False)
+        if not check_loaded(loaded):
+            return loaded, []
+    except NeedsPositions:
+        pass
+    loaded = load(True)
+    return loaded, [*loaded.problems, *check_loaded(loaded)]
+
+
 def load_checked(
     library_paths: Sequence[Path] = (),
     schema_paths: Sequence[Path] = (),
@@ -314,8 +327,9 @@ def load_checked(
     Raises:
         InvalidInputError: with every structural and semantic error of the files.
     """
-    loaded = load_split(library_paths, schema_paths, base=base)
-    problems = [*loaded.problems, *check_loaded(loaded)]
+    loaded, problems = load_reported(
+        lambda positions: load_split(library_paths, schema_paths, base=base, positions=positions)
+    )
     errors = [p for p in problems if p.severity is Severity.ERROR]
     if errors:
         raise InvalidInputError(errors)

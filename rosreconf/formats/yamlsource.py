@@ -19,6 +19,11 @@ Three modules do the work: ``yamltree`` (the tree and the YAML 1.2 resolver), ``
 libyaml might read differently; compiled in ``_yamlc.c`` when built) and ``yamlbuilder``
 (PyYAML's pure parser, the reader of record, with every message). ``parse`` tries the
 first and falls back to the second, so answers never depend on whether libyaml is installed.
+
+``parse_plain_only`` is the loader's first try at every file: the plain data alone, built by
+the fast reader without a node or a position (positions serve only to report problems), or
+``DECLINED`` wherever the fast reader declines or anything else might need reporting; the
+loader then reads again with ``parse_plain``, the positioned way.
 """
 
 from __future__ import annotations
@@ -29,7 +34,7 @@ import yaml
 
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.formats.yamlbuilder import offset_span, read_pure
-from rosreconf.formats.yamlfast import Declined, fast_read
+from rosreconf.formats.yamlfast import DECLINED, Declined, fast_read
 from rosreconf.formats.yamltree import (
     MAX_DEPTH,
     Plain,
@@ -47,9 +52,11 @@ from rosreconf.formats.yamltree import (
 from rosreconf.model import Span
 
 __all__ = [
+    "DECLINED",
     "FAST_LOADER",
     "MAX_BYTES",
     "MAX_DEPTH",
+    "Declined",
     "Plain",
     "Scalar",
     "YMapping",
@@ -60,6 +67,7 @@ __all__ = [
     "lookup",
     "parse",
     "parse_plain",
+    "parse_plain_only",
     "resolve_plain",
     "to_plain",
     "too_large",
@@ -135,3 +143,21 @@ def parse_plain(data: bytes, file: str) -> tuple[YNode | None, Plain]:
             return fast
     tree = read_pure(text, file)
     return tree, to_plain(tree)
+
+
+def parse_plain_only(data: bytes, file: str) -> Plain | Declined:
+    """Return the plain data of a clean file, building no tree; else ``DECLINED``.
+
+    Declined wherever ``parse_plain`` would report a problem or read with the pure reader
+    (over the size limit, not UTF-8, no libyaml, anything ``fast_read`` declines), so that
+    whatever is to be reported is read again, with positions, by ``parse_plain``. The caller
+    pauses the cyclic garbage collector (``loader``): the data only grows here.
+    """
+    if FAST_LOADER is None or len(data) > MAX_BYTES:
+        return DECLINED
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return DECLINED
+    read = fast_read(text, file, FAST_LOADER, positions=False)
+    return read if isinstance(read, Declined) else read[1]
