@@ -15,6 +15,7 @@ import math
 import operator
 from collections import defaultdict
 
+from rosreconf.solve.dense import SumOut, TooWide, grids, run
 from rosreconf.solve.factors import (
     MAX_FACTOR_ROWS,
     Factor,
@@ -47,9 +48,14 @@ def count(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> int:
         classes = interchangeable(inst, alive)
         kept = [[members[0] for members in role] for role in classes]
         factors = constraint_factors(inst, kept, 1, max_rows)
-        _weigh(factors, classes)
         order = elimination_order([f.scope for f in factors], len(inst.roles))
-        done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
+        try:  # dense grids first (``rosreconf.solve.dense``); the sparse tables if too wide
+            weights = [[len(members) for members in role] for role in classes]
+            tables = grids(factors, kept, 1, 0, operator.mul)
+            done = run(tables, order, [len(k) for k in kept], SumOut(weights))
+        except TooWide:
+            _weigh(factors, classes)
+            done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
     if done is None:
         return 0
     scalars, free = done

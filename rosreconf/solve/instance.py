@@ -48,7 +48,8 @@ class Instance:
             (symmetric; rule ``one-type-per-label``: never chosen together).
         partners: per required edge index, consumer candidate -> the provider candidates
             it may be paired with, the pairs of which make ``edge_ok`` (candidates with none
-            are absent).
+            are absent; candidates with the same requirements share one set: read it, never
+            change it).
         users: per required edge index, provider candidate -> the consumer candidates that
             may use it (``edge_ok`` by provider).
         interfaces: candidate -> (the numbers of the interfaces it provides, per requirement
@@ -142,15 +143,25 @@ def compile_instance(
         inst.edges.append((u, v))
         partners: dict[str, set[str]] = {}
         users: dict[str, set[str]] = {}
+        offered = [(cv.name, provides[cv.name]) for cv in domains[v]]
+        # the mates depend only on the consumer's requirements: candidates with the same
+        # ones share one (read-only) set, and the users are filled once per such group
+        by_opts: dict[tuple[tuple[int, ...], ...], tuple[set[str], list[str]]] = {}
         for cu in domains[u]:
-            wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
-            if not wanted:
-                continue
-            mates = {cv.name for cv in domains[v] if not provides[cv.name].isdisjoint(wanted)}
-            if mates:
-                partners[cu.name] = mates
-                for cv_name in mates:
-                    users.setdefault(cv_name, set()).add(cu.name)
+            reqs = options[cu.name]
+            found = by_opts.get(reqs)
+            if found is None:
+                wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                mates = (
+                    {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
+                )
+                found = by_opts[reqs] = (mates, [])
+            if found[0]:
+                partners[cu.name] = found[0]
+                found[1].append(cu.name)
+        for mates, consumers in by_opts.values():
+            for cv_name in mates:
+                users.setdefault(cv_name, set()).update(consumers)
         inst.partners.append(partners)
         inst.users.append(users)
     for u in range(len(roles)):
