@@ -223,6 +223,7 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
         changed = False
         alive_sets = [set(a) for a in alive]
         anywhere = set().union(*alive_sets) if alive_sets else set()
+        support.met.clear()  # what a shared list or set says holds for one pass only
         for u in range(len(inst.roles)):
             kept = []
             for name in alive[u]:
@@ -288,6 +289,9 @@ class _Support:
                 self.incident[ev].append(k)
         self.partners = inst.partners
         self.users = inst.users
+        self.met: dict[int, bool] = {}
+        """id of a ``meets`` list or ``partners`` set -> whether a survivor is in it, this
+        pass (candidates with the same requirements share them: each is read once)."""
 
 
 def _dead_reason(
@@ -299,17 +303,30 @@ def _dead_reason(
     anywhere: set[str],
 ) -> str:
     c = inst.library[name]
+    met = support.met
     for i, req in enumerate(c.requires):
-        if not any(cv in alive[v] for v, cv in inst.meets[(u, name, i)]):
+        pairs = inst.meets[(u, name, i)]
+        ok = met.get(id(pairs))
+        if ok is None:
+            ok = met[id(pairs)] = any(cv in alive[v] for v, cv in pairs)
+        if not ok:
             return f"{name} requires {req}, and no surviving provider along its edges offers it"
     for k in support.incident[u]:
         eu, ev = inst.edges[k]
-        if eu == u and alive[ev].isdisjoint(support.partners[k].get(name, ())):
-            provider = inst.roles[ev]
-            return (
-                f"{name} uses nothing the surviving {provider.abstraction} candidates "
-                f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
-            )
+        if eu == u:
+            mates = support.partners[k].get(name)
+            if mates is None:
+                ok = False
+            else:
+                ok = met.get(id(mates))
+                if ok is None:
+                    ok = met[id(mates)] = not alive[ev].isdisjoint(mates)
+            if not ok:
+                provider = inst.roles[ev]
+                return (
+                    f"{name} uses nothing the surviving {provider.abstraction} candidates "
+                    f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
+                )
         if ev == u and alive[eu].isdisjoint(support.users[k].get(name, ())):
             consumer = inst.roles[eu]
             return (
