@@ -10,6 +10,7 @@ end-to-end equivalence with brute force and clingo is in test_optimum.py and tes
 from __future__ import annotations
 
 import itertools
+import operator
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
@@ -22,8 +23,9 @@ from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.solve import counting, dense, optimum
+from rosreconf.solve import counting, dense, gridtables, optimum
 from rosreconf.solve.dense import Grid, MinOut, TooWide, gather
+from rosreconf.solve.factors import constraint_factors
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.objective import Objective, unary_costs
 
@@ -129,8 +131,29 @@ def test_costs_too_large_for_small_integers_go_to_the_sparse_tables() -> None:
 
 def test_a_grid_wider_than_the_cap_is_refused() -> None:
     step = MinOut([[0, 0], [0, 0]])
-    assert dense.run([Grid((0, 1), [0, 0, 0, 0])], [0, 1], [2, 2], step) == ([0], [])
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(dense, "DENSE_CELLS", 3)
-        with pytest.raises(TooWide):
-            dense.run([Grid((0, 1), [0, 0, 0, 0])], [0, 1], [2, 2], MinOut([[0, 0], [0, 0]]))
+    assert dense.run([Grid((0, 1), [0, 0, 0, 0])], [0, 1], [2, 2], step, 4) == ([0], [])
+    with pytest.raises(TooWide):
+        dense.run([Grid((0, 1), [0, 0, 0, 0])], [0, 1], [2, 2], MinOut([[0, 0], [0, 0]]), 3)
+    assert dense.cap_for(7) == 7  # a row budget below the cap is the cap: never more rows
+
+
+@PROPS
+@given(problem=problems(), data=st.data())
+def test_grids_made_directly_are_the_constraint_tables(
+    problem: tuple[ComponentLibrary, InteroperabilitySchema], data: st.DataObject
+) -> None:
+    library, schema = problem
+    failed = frozenset(data.draw(st.sets(st.sampled_from([c.name for c in library]), max_size=1)))
+    inst = compile_instance(library, schema, failed)
+    alive = [[c.name for c in dom] for dom in inst.domains]
+    sizes = [len(a) for a in alive]
+    for present, absent, combine in ((0, 99, operator.add), (1, 0, operator.mul)):
+        direct = gridtables.constraint_grids(inst, alive, present, absent, combine, 10**6)
+        made = gridtables.grids(
+            constraint_factors(inst, alive, 1), alive, present, absent, combine, 10**6
+        )
+        assert len(direct) == len(made)
+        by_roles = {frozenset(g.scope): g for g in made}
+        for g in direct:
+            other = by_roles[frozenset(g.scope)]
+            assert g.data == gather(other, g.scope, sizes), g.scope

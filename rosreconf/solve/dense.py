@@ -1,20 +1,20 @@
 """Eliminate roles over dense tables: one integer per cell of a few roles' candidate grid.
 
-Why: on generated libraries (1000 roles x 10 candidates, about 6 kept per role) a table over
-two or three roles allows most cells of its grid anyway, so storing every cell costs little
-and lets each elimination step run as a few C-level ``map`` calls over flat lists (gather,
-add or multiply, ``min`` or sum across the role's candidates) instead of a Python loop per
-row with a dictionary of name tuples; the step is the same function as the sparse one in
-``rosreconf.solve.factors`` (tests/test_dense.py holds them alike). A cell is a candidate's
-position in its role's list, mixed-radix in the scope's order (last role fastest).
+On generated libraries (1000 roles x 10 candidates, about 6 kept per role) a table over two
+or three roles allows 70-100% of its grid's cells, so storing every cell costs little and
+lets each elimination step run as a few C-level ``map`` calls over flat lists (gather, add or
+multiply, ``min`` or sum across the role's candidates) instead of a Python loop per row over
+a dictionary of name tuples. Each step is the same function as the sparse one of
+``rosreconf.solve.factors`` (tests/test_dense.py holds them alike). A cell is numbered by its
+candidates' positions in their roles' lists, mixed-radix in the scope's order (last fastest).
 
 Min-plus cells hold ``cost * W`` (``W`` larger than any role's candidates); adding a
-candidate's ``cost * W + position`` before ``min`` makes one comparison order by cost, then
-by position: the argmin and its tie-break ride along in the same integer. Cells ruled out by a
-rule of validity hold ``INF``, far above any real total, and stay above ``FEAS`` whatever is
+candidate's ``cost * W + position`` before ``min`` orders by cost, then by position: the
+argmin and its tie-break ride in the same integer. Cells a rule of validity rules out hold
+``MinOut.inf``, far above any real total, and stay above ``MinOut.feasible`` whatever is
 added or taken out. When costs are too large for that (the first configuration's costs are
 integers of thousands of digits) or a grid would be too large, ``TooWide`` sends the caller
-back to the sparse tables.
+back to the sparse tables. The grids themselves are made in ``rosreconf.solve.gridtables``.
 """
 
 from __future__ import annotations
@@ -25,8 +25,6 @@ from collections.abc import Callable, Sequence
 from itertools import chain, repeat
 from typing import NamedTuple, Protocol
 
-from rosreconf.solve.tables import Factor
-
 DENSE_CELLS = 1 << 18
 """Largest grid (cells of the joined table of one step) eliminated densely."""
 
@@ -35,7 +33,7 @@ SMALL_COST_BITS = 60
 
 
 class TooWide(Exception):
-    """A grid would pass ``DENSE_CELLS`` cells or costs are too large: use the sparse tables."""
+    """A grid would pass its cap (``cap_for``) or costs are too large: use the sparse tables."""
 
 
 class Grid(NamedTuple):
@@ -50,55 +48,26 @@ class Grid(NamedTuple):
     data: list[int]
 
 
-def grids(
-    factors: Sequence[Factor],
-    alive: Sequence[Sequence[str]],
-    present: int,
-    absent: int,
-    combine: Callable[[int, int], int],
-) -> list[Grid]:
-    """Turn constraint tables into grids: ``present`` for an allowed row, ``absent`` elsewhere.
+def cap_for(max_rows: int) -> int:
+    """Return the largest grid to make: ``DENSE_CELLS``, or the row budget if smaller.
 
-    Tables over the same roles are combined into one as they are made (an edge realised and
-    the requirement met across it are both tables over the same two roles): each step then
-    gathers fewer grids.
+    A grid holds at least the rows of the sparse table it stands for, so within the row
+    budget everywhere, the sparse tables would have been within it too: the dense path
+    never answers where the sparse one would refuse (``TooHard``).
+    """
+    return min(DENSE_CELLS, max_rows)
+
+
+def cells_of(scope: Sequence[int], sizes: Sequence[int], cap: int) -> int:
+    """Return how many cells a grid over ``scope`` has.
 
     Raises:
-        TooWide: a table's grid would pass ``DENSE_CELLS`` cells.
+        TooWide: more than ``cap``.
     """
-    sizes = [len(a) for a in alive]
-    pos = [{c: i for i, c in enumerate(names)} for names in alive]
-    out: dict[frozenset[int], Grid] = {}
-    for f in factors:
-        scope = f.scope
-        cells = _cells(scope, sizes)
-        data = [absent] * cells
-        if len(scope) == 2:
-            p0, p1 = pos[scope[0]], pos[scope[1]]
-            k1 = sizes[scope[1]]
-            for a, b in f.rows:
-                data[p0[a] * k1 + p1[b]] = present
-        else:
-            for row in f.rows:
-                code = 0
-                for v, c in zip(scope, row, strict=True):
-                    code = code * sizes[v] + pos[v][c]
-                data[code] = present
-        key = frozenset(scope)
-        earlier = out.get(key)
-        if earlier is None:
-            out[key] = Grid(scope, data)
-        else:
-            moved = gather(Grid(scope, data), earlier.scope, sizes)
-            out[key] = Grid(earlier.scope, list(map(combine, earlier.data, moved)))
-    return list(out.values())
-
-
-def _cells(scope: Sequence[int], sizes: Sequence[int]) -> int:
     cells = 1
     for v in scope:
         cells *= sizes[v]
-    if cells > DENSE_CELLS:
+    if cells > cap:
         raise TooWide(f"a grid of {cells} cells")
     return cells
 
@@ -159,7 +128,7 @@ class Step(Protocol):
 
 
 def run(
-    tables: list[Grid], order: Sequence[int], sizes: Sequence[int], step: Step
+    tables: list[Grid], order: Sequence[int], sizes: Sequence[int], step: Step, cap: int
 ) -> tuple[list[int], list[int]] | None:
     """Eliminate the roles in ``order``; return the scalars left and the free roles.
 
@@ -169,7 +138,7 @@ def run(
     says so by returning None).
 
     Raises:
-        TooWide: a step's joined grid would pass ``DENSE_CELLS`` cells.
+        TooWide: a step's joined grid would pass ``cap`` cells (``cap_for``).
     """
     by_var: dict[int, set[int]] = {}
     pool: dict[int, Grid] = dict(enumerate(tables))
@@ -203,7 +172,7 @@ def run(
             order_rest.remove(z)
             axes = (var, *order_rest)
             rest: tuple[int, ...] = (z, *order_rest)
-            _cells((*axes, z), sizes)
+            cells_of((*axes, z), sizes, cap)
             parts = [gather(g, axes, sizes, cache) for g in mine]
             joined = step.fold(parts)
             data = step.outer(var, rest, joined, gather(last, (var, z), sizes), sizes[z])
@@ -211,7 +180,7 @@ def run(
             rest = tuple(order_rest)
             leading = first[0] == var or first[-1] != var
             axes = (var, *rest) if leading else (*rest, var)
-            _cells(axes, sizes)
+            cells_of(axes, sizes, cap)
             parts = [gather(g, axes, sizes, cache) for g in mine]
             data = step.dense(var, rest, parts, leading)
         if data is None:

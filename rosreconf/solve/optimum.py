@@ -21,7 +21,7 @@ import operator
 from collections.abc import Callable, Mapping, Sequence
 
 from rosreconf.model import Configuration
-from rosreconf.solve.dense import MinOut, TooWide, grids, run
+from rosreconf.solve.dense import MinOut, TooWide, cap_for, run
 from rosreconf.solve.factors import (
     MAX_FACTOR_ROWS,
     Factor,
@@ -31,6 +31,7 @@ from rosreconf.solve.factors import (
     elimination_order,
     paused_gc,
 )
+from rosreconf.solve.gridtables import constraint_grids
 from rosreconf.solve.instance import Instance, interchangeable, prune
 from rosreconf.solve.minout import Trace, join_minimise_out, minimise_out
 
@@ -131,13 +132,13 @@ def _minimise(
         sorted((prefer(r, members) for members in role), key=rank.__getitem__)
         for r, role in enumerate(interchangeable(inst, alive))
     ]
-    factors = constraint_factors(inst, alive, 0, max_rows)
-    order = elimination_order([f.scope for f in factors], len(inst.roles))
     if small:
         try:
-            return _dense_minimise(inst, alive, factors, order, packed, rank)
+            return _dense_minimise(inst, alive, packed, cap_for(max_rows))
         except TooWide as exc:
             LOG.info("sparse elimination: %s", exc)
+    factors = constraint_factors(inst, alive, 0, max_rows)
+    order = elimination_order([f.scope for f in factors], len(inst.roles))
     trace: Trace = []
     offsets: list[int] = []
 
@@ -168,21 +169,23 @@ def _minimise(
 def _dense_minimise(
     inst: Instance,
     alive: list[list[str]],
-    factors: list[Factor],
-    order: list[int],
     packed: Callable[[int], Mapping[str, int]],
-    rank: Mapping[str, int],
+    cap: int,
 ) -> tuple[Configuration, int] | None:
     """Minimise over dense grids (``_minimise``'s answer; ``alive`` in library order).
 
+    The elimination order is the sparse path's: it is decided by which roles share a table,
+    and the grids are the same tables.
+
     Raises:
-        TooWide: a grid would be too large, or the costs too large for small integers.
+        TooWide: a grid would pass ``cap`` cells, or the costs are too large for small integers.
     """
     costs = [[packed(r)[c] for c in names] for r, names in enumerate(alive)]
     step = MinOut(costs)
     sizes = [len(a) for a in alive]
-    tables = grids(factors, alive, 0, step.inf, operator.add)
-    done = run(tables, order, sizes, step)
+    tables = constraint_grids(inst, alive, 0, step.inf, operator.add, cap)
+    order = elimination_order([g.scope for g in tables], len(inst.roles))
+    done = run(tables, order, sizes, step, cap)
     if done is None:
         return None
     _, free = done
