@@ -15,6 +15,7 @@ import math
 import operator
 from collections import defaultdict
 
+from rosreconf.solve.dense import SumOut, TooWide, cap_for, run
 from rosreconf.solve.factors import (
     MAX_FACTOR_ROWS,
     Factor,
@@ -26,6 +27,7 @@ from rosreconf.solve.factors import (
     key_of,
     paused_gc,
 )
+from rosreconf.solve.gridtables import constraint_grids
 from rosreconf.solve.instance import Instance, interchangeable, prune
 
 CountTooHard = TooHard
@@ -46,10 +48,18 @@ def count(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> int:
             return 0
         classes = interchangeable(inst, alive)
         kept = [[members[0] for members in role] for role in classes]
-        factors = constraint_factors(inst, kept, 1, max_rows)
-        _weigh(factors, classes)
-        order = elimination_order([f.scope for f in factors], len(inst.roles))
-        done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
+        sizes = [len(k) for k in kept]
+        try:  # dense grids first (``rosreconf.solve.dense``); the sparse tables if too wide
+            cap = cap_for(max_rows)
+            tables = constraint_grids(inst, kept, 1, 0, operator.mul, cap)
+            order = elimination_order([g.scope for g in tables], len(inst.roles))
+            weights = [[len(members) for members in role] for role in classes]
+            done = run(tables, order, sizes, SumOut(weights), cap)
+        except TooWide:
+            factors = constraint_factors(inst, kept, 1, max_rows)
+            _weigh(factors, classes)
+            order = elimination_order([f.scope for f in factors], len(inst.roles))
+            done = eliminate(factors, order, operator.mul, _sum_out, max_rows, 1, join_sum_out)
     if done is None:
         return 0
     scalars, free = done

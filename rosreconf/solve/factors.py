@@ -63,8 +63,6 @@ def constraint_factors(
     Raises:
         TooHard: a table would exceed ``max_rows`` rows.
     """
-    table = functools.partial(_table, alive=alive, one=one, max_rows=max_rows)
-    lib = inst.library
     out: list[Factor] = []
     for (u, v), partners in zip(inst.edges, inst.partners, strict=True):
         # edge_ok by consumer: only the allowed pairs are made, never every pair to test it
@@ -75,6 +73,23 @@ def constraint_factors(
         out.append(Factor((u, v), rows, unit=True, rule="edge-realised"))
     for u in range(len(inst.roles)):
         out.extend(_requirement_factors(inst, u, alive, one, max_rows))
+    out.extend(coupling_factors(inst, alive, one, max_rows))
+    return out
+
+
+def coupling_factors(
+    inst: Instance, alive: list[list[str]], one: int, max_rows: int = MAX_FACTOR_ROWS
+) -> list[Factor]:
+    """Build the tables of the rules that name components (the rest of ``constraint_factors``).
+
+    Needs, excludes, one type per label and one role each.
+
+    Raises:
+        TooHard: a table would exceed ``max_rows`` rows.
+    """
+    table = functools.partial(_table, alive=alive, one=one, max_rows=max_rows)
+    lib = inst.library
+    out: list[Factor] = []
     holders: dict[str, list[int]] = defaultdict(list)
     for v, names in enumerate(alive):
         for n in names:
@@ -160,6 +175,33 @@ def _requirement_factors(
     table over all of u's providers, but each table is only as wide as one group (usually
     u and one provider: K^2 rows, not K^4).
     """
+    out = []
+    for roles, needs in requirement_groups(inst, u, alive).items():
+        scope = (u, *roles)
+        if len(roles) == 1:  # the usual case: allowed provider candidates, per candidate
+            (v,) = roles
+            rows: dict[tuple[str, ...], int] = {}
+            for cu in alive[u]:
+                both = providers_meeting_all(needs.get(cu))
+                if both is None:
+                    rows.update(((cu, cv), one) for cv in alive[v])
+                    continue
+                rows.update(((cu, cv), one) for cv in alive[v] if cv in both)
+            out.append(Factor(scope, rows, unit=True, rule="requirement-met"))
+            continue
+        out.append(requirement_table(scope, needs, alive, one, max_rows))
+    return out
+
+
+def requirement_groups(
+    inst: Instance, u: int, alive: list[list[str]]
+) -> dict[tuple[int, ...], dict[str, list[_Met]]]:
+    """Group role u's candidates' requirements by the provider roles that can meet them.
+
+    Returns provider roles -> candidate -> its requirements met across exactly those roles
+    (one table each: ``_requirement_factors``, and the dense grids of
+    ``rosreconf.solve.dense``).
+    """
     groups: dict[tuple[int, ...], dict[str, list[_Met]]] = defaultdict(dict)
     made: dict[int, _Met] = {}
     for cu in alive[u]:
@@ -169,35 +211,33 @@ def _requirement_factors(
             if found is None:
                 found = made[id(pairs)] = _Met(pairs)
             groups[found.roles].setdefault(cu, []).append(found)
-    out = []
-    for roles, needs in groups.items():
-        scope = (u, *roles)
-        if len(roles) == 1:  # the usual case: allowed provider candidates, per candidate
-            (v,) = roles
-            rows: dict[tuple[str, ...], int] = {}
-            for cu in alive[u]:
-                reqs = needs.get(cu)
-                if not reqs:
-                    rows.update(((cu, cv), one) for cv in alive[v])
-                    continue
-                both = set.intersection(*(r.names for r in reqs))  # providers meeting all
-                rows.update(((cu, cv), one) for cv in alive[v] if cv in both)
-            out.append(Factor(scope, rows, unit=True, rule="requirement-met"))
-            continue
+    return groups
 
-        def met(
-            s: tuple[str, ...],
-            scope: tuple[int, ...] = scope,
-            needs: dict[str, list[_Met]] = needs,
-        ) -> bool:
-            reqs = needs.get(s[0])
-            if not reqs:
-                return True
-            have = set(zip(scope[1:], s[1:], strict=True))
-            return all(not have.isdisjoint(r.pairs) for r in reqs)
 
-        out.append(_table(scope, alive, met, one, max_rows, "requirement-met"))
-    return out
+def providers_meeting_all(reqs: list[_Met] | None) -> set[str] | None:
+    """Return the candidates of the one provider role meeting every requirement (None: any)."""
+    if not reqs:
+        return None
+    return set.intersection(*(r.names for r in reqs))
+
+
+def requirement_table(
+    scope: tuple[int, ...],
+    needs: dict[str, list[_Met]],
+    alive: list[list[str]],
+    one: int,
+    max_rows: int,
+) -> Factor:
+    """Build the table of one group of requirements met across several provider roles."""
+
+    def met(s: tuple[str, ...]) -> bool:
+        reqs = needs.get(s[0])
+        if not reqs:
+            return True
+        have = set(zip(scope[1:], s[1:], strict=True))
+        return all(not have.isdisjoint(r.pairs) for r in reqs)
+
+    return _table(scope, alive, met, one, max_rows, "requirement-met")
 
 
 class _Met:

@@ -48,9 +48,8 @@ class Instance:
             (symmetric; rule ``one-type-per-label``: never chosen together).
         partners: per required edge index, consumer candidate -> the provider candidates
             it may be paired with, the pairs of which make ``edge_ok`` (candidates with none
-            are absent).
-        users: per required edge index, provider candidate -> the consumer candidates that
-            may use it (``edge_ok`` by provider).
+            are absent; candidates with the same requirements share one set: read it, never
+            change it).
         interfaces: candidate -> (the numbers of the interfaces it provides, per requirement
             the numbers of its options): equal numbers are equal interfaces, so comparing
             these compares what the candidates provide and require.
@@ -66,7 +65,6 @@ class Instance:
     meets: dict[tuple[int, str, int], list[tuple[int, str]]] = field(default_factory=dict)
     clashes: dict[str, set[str]] = field(default_factory=dict)
     partners: list[dict[str, set[str]]] = field(default_factory=list)
-    users: list[dict[str, set[str]]] = field(default_factory=list)
     interfaces: dict[str, tuple[frozenset[int], tuple[tuple[int, ...], ...]]] = field(
         default_factory=dict
     )
@@ -83,6 +81,23 @@ class Instance:
             {(cu, cv) for cu, mates in partners.items() for cv in mates}
             for partners in self.partners
         ]
+
+    @functools.cached_property
+    def users(self) -> list[dict[str, set[str]]]:
+        """Return per required edge index, provider candidate -> the consumers that may use it.
+
+        ``partners`` by provider, made when first asked (the library analysis reads it);
+        pruning asks instead whether a provider is among the surviving consumers' partners,
+        and never pays for it.
+        """
+        out: list[dict[str, set[str]]] = []
+        for partners in self.partners:
+            by_provider: dict[str, set[str]] = {}
+            for cu, mates in partners.items():
+                for cv in mates:
+                    by_provider.setdefault(cv, set()).add(cu)
+            out.append(by_provider)
+        return out
 
     @property
     def role_index(self) -> dict[str, int]:
@@ -141,18 +156,21 @@ def compile_instance(
             continue  # requirements may be met across it (meets, below); it need not be realised
         inst.edges.append((u, v))
         partners: dict[str, set[str]] = {}
-        users: dict[str, set[str]] = {}
+        offered = [(cv.name, provides[cv.name]) for cv in domains[v]]
+        # the mates depend only on the consumer's requirements: candidates with the same
+        # ones share one (read-only) set
+        by_opts: dict[tuple[tuple[int, ...], ...], set[str]] = {}
         for cu in domains[u]:
-            wanted = {o for opts in options[cu.name] for o in opts if _allows(e, labels[o])}
-            if not wanted:
-                continue
-            mates = {cv.name for cv in domains[v] if not provides[cv.name].isdisjoint(wanted)}
+            reqs = options[cu.name]
+            mates = by_opts.get(reqs)
+            if mates is None:
+                wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                mates = by_opts[reqs] = (
+                    {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
+                )
             if mates:
                 partners[cu.name] = mates
-                for cv_name in mates:
-                    users.setdefault(cv_name, set()).add(cu.name)
         inst.partners.append(partners)
-        inst.users.append(users)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
         # the pairs depend only on the requirement's options: a role's candidates share a
@@ -212,6 +230,8 @@ def prune(inst: Instance) -> tuple[list[list[str]], list[dict[str, str]], list[i
         changed = False
         alive_sets = [set(a) for a in alive]
         anywhere = set().union(*alive_sets) if alive_sets else set()
+        support.met.clear()  # what a shared list or set says holds for one pass only
+        support.provided.clear()
         for u in range(len(inst.roles)):
             kept = []
             for name in alive[u]:
@@ -265,8 +285,8 @@ def interchangeable(inst: Instance, alive: list[list[str]]) -> list[list[list[st
 class _Support:
     """Index the edge tables by role and by candidate, so pruning never scans every edge.
 
-    The candidate indexes are ``compile_instance``'s own (``partners``, ``users``), made
-    while the tables were joined; only the edges touching each role are listed here.
+    The candidate index is ``compile_instance``'s own (``partners``), made while the tables
+    were joined; only the edges touching each role are listed here.
     """
 
     def __init__(self, inst: Instance) -> None:
@@ -276,7 +296,20 @@ class _Support:
             if ev != eu:
                 self.incident[ev].append(k)
         self.partners = inst.partners
-        self.users = inst.users
+        self.provided: dict[int, set[str]] = {}
+        """per required edge index, the providers some surviving consumer may use, this pass."""
+        self.met: dict[int, bool] = {}
+        """id of a ``meets`` list or ``partners`` set -> whether a survivor is in it, this
+        pass (candidates with the same requirements share them: each is read once)."""
+
+    def provided_along(self, k: int, consumers: set[str]) -> set[str]:
+        """Return the providers of edge k that one of ``consumers`` may use (once a pass)."""
+        found = self.provided.get(k)
+        if found is None:
+            partners = self.partners[k]
+            sets = {id(m): m for cu in consumers if (m := partners.get(cu)) is not None}
+            found = self.provided[k] = set().union(*sets.values())
+        return found
 
 
 def _dead_reason(
@@ -288,18 +321,31 @@ def _dead_reason(
     anywhere: set[str],
 ) -> str:
     c = inst.library[name]
+    met = support.met
     for i, req in enumerate(c.requires):
-        if not any(cv in alive[v] for v, cv in inst.meets[(u, name, i)]):
+        pairs = inst.meets[(u, name, i)]
+        ok = met.get(id(pairs))
+        if ok is None:
+            ok = met[id(pairs)] = any(cv in alive[v] for v, cv in pairs)
+        if not ok:
             return f"{name} requires {req}, and no surviving provider along its edges offers it"
     for k in support.incident[u]:
         eu, ev = inst.edges[k]
-        if eu == u and alive[ev].isdisjoint(support.partners[k].get(name, ())):
-            provider = inst.roles[ev]
-            return (
-                f"{name} uses nothing the surviving {provider.abstraction} candidates "
-                f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
-            )
-        if ev == u and alive[eu].isdisjoint(support.users[k].get(name, ())):
+        if eu == u:
+            mates = support.partners[k].get(name)
+            if mates is None:
+                ok = False
+            else:
+                ok = met.get(id(mates))
+                if ok is None:
+                    ok = met[id(mates)] = not alive[ev].isdisjoint(mates)
+            if not ok:
+                provider = inst.roles[ev]
+                return (
+                    f"{name} uses nothing the surviving {provider.abstraction} candidates "
+                    f"({', '.join(sorted(alive[ev])) or 'none'}) provide"
+                )
+        if ev == u and name not in support.provided_along(k, alive[eu]):
             consumer = inst.roles[eu]
             return (
                 f"no surviving {consumer.abstraction} candidate "

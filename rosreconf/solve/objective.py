@@ -55,8 +55,12 @@ class Objective:
 
 def scaled_metric(objective: Objective, component: Component) -> int:
     """Return the component's weighted metric sum as the integer clingo optimises."""
-    w = sum(wt * component.metrics.get(m, 0.0) for m, wt in objective.weights.items())
-    return round(w * METRIC_SCALE)
+    return _scaled(list(objective.weights.items()), component)
+
+
+def _scaled(weights: list[tuple[str, float]], component: Component) -> int:
+    """Return ``scaled_metric`` for the objective's weights, listed once by the caller."""
+    return round(sum([wt * component.metrics.get(m, 0.0) for m, wt in weights]) * METRIC_SCALE)
 
 
 def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[int, int]]]:
@@ -65,12 +69,11 @@ def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[in
     A change counts when ``current`` names, for that role, another component of the
     library; exactly the ``current``/``weight`` facts clingo receives.
     """
-    known = {c.name for c in inst.library.components}
+    known = inst.library.by_name
+    weights = list(objective.weights.items())
     out = []
     for role, dom in zip(inst.roles, inst.domains, strict=True):
         now = objective.current.get(role.name)
         watch = now is not None and now in known
-        out.append(
-            {c.name: (int(watch and c.name != now), scaled_metric(objective, c)) for c in dom}
-        )
+        out.append({c.name: (int(watch and c.name != now), _scaled(weights, c)) for c in dom})
     return out

@@ -16,10 +16,12 @@ levels can reach, which keeps the order lexicographic and the arithmetic exact.
 
 from __future__ import annotations
 
+import logging
 import operator
 from collections.abc import Callable, Mapping, Sequence
 
 from rosreconf.model import Configuration
+from rosreconf.solve.dense import MinOut, TooWide, cap_for, run
 from rosreconf.solve.factors import (
     MAX_FACTOR_ROWS,
     Factor,
@@ -29,8 +31,11 @@ from rosreconf.solve.factors import (
     elimination_order,
     paused_gc,
 )
+from rosreconf.solve.gridtables import constraint_grids
 from rosreconf.solve.instance import Instance, interchangeable, prune
 from rosreconf.solve.minout import Trace, join_minimise_out, minimise_out
+
+LOG = logging.getLogger(__name__)
 
 __all__ = ["MAX_FACTOR_ROWS", "TooHard", "first", "minimise"]
 
@@ -58,7 +63,12 @@ def minimise(
         costs_of = packed.__getitem__
         # a class's cheapest member; the earliest (least rank: alive keeps library order) on ties
         found = _minimise(
-            inst, alive, costs_of, max_rows, lambda r, ms: min(ms, key=costs_of(r).__getitem__)
+            inst,
+            alive,
+            costs_of,
+            max_rows,
+            lambda r, ms: min(ms, key=costs_of(r).__getitem__),
+            small=True,
         )
     return None if found is None else (found[0], unpack(found[1]))
 
@@ -99,6 +109,8 @@ def _minimise(
     packed: Callable[[int], Mapping[str, int]],
     max_rows: int,
     prefer: Callable[[int, list[str]], str],
+    *,
+    small: bool = False,
 ) -> tuple[Configuration, int] | None:
     """Minimise the packed unary costs over the constraint tables; the answer and its total.
 
@@ -109,14 +121,24 @@ def _minimise(
     Only one candidate of each class of interchangeable ones is kept (``interchangeable``):
     ``prefer(r, members)``, the one of least cost, the earliest on ties. Its rows are the
     others' rows, so every step picks what it would have picked among all of them.
+
+    With ``small`` costs (the optimum's, not the first configuration's thousand-digit ones)
+    the dense grids (``rosreconf.solve.dense``) eliminate first; the sparse tables answer
+    when a grid would be too wide. Both pick the same configuration: the least cost, then
+    the earliest candidate, at every step of the same order.
     """
+    rank = {c.name: i for i, c in enumerate(inst.library.components)}
     alive = [
-        [prefer(r, members) for members in role]
+        sorted((prefer(r, members) for members in role), key=rank.__getitem__)
         for r, role in enumerate(interchangeable(inst, alive))
     ]
+    if small:
+        try:
+            return _dense_minimise(inst, alive, packed, cap_for(max_rows))
+        except TooWide as exc:
+            LOG.info("sparse elimination: %s", exc)
     factors = constraint_factors(inst, alive, 0, max_rows)
     order = elimination_order([f.scope for f in factors], len(inst.roles))
-    rank = {c.name: i for i, c in enumerate(inst.library.components)}
     trace: Trace = []
     offsets: list[int] = []
 
@@ -142,6 +164,41 @@ def _minimise(
     mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
     return config, sum(scalars) + sum(offsets)
+
+
+def _dense_minimise(
+    inst: Instance,
+    alive: list[list[str]],
+    packed: Callable[[int], Mapping[str, int]],
+    cap: int,
+) -> tuple[Configuration, int] | None:
+    """Minimise over dense grids (``_minimise``'s answer; ``alive`` in library order).
+
+    The elimination order is the sparse path's: it is decided by which roles share a table,
+    and the grids are the same tables.
+
+    Raises:
+        TooWide: a grid would pass ``cap`` cells, or the costs are too large for small integers.
+    """
+    costs = [[packed(r)[c] for c in names] for r, names in enumerate(alive)]
+    step = MinOut(costs)
+    sizes = [len(a) for a in alive]
+    tables = constraint_grids(inst, alive, 0, step.inf, operator.add, cap)
+    order = elimination_order([g.scope for g in tables], len(inst.roles))
+    done = run(tables, order, sizes, step, cap)
+    if done is None:
+        return None
+    _, free = done
+    chosen: dict[int, int] = {}
+    extra = 0
+    for var in free:  # in no table: its cheapest candidate, the earlier one on ties
+        pick = min(range(sizes[var]), key=lambda j: (costs[var][j], j))
+        chosen[var] = pick
+        extra += costs[var][pick]
+    step.traceback(chosen, sizes)
+    mapping = {inst.roles[r].name: alive[r][chosen[r]] for r in range(len(inst.roles))}
+    config = Configuration.of(inst.schema.name, mapping, inst.roles)
+    return config, step.total() + extra
 
 
 def _pack(

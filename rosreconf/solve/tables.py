@@ -187,6 +187,13 @@ def paused_gc() -> Iterator[None]:
     Tables hold only tuples of strings and integers, which reference counting frees; but
     every collection would still walk the whole loaded library, and at 1000 roles those
     walks cost more than the elimination itself.
+
+    What is still alive at the end (the compiled instance, the answer) is frozen
+    (``gc.freeze``), as loading does (``rosreconf.formats.loader``): every object made while
+    the collector was paused sits in its youngest generation, and the first allocation
+    after re-enabling it would walk them all (0.02-0.03 CPU s after compiling 1000 roles x
+    10). Frozen objects are still freed by reference counting; only a reference cycle made
+    in the pause would outlive its use.
     """
     was = gc.isenabled()
     gc.disable()
@@ -194,6 +201,7 @@ def paused_gc() -> Iterator[None]:
         yield
     finally:
         if was:
+            gc.freeze()
             gc.enable()
 
 
