@@ -1,7 +1,7 @@
 """Write the fast JSON Schema validators the package ships (rosreconf/formats/fastschema_*.py).
 
-Run after changing a JSON Schema in rosreconf/data, the trimming in
-``rosreconf.formats.structure``, or the fastjsonschema version:
+Run after changing a JSON Schema in rosreconf/data or the writer in
+``rosreconf.formats.schemacode`` (then bump its ``GENERATOR_VERSION``):
 ``python scripts/fast_validators.py``. tests/test_fast_paths.py fails while a shipped module
 differs from what this writes (and until then ``structure.fast_validator`` ignores it, which
 costs time, never a verdict).
