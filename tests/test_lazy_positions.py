@@ -20,21 +20,12 @@ import pytest
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
-from rosreconf.errors import InvalidInputError
 from rosreconf.formats import loader
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.build import NeedsPositions, build_library, build_schema
 from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import Loaded, load_paths, load_reported, load_selection
 from rosreconf.formats.selection import select
-from rosreconf.formats.structure import (
-    DocumentKind,
-    kind_of,
-    kind_of_plain,
-    structure_problems,
-    structure_valid,
-)
-from rosreconf.formats.values import clean_values, duplicate_edges, repeated_edges, value_problems
 from rosreconf.model import NOWHERE, Component, InteroperabilitySchema
 from rosreconf.render.report import REPORTERS, OutputFormat
 
@@ -260,26 +251,3 @@ def test_every_file_problem_sends_the_load_back(tmp_path: Path, data: bytes) -> 
     (tmp_path / "lib.yaml").write_bytes(data)
     with pytest.raises(NeedsPositions):
         load_paths([tmp_path], positions=False)
-
-
-@pytest.mark.parametrize("path", YAML_FILES, ids=lambda p: str(p.relative_to(REPO)))
-def test_the_plain_answers_are_the_positioned_checks_answers(path: Path) -> None:
-    # The plain pass asks each check only "anything to report?"; it must say yes exactly
-    # where the check, given the positioned tree, reports something.
-    try:
-        tree, plain = ys.parse_plain(path.read_bytes(), path.name)
-    except InvalidInputError:
-        return  # the reader's own problems: the plain reader declines them (test_fast_paths)
-    kind, problems = kind_of(tree, path.name)
-    assert kind_of_plain(plain) is kind and (kind is None) == bool(problems)
-    if kind is None or tree is None:
-        return
-    valid = structure_valid(kind, plain)
-    assert valid == (not list(structure_problems(tree, kind, plain)))
-    if not valid:
-        return
-    assert isinstance(tree, ys.YMapping)
-    if kind is DocumentKind.LIBRARY:
-        assert clean_values(plain) == (not value_problems(tree, plain))
-    else:
-        assert repeated_edges(plain) == bool(duplicate_edges(tree))
