@@ -20,6 +20,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
+from rosreconf.errors import Severity
 from rosreconf.formats import loader
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.build import NeedsPositions, build_library, build_schema
@@ -144,6 +145,30 @@ def test_a_clean_load_takes_the_plain_path_and_reads_once(
     loaded, problems = load_reported(lambda p: load_selection([], positions=p))
     assert not problems and not positioned
     assert loaded.files == load_selection([]).files
+
+
+def test_warnings_alone_cost_the_solvers_no_second_load(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The checkout's libraries with one schema: every mobile-robot component's abstraction is
+    # unused, a warning each. validate reports them, with positions (a second, positioned
+    # load); the solvers drop warnings, so load_checked keeps the plain load.
+    one_schema = [REPO / "schemas" / "disc_loading.yaml"]
+    _, reported = load_reported(
+        lambda p: loader.load_split([REPO / "libraries"], one_schema, positions=p)
+    )
+    assert reported and all(p.severity is Severity.WARNING for p in reported)
+    assert all(p.span.line > 0 for p in reported)
+    positioned: list[str] = []
+    real = ys.parse_plain
+
+    def spy(data: bytes, file: str) -> object:
+        positioned.append(file)
+        return real(data, file)
+
+    monkeypatch.setattr(ys, "parse_plain", spy)
+    loaded = loader.load_checked([REPO / "libraries"], one_schema)
+    assert not positioned
+    assert [s.name for s in loaded.schemas] == ["disc_loading"]
+    assert all(c.span == NOWHERE for c in loaded.library)
 
 
 @pytest.mark.parametrize("case", INVALID, ids=lambda p: p.name)

@@ -299,21 +299,35 @@ def check_loaded(loaded: Loaded) -> list[Problem]:
         return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
 
 
-def load_reported(load: Callable[[bool], Loaded]) -> tuple[Loaded, list[Problem]]:
+def load_reported(
+    load: Callable[[bool], Loaded], *, errors_only: bool = False
+) -> tuple[Loaded, list[Problem]]:
     """Load with ``load(positions)`` and check; return what was loaded and every problem.
 
     The one place where the rule of this module's doc is applied: ``load(False)`` and the
     semantic checks first; on anything to report, ``load(True)`` and its checks are the
     answer, so problems and the model they point into always carry their positions.
+
+    ``errors_only``: the caller reports errors only and drops warnings (the solvers, through
+    ``load_checked``). Then semantic warnings alone do not cost the second load, and the
+    problems returned are the errors only. A library given with one schema out of several
+    warns for every component whose abstraction that schema does not use, and would
+    otherwise be read twice by every command.
     """
     try:
         loaded = load(False)
-        if not check_loaded(loaded):
+        found = check_loaded(loaded)
+        if errors_only:
+            found = [p for p in found if p.severity is Severity.ERROR]
+        if not found:
             return loaded, []
     except NeedsPositions:
         pass
     loaded = load(True)
-    return loaded, [*loaded.problems, *check_loaded(loaded)]
+    problems = [*loaded.problems, *check_loaded(loaded)]
+    if errors_only:
+        problems = [p for p in problems if p.severity is Severity.ERROR]
+    return loaded, problems
 
 
 def load_checked(
@@ -327,10 +341,10 @@ def load_checked(
     Raises:
         InvalidInputError: with every structural and semantic error of the files.
     """
-    loaded, problems = load_reported(
-        lambda positions: load_split(library_paths, schema_paths, base=base, positions=positions)
+    loaded, errors = load_reported(
+        lambda positions: load_split(library_paths, schema_paths, base=base, positions=positions),
+        errors_only=True,
     )
-    errors = [p for p in problems if p.severity is Severity.ERROR]
     if errors:
         raise InvalidInputError(errors)
     return loaded
