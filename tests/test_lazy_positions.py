@@ -124,19 +124,25 @@ def test_the_bundled_example_builds_the_same_either_way() -> None:
     _assert_same_model(loader.load_bundled(), loader.load_bundled(positions=False))
 
 
-def test_a_clean_load_takes_the_plain_path_and_reads_once(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    # A spy on the positioned reader: a clean load never calls it, and what the commands
-    # get (select, through load_checked) has no position at all.
-    positioned: list[str] = []
+@pytest.fixture
+def positioned(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """Spy on the positioned reader: the files it reads, in order (a clean load reads none)."""
+    files: list[str] = []
     real = ys.parse_plain
 
     def spy(data: bytes, file: str) -> object:
-        positioned.append(file)
+        files.append(file)
         return real(data, file)
 
     monkeypatch.setattr(ys, "parse_plain", spy)
+    return files
+
+
+def test_a_clean_load_takes_the_plain_path_and_reads_once(
+    monkeypatch: pytest.MonkeyPatch, positioned: list[str]
+) -> None:
+    # A spy on the positioned reader: a clean load never calls it, and what the commands
+    # get (select, through load_checked) has no position at all.
     monkeypatch.chdir(REPO)
     chosen = select(None, None)
     assert not positioned
@@ -147,7 +153,7 @@ def test_a_clean_load_takes_the_plain_path_and_reads_once(
     assert loaded.files == load_selection([]).files
 
 
-def test_warnings_alone_cost_the_solvers_no_second_load(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_warnings_alone_cost_the_solvers_no_second_load(positioned: list[str]) -> None:
     # The checkout's libraries with one schema: every mobile-robot component's abstraction is
     # unused, a warning each. validate reports them, with positions (a second, positioned
     # load); the solvers drop warnings, so load_checked keeps the plain load.
@@ -157,14 +163,6 @@ def test_warnings_alone_cost_the_solvers_no_second_load(monkeypatch: pytest.Monk
     )
     assert reported and all(p.severity is Severity.WARNING for p in reported)
     assert all(p.span.line > 0 for p in reported)
-    positioned: list[str] = []
-    real = ys.parse_plain
-
-    def spy(data: bytes, file: str) -> object:
-        positioned.append(file)
-        return real(data, file)
-
-    monkeypatch.setattr(ys, "parse_plain", spy)
     loaded = loader.load_checked([REPO / "libraries"], one_schema)
     assert not positioned
     assert [s.name for s in loaded.schemas] == ["disc_loading"]

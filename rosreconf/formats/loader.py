@@ -314,20 +314,18 @@ def load_reported(
     warns for every component whose abstraction that schema does not use, and would
     otherwise be read twice by every command.
     """
+
+    def reported(problems: list[Problem]) -> list[Problem]:
+        return [p for p in problems if p.severity is Severity.ERROR] if errors_only else problems
+
     try:
         loaded = load(False)
-        found = check_loaded(loaded)
-        if errors_only:
-            found = [p for p in found if p.severity is Severity.ERROR]
-        if not found:
+        if not reported(check_loaded(loaded)):
             return loaded, []
     except NeedsPositions:
         pass
     loaded = load(True)
-    problems = [*loaded.problems, *check_loaded(loaded)]
-    if errors_only:
-        problems = [p for p in problems if p.severity is Severity.ERROR]
-    return loaded, problems
+    return loaded, reported([*loaded.problems, *check_loaded(loaded)])
 
 
 def load_checked(
