@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint typecheck pytest explore system-deps yamlc bench architecture clean
+.PHONY: demo test lint typecheck pytest explore system-deps ros2-venvs yamlc bench architecture clean
 
 # setup.py and the C source: the compiled YAML reader is built by this pip install.
 $(STAMP): pyproject.toml setup.py rosreconf/formats/_yamlc.c
@@ -41,8 +41,21 @@ demo: $(STAMP)
 	$(BIN)/rosreconf plan --fail NSM3 --only object_repositioning --only disc_loading; \
 	  test $$? -le 1
 
+## Real ROS 2 (rclpy over Fast DDS) from PyPI, one venv per distro (.venv-ros2-jazzy,
+## .venv-ros2-kilted), pinned in requirements/ros2-<distro>.txt. The ROS 2 tests start real rclpy
+## nodes with these interpreters; ros-wheels-bootstrapper re-executes every Python of such a venv
+## with LD_LIBRARY_PATH set, so the wheels never share a venv with rosreconf.
+ROS2_DISTROS := jazzy kilted
+ros2-venvs: $(foreach d,$(ROS2_DISTROS),.venv-ros2-$(d)/.installed-stamp)
+
+.venv-ros2-%/.installed-stamp: requirements/ros2-%.txt
+	python3 -m venv .venv-ros2-$*
+	.venv-ros2-$*/bin/python -m pip install --quiet -r $<
+	HOME=$${HOME:-/tmp} .venv-ros2-$*/bin/python -c 'import rclpy, rclpy.lifecycle, rclpy.action'
+	touch $@
+
 # system-deps first: libyaml-dev must be there before pip builds rosreconf.
-test: system-deps $(STAMP) yamlc lint typecheck pytest
+test: system-deps $(STAMP) ros2-venvs yamlc lint typecheck pytest
 
 lint: $(STAMP)
 	$(BIN)/lint-imports
@@ -73,5 +86,5 @@ architecture: $(STAMP)
 	dot -Tsvg docs/img/architecture.dot -o docs/img/architecture.svg
 
 clean:
-	rm -rf $(VENV) build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache
+	rm -rf $(VENV) .venv-ros2-* build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache
 	rm -f rosreconf/formats/_yamlc.*.so
