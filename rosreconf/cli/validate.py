@@ -9,7 +9,7 @@ import typer
 
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, Severity
-from rosreconf.formats.loader import load_reported, load_selection
+from rosreconf.formats.loader import load_selection, problems_of
 from rosreconf.render.report import REPORTERS, OutputFormat
 
 
@@ -29,10 +29,8 @@ def validate(
 ) -> None:
     """Check component libraries and interoperability schemas; exit 0 valid, 1 invalid, 2 usage."""
 
-    loaded, found = load_reported(
-        lambda positions: load_selection(paths or [], positions=positions)
-    )
-    problems = sorted(found)
+    loaded = load_selection(paths or [])
+    problems = sorted(problems_of(loaded))
     write_stdout(REPORTERS[output_format].render(loaded.files, problems, loaded.note))
     failing = [p for p in problems if strict or p.severity is Severity.ERROR]
     raise typer.Exit(ExitCode.FAILED if failing else ExitCode.OK)

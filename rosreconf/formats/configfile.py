@@ -40,9 +40,8 @@ def read_configurations(path: Path) -> dict[str, dict[str, str]]:
         data = path.read_bytes()
     except OSError as exc:
         raise UsageError(f"{path}: cannot read: {exc.strerror}") from None
-    tree = ys.parse(data, str(path))  # JSON is YAML: one parser, positions for errors
-    doc = ys.to_plain(tree)
-    where = tree.span if tree is not None else Span(str(path), 1, 1)
+    tree, doc = ys.read(data, str(path))  # JSON is YAML: one parser, positions for errors
+    where = ys.span(tree) if tree is not None else Span(str(path), 1, 1)
     if isinstance(doc, dict) and doc.get("format") == FORMAT:
         configs = doc.get("configurations")
         if isinstance(configs, dict) and all(_is_assignment(v) for v in configs.values()):
