@@ -12,7 +12,7 @@ YAML 1.2.
 from __future__ import annotations
 
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from types import MappingProxyType
 from typing import TypeAlias
 
@@ -211,6 +211,7 @@ _LIST_KEYS = {
 """The ``where`` keys of a component's first provisions and requirements: one string per key
 for the whole library, not one per component."""
 
+
 def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[ys.Node]) -> None:
     """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
     names = _LIST_KEYS[kind]
@@ -261,9 +262,10 @@ def _component(node: Node, seen: Interfaces) -> Component:
 def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
     """Build a library file's model; ``seen`` shares interfaces with files built before.
 
-    ``tree`` is the file's positioned tree (see the module doc). One ``seen`` for all the library files of a load makes every use of an interface, in any
-    file, the same object: a requirement in one file and the provision meeting it in
-    another then match by identity in every set and dict, without a comparison.
+    ``tree`` is the file's positioned tree (see the module doc). One ``seen`` for all the
+    library files of a load makes every use of an interface, in any file, the same object:
+    a requirement in one file and the provision meeting it in another then match by
+    identity in every set and dict, without a comparison.
     """
     items = map_of(tree)
     if seen is None:

@@ -37,10 +37,10 @@ __all__ = [
     "load_bundled",
     "load_checked",
     "load_paths",
-    "problems_of",
     "load_selection",
     "load_sources",
     "load_split",
+    "problems_of",
     "read_sources",
     "todo_marks",
 ]

@@ -8,7 +8,7 @@ meeting a value of another shape answers empty rather than fail.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TypeAlias
 
 from rosreconf.formats import yamlsource as ys
@@ -25,7 +25,7 @@ the builder runs some tests 30,000 times for a thousand-role library."""
 
 def text_of(node: Node) -> str:
     """Return a scalar as the text the user wrote (so names are never turned into numbers)."""
-    return node.value if type(node) is ys.ScalarNode else ""  # type: ignore[union-attr]
+    return node.value if type(node) is ys.ScalarNode else ""
 
 
 def field_text(items: Mapping[str, Node], key: str, default: str = "") -> str:
@@ -33,8 +33,8 @@ def field_text(items: Mapping[str, Node], key: str, default: str = "") -> str:
     return text_of(items[key]) if key in items else default
 
 
-span_of = ys.span
-"""Return where a node was written."""
+span_of: Callable[[Node], Span] = ys.span  # type: ignore[assignment]
+"""Return where a node was written (a present one: ``ys.span`` itself, without a call)."""
 
 
 def value_of(node: Node) -> ys.Plain:
@@ -44,7 +44,7 @@ def value_of(node: Node) -> ys.Plain:
 
 def seq_of(node: Node) -> Sequence[ys.Node]:
     """Return a sequence's items (none for anything else, which the JSON Schema refused)."""
-    return node.value if type(node) is ys.SequenceNode else []  # type: ignore[union-attr]
+    return node.value if type(node) is ys.SequenceNode else []
 
 
 def map_of(node: Node) -> Mapping[str, ys.Node]:

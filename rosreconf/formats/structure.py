@@ -15,7 +15,7 @@ import difflib
 import enum
 import json
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from functools import cache
 from typing import Any
 
@@ -130,11 +130,11 @@ class _Error:
         if self.validator in _MESSAGES:  # jsonschema's words, which the pinned outputs keep
             self.message = _MESSAGES[self.validator].format(self.instance, self.validator_value)
         self.many_valid = type(error.kind).__name__ == "OneOfMultipleValid"
-        branches = getattr(error.kind, "context", None) or []
+        branches: list[Any] = getattr(error.kind, "context", None) or []
         self.context: list[_Error] = []
         if not self.many_valid:
-            for index, branch in enumerate(branches):  # in the JSON Schema's keyword order
-                found = [_Error(e, root, index) for e in branch]
+            for index, errors in enumerate(branches):  # in the JSON Schema's keyword order
+                found = [_Error(e, root, index) for e in errors]
                 found.sort(key=lambda e: e.keyword_rank())
                 self.context += found
 
@@ -158,12 +158,13 @@ class _Error:
             return self
         instance: Any = plain
         for step in self.path:  # the value itself: jsonschema-rs gives it as None
-            instance = instance[step]  # type: ignore[index]
+            instance = instance[step]
         if not _non_finite(instance):
             return self
         self.instance = instance
         want = self.validator_value
-        if "number" not in (want if isinstance(want, list) else [want]):
+        wanted = want if isinstance(want, list) else [want]
+        if "number" not in wanted:
             return self
         for keyword, broken in _RANGES.items():
             limit = self.schema.get(keyword)
@@ -190,7 +191,7 @@ def _non_finite(instance: Any) -> bool:
     return isinstance(instance, float) and not math.isfinite(instance)
 
 
-_RANGES = {
+_RANGES: dict[str, Callable[[float, float], bool]] = {
     "minimum": lambda x, limit: x < limit,
     "maximum": lambda x, limit: x > limit,
     "exclusiveMinimum": lambda x, limit: x <= limit,

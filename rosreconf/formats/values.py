@@ -140,7 +140,8 @@ def _parameter(key: str, node: ys.Node | None) -> Iterator[Problem]:
     ):
         yield Problem(
             ys.span(node),
-            f"parameter '{key}' is {_shown(node.value)}, outside the 32-bit integers ROS 1 can carry",
+            f"parameter '{key}' is {_shown(node.value)}, outside the 32-bit integers ROS 1 can "
+            "carry",
             "write it as a float (with a '.') or as a quoted string",
             code="out-of-range",
         )

@@ -83,7 +83,7 @@ class _TooDeep(Exception):
     """Raised by ``_plain`` at a collection nested deeper than ``MAX_DEPTH``."""
 
 
-class _Loader(BASE_LOADER):  # type: ignore[misc,valid-type]
+class _Loader(BASE_LOADER):  # type: ignore[misc]
     """The composer with rosreconf's resolver: no YAML 1.1 tags.
 
     The composer calls ``resolve`` for every untagged node; this one only tells plain
@@ -93,7 +93,7 @@ class _Loader(BASE_LOADER):  # type: ignore[misc,valid-type]
     """
 
     def resolve(self, kind: type[Node], value: Any, implicit: Any) -> str:
-        """Tag a plain scalar ``PLAIN``, another untagged scalar ``TEXT``, a collection ``PLAIN``."""
+        """Tag a plain scalar and a collection ``PLAIN``, another untagged scalar ``TEXT``."""
         if kind is ScalarNode:
             return PLAIN if implicit[0] else TEXT
         return PLAIN if implicit else "!"
@@ -132,9 +132,9 @@ def read(data: bytes, file: str) -> tuple[Node | None, Plain]:
             ]
         ) from None
     if b"!" in data or b"&" in data or b"*" in data:  # a tag, anchor or alias may be there
-        problems = _event_problems(data, file)
-        if problems:
-            raise InvalidInputError(problems)
+        shown = _event_problems(data, file)
+        if shown:
+            raise InvalidInputError(shown)
     stream = io.BytesIO(data)
     stream.name = file  # the marks' file name
     loader = _Loader(stream)
@@ -217,7 +217,7 @@ def _plain(node: Node, problems: list[Problem], resolved: dict[str, Scalar], dep
             out[name] = found  # type: ignore[assignment]
         else:
             out[name] = _plain(item, problems, resolved, deeper)
-    node.fields = nodes
+    node.fields = nodes  # type: ignore[attr-defined]
     return out
 
 
@@ -256,11 +256,12 @@ def _event_problems(data: bytes, file: str) -> list[Problem]:
                         )
                     )
                 collection = isinstance(event, yaml.CollectionStartEvent)
-                if event.tag is not None and (collection or event.tag not in STR_TAGS):
+                tag = getattr(event, "tag", None)  # AliasEvent is the NodeEvent without one
+                if tag is not None and (collection or tag not in STR_TAGS):
                     problems.append(
                         Problem(
                             where,
-                            f"YAML tag '{event.tag}' is not allowed",
+                            f"YAML tag '{tag}' is not allowed",
                             "remove the tag; quote the value if you mean a string",
                             code="tag",
                         )
@@ -326,7 +327,7 @@ _new_span = tuple.__new__
 def span(node: Node) -> Span:
     """Return where ``node`` starts (its mark carries the file name ``read`` gave it)."""
     mark = node.start_mark
-    return _new_span(Span, (mark.name, mark.line + 1, mark.column + 1))  # type: ignore[return-value]
+    return _new_span(Span, (mark.name, mark.line + 1, mark.column + 1))
 
 
 def is_plain(node: Node) -> bool:
@@ -342,8 +343,8 @@ def value(node: Node | None) -> Plain:
     """Return a scalar's resolved value (None for anything else)."""
     if type(node) is not ScalarNode:
         return None
-    text: str = node.value  # type: ignore[union-attr]
-    if node.tag:  # type: ignore[union-attr]
+    text: str = node.value
+    if node.tag:
         return text
     found = _RESOLVED.get(text, _RESOLVED)
     if found is _RESOLVED:
