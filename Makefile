@@ -67,6 +67,7 @@ explore: $(STAMP)
 
 ## Measure count, first, optimal, whatif and clingo alone over the R x K grid.
 bench: $(STAMP)
+	$(PY) benchmarks/selfcheck.py
 	$(PY) benchmarks/run.py
 
 ## Redraw docs/img/architecture.svg: the stages and their imports, read from the code.

@@ -193,3 +193,21 @@ def test_a_tab_before_a_comment_is_valid_yaml(runner: CliRunner, tmp_path: Path)
     lib.write_text(text.replace("version: 1\n", "version: 1\t# the format's version\n", 1))
     code, out, _ = _run(runner, where, ".")
     assert code == 0, out
+
+
+def test_json_flag_is_format_json(runner: CliRunner) -> None:
+    case = CASES / "invalid" / "unknown_key"
+    assert _run(runner, case, ".", "--json") == _run(runner, case, ".", "--format", "json")
+    assert json.loads(_run(runner, case, ".", "--json")[1])["errors"] == 1
+
+
+def test_library_and_schema_options_read_what_paths_read(runner: CliRunner) -> None:
+    lib, schema = "libraries/robot_arms.yaml", "schemas/object_repositioning.yaml"
+    by_option = _run(runner, REPO, "-l", lib, "-s", schema, "--json")
+    by_path = _run(runner, REPO, lib, schema, "--json")
+    assert by_option == by_path
+    assert json.loads(by_option[1])["files"] == [lib, schema]
+    # -l alone: the schemas come from schemas/ here, as for every other command
+    _, out, _ = _run(runner, REPO, "-l", lib, "--json")
+    schemas = sorted(f"schemas/{p.name}" for p in REPO.glob("schemas/*.yaml"))
+    assert json.loads(out)["files"] == [lib, *schemas]
