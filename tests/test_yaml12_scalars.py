@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from rosreconf.formats.yamlsource import Scalar, resolve_plain
+from rosreconf.formats.nodes import Scalar, resolve_plain
 
 CORE_SCHEMA: list[tuple[str, Scalar]] = [
     ("", None),

@@ -16,19 +16,19 @@ from collections.abc import Sequence
 from types import MappingProxyType
 from typing import TypeAlias
 
-from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.nodes import (
     NUMBER,
     SCALAR,
-    Node,
+    MappingNode,
     field_text,
-    map_of,
     scalars_of,
     seq_of,
-    span_of,
     text_of,
-    value_of,
 )
+from rosreconf.formats.nodes import Node as YNode
+from rosreconf.formats.nodes import fields as map_of
+from rosreconf.formats.nodes import span as span_of
+from rosreconf.formats.nodes import value as value_of
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -52,6 +52,9 @@ from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
 __all__ = ["Interfaces", "Node", "build_library", "build_schema"]
+
+Node: TypeAlias = "YNode | None"
+"""What the builder reads: a node of the positioned tree, or None for an absent key."""
 
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
@@ -113,7 +116,7 @@ def _launch(node: Node) -> RosLaunch | None:
     items = map_of(node)
     params: dict[str, str | int | float | bool] = {}
     for key, value in map_of(items.get("parameters")).items():
-        if type(value) is ys.MappingNode:  # {substitution: ...}, marked by the user
+        if type(value) is MappingNode:  # {substitution: ...}, marked by the user
             params[key] = Substitution(text_of(map_of(value)["substitution"]))
             continue
         scalar = value_of(value)
@@ -212,7 +215,7 @@ _LIST_KEYS = {
 for the whole library, not one per component."""
 
 
-def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[ys.Node]) -> None:
+def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[YNode]) -> None:
     """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
     names = _LIST_KEYS[kind]
     for i, n in enumerate(listed):

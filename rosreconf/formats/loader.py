@@ -28,23 +28,6 @@ from rosreconf.formats.values import duplicate_edges, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
 
-__all__ = [
-    "YAML_SUFFIXES",
-    "Loaded",
-    "Source",
-    "check_loaded",
-    "discover",
-    "load_bundled",
-    "load_checked",
-    "load_paths",
-    "load_selection",
-    "load_sources",
-    "load_split",
-    "problems_of",
-    "read_sources",
-    "todo_marks",
-]
-
 
 @dataclass
 class Loaded:
@@ -80,18 +63,12 @@ class Loaded:
 
 @contextlib.contextmanager
 def _paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while a library's tree and model are built.
+    """Pause the cyclic garbage collector while files are read and built, then freeze.
 
-    Loading only adds objects (trees, plain data, model); reference counting frees the
-    trees. Each collection would walk everything loaded so far: at 1000 roles x 10 those
-    walks cost more than the loading itself (``rosreconf.solve.factors.paused_gc`` does the
-    same for the solvers' tables).
-
-    Then everything alive is frozen (``gc.freeze``): the loaded model lives as long as the
-    command, and every object made while the collector was paused sits in its youngest
-    generation, so the next three collections would each walk all of it again (0.1 s each
-    at 1000 roles, ten times that at 10,000). Frozen objects are still freed by reference
-    counting; only a reference cycle made during loading would now outlive its use.
+    Loading only adds objects, and each collection would walk everything loaded so far (at
+    1000 roles x 10, more than the loading itself). The model then lives as long as the
+    command: frozen (``gc.freeze``), the next collections do not walk it again (reference
+    counting still frees it; only a reference cycle made while loading would outlive its use).
     """
     was = gc.isenabled()
     gc.disable()

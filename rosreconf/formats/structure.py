@@ -20,7 +20,7 @@ from functools import cache
 from typing import Any
 
 from rosreconf.errors import Problem
-from rosreconf.formats import yamlsource as ys
+from rosreconf.formats import nodes
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
 
@@ -49,11 +49,11 @@ def json_schema(kind: DocumentKind) -> dict[str, Any]:
 # --- the format field -------------------------------------------------------------------
 
 
-def kind_of(tree: ys.Node | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
+def kind_of(tree: nodes.Node | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
     """Return the format a document claims (its ``format`` field), or the problem with it."""
     known = ", ".join(k.value for k in DocumentKind)
-    if type(tree) is not ys.MappingNode:
-        span = ys.span(tree) if tree is not None else Span(name, 1, 1)
+    if type(tree) is not nodes.MappingNode:
+        span = nodes.span(tree) if tree is not None else Span(name, 1, 1)
         return None, [
             Problem(
                 span,
@@ -62,23 +62,23 @@ def kind_of(tree: ys.Node | None, name: str) -> tuple[DocumentKind | None, list[
                 code="not-a-document",
             )
         ]
-    fmt = ys.fields(tree).get("format")
+    fmt = nodes.fields(tree).get("format")
     if fmt is None:
         return None, [
             Problem(
-                ys.span(tree),
+                nodes.span(tree),
                 "missing 'format' key",
                 f"add 'format: <kind>' where kind is one of {known}",
                 code="missing-format",
             )
         ]
-    raw = fmt.value if type(fmt) is ys.ScalarNode else ""
+    raw = fmt.value if type(fmt) is nodes.ScalarNode else ""
     for kind in DocumentKind:
         if raw == kind.value:
             return kind, []
     return None, [
         Problem(
-            ys.span(fmt),
+            nodes.span(fmt),
             f"unknown format '{raw}'",
             f"use one of {known}",
             code="unknown-format",
@@ -97,7 +97,9 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def structure_problems(tree: ys.Node, kind: DocumentKind, plain: ys.Plain) -> Iterator[Problem]:
+def structure_problems(
+    tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain
+) -> Iterator[Problem]:
     """Yield every structural problem of ``plain`` against ``kind``'s JSON Schema.
 
     jsonschema-rs gives the verdict and the errors in one pass; each error's instance path
@@ -138,7 +140,7 @@ class _Error:
                 found.sort(key=lambda e: e.keyword_rank())
                 self.context += found
 
-    def as_number(self, plain: ys.Plain) -> _Error | None:
+    def as_number(self, plain: nodes.Plain) -> _Error | None:
         """Return this error as JSON Schema judges a YAML ``.inf`` or ``.nan``: a number.
 
         JSON has no such numbers, and jsonschema-rs reads them as null; rosreconf
@@ -246,14 +248,14 @@ _MESSAGES = {
 """Messages reported in jsonschema-rs's words elsewhere, kept as rosreconf always wrote them."""
 
 
-def _problem_of(error: _Error, tree: ys.Node | None) -> Problem:
+def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     if error.validator in ("oneOf", "anyOf") and error.context:
         hint = str(error.schema.get("x-hint", ""))
         problem = _problem_of(_best_match(error.context, error), tree)
         return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
     path = error.path
-    node = ys.lookup(tree, path)
-    span = ys.span(node) if node is not None else Span("<unknown>", 1, 1)
+    node = nodes.lookup(tree, path)
+    span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)
     where = _describe_path(path)
     schema = error.schema
     hint = str(schema.get("x-hint", ""))
@@ -265,7 +267,7 @@ def _problem_of(error: _Error, tree: ys.Node | None) -> Problem:
         allowed = sorted(schema.get("properties", {}))
         extra = sorted(set(error.instance) - set(allowed))
         name = extra[0] if extra else "?"
-        kspan = ys.key_span(tree, [*path, name]) or span
+        kspan = nodes.key_span(tree, [*path, name]) or span
         close = difflib.get_close_matches(name, allowed, n=1)
         fix = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(allowed)}"
         return Problem(kspan, f"unknown key '{name}' in {where}", fix, code="unknown-key")
@@ -274,7 +276,7 @@ def _problem_of(error: _Error, tree: ys.Node | None) -> Problem:
         want = error.validator_value
         wanted = " or ".join(want) if isinstance(want, list) else str(want)
         fix = hint
-        if "string" in wanted and node is not None and ys.is_plain(node):
+        if "string" in wanted and node is not None and nodes.is_plain(node):
             fix = f"quote it ('{node.value}') if you mean the text"
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
@@ -308,14 +310,14 @@ def _problem_of(error: _Error, tree: ys.Node | None) -> Problem:
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 
-def _written(node: ys.Node | None) -> str:
-    if type(node) is ys.ScalarNode:
-        kind = type(ys.value(node)).__name__.replace("NoneType", "null").replace("str", "text")
+def _written(node: nodes.Node | None) -> str:
+    if type(node) is nodes.ScalarNode:
+        kind = type(nodes.value(node)).__name__.replace("NoneType", "null").replace("str", "text")
         kind = {"int": "number", "float": "number", "bool": "boolean"}.get(kind, kind)
         return f"{kind} {node.value!r}" if node.value else "empty value"
-    if type(node) is ys.MappingNode:
+    if type(node) is nodes.MappingNode:
         return "a mapping"
-    if type(node) is ys.SequenceNode:
+    if type(node) is nodes.SequenceNode:
         return "a list"
     return "nothing"
 

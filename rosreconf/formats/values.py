@@ -23,7 +23,7 @@ import math
 from collections.abc import Iterator
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import yamlsource as ys
+from rosreconf.formats import nodes
 from rosreconf.model import Span
 
 MAX_METRIC = 1e12
@@ -36,7 +36,7 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: ys.Node, plain: ys.Plain) -> list[Problem]:
+def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Return the problems of a structurally valid component library's numbers and launch values.
 
     ``plain`` is the library's plain data and ``tree`` the positioned tree it was read from,
@@ -48,8 +48,8 @@ def value_problems(tree: ys.Node, plain: ys.Plain) -> list[Problem]:
         if not isinstance(component, dict):
             continue
 
-        def at(*path: str, i: int = i) -> ys.Node | None:
-            return ys.lookup(tree, ["components", i, *path])
+        def at(*path: str, i: int = i) -> nodes.Node | None:
+            return nodes.lookup(tree, ["components", i, *path])
 
         if not _within(component.get("failure_probability"), 1.0):
             problems.extend(_number(at("failure_probability"), "failure_probability", 0.0, 1.0))
@@ -65,7 +65,7 @@ def value_problems(tree: ys.Node, plain: ys.Plain) -> list[Problem]:
     return problems
 
 
-def _within(value: ys.Plain, high: float) -> bool:
+def _within(value: nodes.Plain, high: float) -> bool:
     """Tell whether ``_number`` accepts ``value`` in [0, ``high``] (anything not a number too).
 
     A comparison with NaN is false, so NaN is never within.
@@ -75,7 +75,7 @@ def _within(value: ys.Plain, high: float) -> bool:
     return 0.0 <= value <= high
 
 
-def _fine_parameter(value: ys.Plain) -> bool:
+def _fine_parameter(value: nodes.Plain) -> bool:
     """Tell whether ``_parameter`` has nothing to say about a launch parameter's value."""
     if isinstance(value, str):
         return SUBSTITUTION not in value
@@ -86,11 +86,11 @@ def _fine_parameter(value: ys.Plain) -> bool:
     return True
 
 
-def _number(node: ys.Node | None, what: str, low: float, high: float) -> Iterator[Problem]:
+def _number(node: nodes.Node | None, what: str, low: float, high: float) -> Iterator[Problem]:
     """Refuse a non-finite number, one too large for a float, or one outside [low, high]."""
-    if type(node) is not ys.ScalarNode:
+    if type(node) is not nodes.ScalarNode:
         return
-    value = ys.value(node)
+    value = nodes.value(node)
     if isinstance(value, bool) or not isinstance(value, int | float):
         return  # the JSON Schema reports the type
     try:
@@ -100,28 +100,28 @@ def _number(node: ys.Node | None, what: str, low: float, high: float) -> Iterato
     if not math.isfinite(number):
         how = "too large to compute with" if isinstance(value, int) else "not a finite number"
         yield Problem(
-            ys.span(node),
+            nodes.span(node),
             f"{what} is {_shown(node.value)}, {how}",
             f"give a number between {low:g} and {high:g}",
             code="not-finite",
         )
     elif not low <= number <= high:
         yield Problem(
-            ys.span(node),
+            nodes.span(node),
             f"{what} is {_shown(node.value)}, outside [{low:g}, {high:g}]",
             f"give a number between {low:g} and {high:g}",
             code="out-of-range",
         )
 
 
-def _parameter(key: str, node: ys.Node | None) -> Iterator[Problem]:
+def _parameter(key: str, node: nodes.Node | None) -> Iterator[Problem]:
     """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry."""
-    if type(node) is not ys.ScalarNode:
+    if type(node) is not nodes.ScalarNode:
         return  # {substitution: "..."}: marked by the user (its shape is the Schema's job)
-    value = ys.value(node)
+    value = nodes.value(node)
     if isinstance(value, str) and SUBSTITUTION in value:
         yield Problem(
-            ys.span(node),
+            nodes.span(node),
             f"parameter '{key}' contains '$(', which roslaunch would evaluate as a "
             "substitution ($(eval ...) runs Python, $(env ...) reads the environment)",
             f'if it is meant as one, mark it: {key}: {{substitution: "{value}"}}; '
@@ -130,7 +130,7 @@ def _parameter(key: str, node: ys.Node | None) -> Iterator[Problem]:
         )
     elif isinstance(value, float) and not math.isfinite(value):
         yield Problem(
-            ys.span(node),
+            nodes.span(node),
             f"parameter '{key}' is {node.value}, not a finite number",
             "give a finite number",
             code="not-finite",
@@ -139,7 +139,7 @@ def _parameter(key: str, node: ys.Node | None) -> Iterator[Problem]:
         isinstance(value, int) and not isinstance(value, bool) and not INT32[0] <= value <= INT32[1]
     ):
         yield Problem(
-            ys.span(node),
+            nodes.span(node),
             f"parameter '{key}' is {_shown(node.value)}, outside the 32-bit integers ROS 1 can "
             "carry",
             "write it as a float (with a '.') or as a quoted string",
@@ -152,7 +152,7 @@ def _shown(raw: str) -> str:
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
 
 
-def duplicate_edges(tree: ys.Node, plain: ys.Plain) -> list[Problem]:
+def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Warn about a consumer-provider pair listed twice in a schema's edges.
 
     The loader merges them (the entry without an ``interfaces`` restriction wins), which may
@@ -187,6 +187,6 @@ def duplicate_edges(tree: ys.Node, plain: ys.Plain) -> list[Problem]:
     return problems
 
 
-def _provider_span(tree: ys.Node, edge: int, index: int) -> Span:
-    node = ys.lookup(tree, ["edges", edge, "providers", index])
-    return ys.span(node) if node is not None else ys.span(tree)
+def _provider_span(tree: nodes.Node, edge: int, index: int) -> Span:
+    node = nodes.lookup(tree, ["edges", edge, "providers", index])
+    return nodes.span(node) if node is not None else nodes.span(tree)
