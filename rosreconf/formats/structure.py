@@ -203,17 +203,11 @@ _RANGES: dict[str, Callable[[float, float], bool]] = {
 
 
 def _is_type(instance: Any, name: str) -> bool:
-    number = isinstance(instance, int | float) and not isinstance(instance, bool)
-    integer = number and (isinstance(instance, int) or float(instance).is_integer())
-    return {
-        "object": isinstance(instance, dict),
-        "array": isinstance(instance, list),
-        "string": isinstance(instance, str),
-        "boolean": isinstance(instance, bool),
-        "null": instance is None,
-        "number": number,
-        "integer": integer,
-    }.get(name, False)
+    if name in ("number", "integer"):
+        number = isinstance(instance, int | float) and not isinstance(instance, bool)
+        return number and (name == "number" or float(instance).is_integer())
+    kinds = {"object": dict, "array": list, "string": str, "boolean": bool, "null": type(None)}
+    return name in kinds and isinstance(instance, kinds[name])
 
 
 def _best_match(errors: list[_Error], parent: _Error) -> _Error:
@@ -281,32 +275,20 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
         return Problem(span, f"{where} {_written(node)} is not valid", hint, code="bad-name")
+    limit, written = error.validator_value, _written(node)
     if validator == "const":
         return Problem(
-            span,
-            f"{where} must be {json.dumps(error.validator_value)}, not {_written(node)}",
-            hint,
-            code="wrong-value",
+            span, f"{where} must be {json.dumps(limit)}, not {written}", hint, "wrong-value"
         )
     if validator in ("minimum", "maximum"):
-        return Problem(
-            span,
-            f"{where} is {_written(node)}, which is out of range",
-            f"{validator} is {error.validator_value}",
-            code="out-of-range",
-        )
+        message, fix = f"{where} is {written}, which is out of range", f"{validator} is {limit}"
+        return Problem(span, message, fix, "out-of-range")
     if validator == "minItems":
-        return Problem(
-            span,
-            f"{where} needs at least {error.validator_value} item(s)",
-            code="too-few",
-        )
+        return Problem(span, f"{where} needs at least {limit} item(s)", code="too-few")
     if validator == "uniqueItems":
         return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
     if validator == "oneOf":  # with no failing branch to blame: several branches matched
-        return Problem(
-            span, f"{where} gives more than one of its alternatives", hint, code="one-of"
-        )
+        return Problem(span, f"{where} gives more than one of its alternatives", hint, "one-of")
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 
