@@ -5,27 +5,17 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint typecheck pytest explore system-deps ros2-venvs yamlc bench architecture clean
+.PHONY: demo test lint typecheck pytest explore system-deps ros2-venvs bench architecture clean
 
-# setup.py and the C source: the compiled YAML reader is built by this pip install.
-$(STAMP): pyproject.toml setup.py rosreconf/formats/_yamlc.c
+$(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,planners,plot,dask,ros2]'
 	touch $(STAMP)
 
-## Install the Debian packages the tests need (ROS 1, Graphviz, libyaml-dev and a C compiler
-## for the compiled YAML reader); a no-op when present.
+## Install the Debian packages the tests need (ROS 1, Graphviz); a no-op when present.
 system-deps:
 	bash scripts/system-deps.sh
-
-## The compiled YAML reader (rosreconf.formats._yamlc), which the tests require. It is optional
-## for users, so a .venv installed without libyaml-dev (`make demo` on a fresh machine) has
-## none: install rosreconf again, now that system-deps has put the headers there.
-yamlc: $(STAMP)
-	@$(PY) -c 'import rosreconf.formats._yamlc' 2>/dev/null || \
-	  $(PY) -m pip install --quiet --no-deps -e .
-	$(PY) -c 'import rosreconf.formats._yamlc'
 
 demo: $(STAMP)
 	$(BIN)/rosreconf validate
@@ -54,8 +44,7 @@ ros2-venvs: $(foreach d,$(ROS2_DISTROS),.venv-ros2-$(d)/.installed-stamp)
 	HOME=$${HOME:-/tmp} .venv-ros2-$*/bin/python -c 'import rclpy, rclpy.lifecycle, rclpy.action'
 	touch $@
 
-# system-deps first: libyaml-dev must be there before pip builds rosreconf.
-test: system-deps $(STAMP) ros2-venvs yamlc lint typecheck pytest
+test: system-deps $(STAMP) ros2-venvs lint typecheck pytest
 
 lint: $(STAMP)
 	$(BIN)/lint-imports
@@ -78,6 +67,7 @@ explore: $(STAMP)
 
 ## Measure count, first, optimal, whatif and clingo alone over the R x K grid.
 bench: $(STAMP)
+	$(PY) benchmarks/selfcheck.py
 	$(PY) benchmarks/run.py
 
 ## Redraw docs/img/architecture.svg: the stages and their imports, read from the code.
@@ -87,4 +77,3 @@ architecture: $(STAMP)
 
 clean:
 	rm -rf $(VENV) .venv-ros2-* build dist *.egg-info .mypy_cache .ruff_cache .pytest_cache
-	rm -f rosreconf/formats/_yamlc.*.so

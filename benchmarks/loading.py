@@ -2,13 +2,10 @@
 
 Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read and checked in
 at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
-that process (``time.process_time``), every stage the loader runs for a clean library (the
-plain-first path of ``loader.load_reported``, what every command takes): YAML into plain data
-without positions, the JSON Schema check, the value checks, model building, the semantic
-checks. (A library with a problem to report is then loaded again, with positions: not timed
-here.) Imports are excluded (the whole-process rows of ``run.py`` include them). The parse
-stage uses the compiled YAML reader when it is built (``reader`` in the entry says which);
-``ROSRECONF_PURE_YAML=1`` in the environment measures the Python loop instead.
+that process (``time.process_time``), every stage the loader runs (``loader.load_sources``,
+what every command takes): YAML into the positioned tree and plain data (PyYAML's composer
+over libyaml), the JSON Schema check (jsonschema-rs), the value checks, model building, the
+semantic checks. Imports are excluded (the whole-process rows of ``run.py`` include them).
 
 ``python benchmarks/loading.py --json benchmarks/results.json`` measures and replaces the
 ``loading`` entry of the results; ``run.py`` calls ``loading`` in a full run.
@@ -34,12 +31,12 @@ def child(folder: str) -> dict[str, float]:
     """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU)."""
     import gc
 
-    from rosreconf.formats import loader, yamlfast
+    from rosreconf.formats import loader
     from rosreconf.formats import yamlsource as ys
     from rosreconf.formats.build import build_library, build_schema
     from rosreconf.formats.checks import check
-    from rosreconf.formats.structure import DocumentKind, kind_of_plain, structure_valid
-    from rosreconf.formats.values import clean_values, repeated_edges
+    from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+    from rosreconf.formats.values import duplicate_edges, value_problems
 
     d = Path(folder)
     seconds = dict.fromkeys(STAGES, 0.0)
@@ -52,23 +49,23 @@ def child(folder: str) -> dict[str, float]:
     interfaces: dict[Any, Any] = {}  # shared by the library files, as the loader shares it
     for src in sources:
         t = clock()
-        plain = ys.parse_plain_only(src.data, src.name)
+        tree, plain = ys.read(src.data, src.name)
         seconds["parse"] += clock() - t
-        assert isinstance(plain, dict), f"{src.name}: declined"
         t = clock()
-        kind = kind_of_plain(plain)
-        assert kind is not None and structure_valid(kind, plain), f"{src.name}: structure"
+        kind, _ = kind_of(tree, src.name)
+        assert kind is not None and tree is not None, f"{src.name}: format"
+        assert not list(structure_problems(tree, kind, plain)), f"{src.name}: structure"
         seconds["structure"] += clock() - t
         t = clock()
         library = kind is DocumentKind.LIBRARY
-        clean = clean_values(plain) if library else not repeated_edges(plain)
-        assert clean, f"{src.name}: a value problem"
+        found = value_problems(tree, plain) if library else duplicate_edges(tree, plain)
+        assert not found, f"{src.name}: a value problem"
         seconds["values"] += clock() - t
         t = clock()
-        if kind is DocumentKind.LIBRARY:
-            libraries.append(build_library(plain, src.name, interfaces))
+        if library:
+            libraries.append(build_library(tree, src.name, interfaces))
         else:
-            schemas.append(build_schema(plain, src.name))
+            schemas.append(build_schema(tree, src.name))
         seconds["build"] += clock() - t
     t = clock()
     problems = check(libraries, schemas, library_complete=True)
@@ -77,20 +74,20 @@ def child(folder: str) -> dict[str, float]:
     seconds["total"] = sum(seconds[s] for s in STAGES)
 
     seconds["bytes"] = float(sum(len(s.data) for s in sources))
-    seconds["compiled_reader"] = float(yamlfast.COMPILED_READ is not None)
-    seconds.update(floors([s.data.decode("utf-8") for s in sources]))
+    seconds["libyaml_reader"] = float(ys.BASE_LOADER.__name__ == "CSafeLoader")
+    seconds.update(floors([s.data for s in sources]))
     return seconds
 
 
-FLOORS = ("libyaml", "pyyaml_events")
+FLOORS = ("libyaml", "compose")
 
 
-def floors(texts: list[str]) -> dict[str, float]:
-    """Time what any reader over PyYAML's C binding pays before building anything.
+def floors(texts: list[bytes]) -> dict[str, float]:
+    """Time what a reader over PyYAML's C binding pays before rosreconf's own work.
 
     ``libyaml``: libyaml parsing the texts with no Python object per event
-    (``CParser.raw_parse``), the floor of the compiled reader; ``pyyaml_events``: PyYAML's
-    event objects, fetched and dropped, the floor of the Python loop over them.
+    (``CParser.raw_parse``); ``compose``: PyYAML's ``yaml.compose`` over libyaml with its own
+    (YAML 1.1) resolver, the node tree rosreconf's reader builds on.
     """
     import yaml
 
@@ -101,10 +98,8 @@ def floors(texts: list[str]) -> dict[str, float]:
     raw = clock() - t
     t = clock()
     for text in texts:
-        get = yaml.CSafeLoader(text).get_event
-        while get() is not None:
-            pass
-    return {"libyaml": raw, "pyyaml_events": clock() - t}
+        yaml.compose(text, Loader=yaml.CSafeLoader)
+    return {"libyaml": raw, "compose": clock() - t}
 
 
 def loading(folder: Path, runs: int) -> dict[str, Any]:
@@ -123,11 +118,11 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "bytes": int(results[0]["bytes"]),
         "seconds": medians,
         "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
-        "floors": "libyaml: CParser.raw_parse (no Python objects); pyyaml_events: get_event only",
+        "floors": "libyaml: CParser.raw_parse (no Python objects); compose: yaml.compose",
         "reader": (
-            "compiled (rosreconf.formats._yamlc)"
-            if all(r["compiled_reader"] for r in results)
-            else "Python loop over PyYAML's events"
+            "PyYAML's composer over libyaml (yaml.CSafeLoader)"
+            if all(r["libyaml_reader"] for r in results)
+            else "PyYAML's pure-Python composer (no libyaml)"
         ),
         "goal_seconds": 1.0,
         "met": medians["total"] <= 1.0,

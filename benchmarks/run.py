@@ -4,7 +4,9 @@ Three parts, all written to benchmarks/results.json and printed as tables:
 
 * ``whole_process``: the commands a user runs (``rosreconf --help``, ``validate``,
   ``enumerate``, ``plan --fail NSM3`` on the bundled example; ``enumerate --count``,
-  ``--limit 1`` and ``--best`` on 1000 x 10) against the references of issue 12, each pair
+  ``--limit 1`` and ``--best`` on 1000 x 10; ``validate`` on 1000 x 10 with one mistake
+  each: a bad value, a wrong key, a duplicate key, a tab near the end of a file, issue 24's
+  goal of at most 1 CPU s) against the references of issue 12, each pair
   run back to back (ours, reference, ours, reference, ...) so that both see the same load.
   Time is the child's CPU time (user + system, ``getrusage(RUSAGE_CHILDREN)`` deltas) and
   wall time; the ratio is median(ours) / median(reference) of CPU time.
@@ -13,7 +15,8 @@ Three parts, all written to benchmarks/results.json and printed as tables:
 * ``watch``: in-process, what the watcher does between detecting a failure and having the
   new configuration, against Fast Downward's own time on the same task.
 
-``--quick`` runs a tiny version of each for CI (tests/test_benchmarks.py).
+``--quick`` runs a tiny version of each; ``benchmarks/selfcheck.py`` (first in ``make bench``)
+runs it and checks that every table and JSON entry comes out.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ import json
 import os
 import platform
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -316,6 +320,42 @@ def split_write(roles: int, candidates: int, folder: Path, per: int = 1000) -> N
     (folder / "schemas" / "generated.yaml").write_text(gen.schema, encoding="utf-8")
 
 
+def _bad_value(text: str) -> str:
+    return text.replace("failure_probability: 0.0", "failure_probability: 1.5", 1)
+
+
+def _wrong_key(text: str) -> str:
+    return text.replace("    failure_probability:", "    failure_probabilty:", 1)
+
+
+def _duplicate_key(text: str) -> str:
+    return text.replace("    abstraction: ", "    abstraction: x\n    abstraction: ", 1)
+
+
+def _tab_near_the_end(text: str) -> str:
+    at = text.rindex("\n    abstraction: ")  # the last component
+    return text[:at] + "\n\tabstraction: " + text[at + len("\n    abstraction: ") :]
+
+
+MISTAKES = [
+    ("a bad value", _bad_value),
+    ("a wrong key", _wrong_key),
+    ("a duplicate key", _duplicate_key),
+    ("a tab near the end of a file", _tab_near_the_end),
+]
+"""The one mistake of each ``validate`` row: how it turns the last library file's text."""
+
+
+def with_mistake(folder: Path, dest: Path, mistake: Any) -> None:
+    """Copy a generated ``folder`` to ``dest`` with one ``mistake`` in its last library file."""
+    shutil.copytree(folder, dest)
+    last = sorted((dest / "libraries").glob("*.yaml"))[-1]
+    text = last.read_text(encoding="utf-8")
+    changed = mistake(text)
+    assert changed != text, mistake
+    last.write_text(changed, encoding="utf-8")
+
+
 def byte_compiled() -> None:
     """Byte-compile rosreconf and Fast Downward's driver and translator before timing them.
 
@@ -410,6 +450,21 @@ def whole_process(tmp: Path, quick: bool) -> list[dict[str, Any]]:
     ]
     m = 1 if quick else 3
     label = f"{size[0]} x {size[1]}"
+    mistakes = MISTAKES[:1] if quick else MISTAKES
+    for what, mistake in mistakes:  # validate is for catching mistakes: time it doing so
+        wrong = tmp / f"mistake-{what.replace(' ', '-')}"
+        with_mistake(big, wrong, mistake)
+        rows.append(
+            pair(
+                f"rosreconf validate, {what} ({label})",
+                [*cli, "validate"],
+                [floor],
+                wrong,
+                m,
+                goal_seconds=1.0,
+                reference_name=floor_name,
+            )
+        )
     commands: list[tuple[str, list[str], float | None]] = [
         ("enumerate --count", ["enumerate", "--count"], None),
         ("enumerate --limit 1", ["enumerate", "--limit", "1"], 1.0),

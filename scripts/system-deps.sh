@@ -5,16 +5,8 @@
 #   python3-roslaunch   roscore, rosmaster, roslaunch and rosout (ROS 1 from Debian, docs/ros.md)
 #   python3-rospy       rospy (and std_msgs) for /usr/bin/python3, run by tests/standin_node.py
 #   python3-std-srvs    std_srvs/Trigger, the stand-ins' service type
-#   libyaml-dev, gcc    the compiled YAML reader (rosreconf.formats._yamlc, setup.py), which
-#                       `make test` requires: pip builds it only if these are there first
-#   python3-dev         Python's headers, for the same build, when python3 is Debian's
 set -euo pipefail
 need=()
-[ -f /usr/include/yaml.h ] || need+=(libyaml-dev)
-command -v gcc >/dev/null 2>&1 || need+=(gcc)
-python3 -c 'import os, sysconfig, sys
-sys.exit(not os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h")))' \
-  || need+=(python3-dev)
 command -v dot >/dev/null 2>&1 || need+=(graphviz)
 command -v roscore >/dev/null 2>&1 || need+=(python3-roslaunch)
 /usr/bin/python3 -c 'import roslaunch.xmlloader' >/dev/null 2>&1 || need+=(python3-roslaunch)

@@ -22,7 +22,7 @@ HEAVY = (
     "clingo",  # the solver
     "networkx",  # ROS-graphs and system graphs as graphs
     "jinja2",  # the PDDL templates
-    "jsonschema",  # only for files the fast verdict (formats.schemacode) rejects
+    "jsonschema",  # python-jsonschema: the tests' reference only (formats use jsonschema-rs)
     "rosreconf.solve",
     "rosreconf.planning",  # PDDL and the planners
     "rosreconf.ros",  # the ROS client: xmlrpc, http, ssl

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import json
+import os
 import shutil
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
@@ -48,13 +50,20 @@ def test_valid_case(runner: CliRunner, case: Path) -> None:
     assert code == 0, out
 
 
+REWRITE_PINS = os.environ.get("ROSRECONF_REWRITE_PINS", "") not in ("", "0")
+"""Set ROSRECONF_REWRITE_PINS=1 to rewrite every ``expected.json`` from what ``validate``
+reports now, after a deliberate change of messages or positions (then read the diff)."""
+
+
 @pytest.mark.parametrize("case", INVALID, ids=lambda p: p.name)
 def test_invalid_case_pins_message_and_position(runner: CliRunner, case: Path) -> None:
-    code, out, _ = _run(runner, case, ".")
-    expected = (case / "expected.txt").read_text(encoding="utf-8").splitlines()
-    assert expected, f"{case}/expected.txt is empty"
-    got = [line for line in out.splitlines() if not line[0].isdigit()]
-    assert got == expected
+    """``validate . --format json`` in each invalid case is its pinned ``expected.json``."""
+    code, out, _ = _run(runner, case, ".", "--format", "json")
+    pinned = case / "expected.json"
+    if REWRITE_PINS:
+        pinned.write_text(out, encoding="utf-8")
+    assert out == pinned.read_text(encoding="utf-8")
+    assert json.loads(out)["valid"] is False
     assert code == 1
 
 
@@ -124,3 +133,81 @@ def test_size_cap(runner: CliRunner, tmp_path: Path) -> None:
     code, out, _ = _run(runner, tmp_path, ".")
     assert code == 1
     assert f"big.yaml:1:1: error: file is {size} bytes, over the limit of {MAX_BYTES} bytes" in out
+
+
+def _checkout_copy(tmp_path: Path) -> Path:
+    for folder in ("libraries", "schemas"):
+        shutil.copytree(REPO / folder, tmp_path / folder)
+    return tmp_path
+
+
+def _report(runner: CliRunner, where: Path, *args: str) -> Any:
+    _, out, _ = _run(runner, where, ".", "--format", "json", *args)
+    return json.loads(out)
+
+
+def test_a_todo_mark_alone_is_reported_with_its_position(runner: CliRunner, tmp_path: Path) -> None:
+    where = _checkout_copy(tmp_path)
+    lib = where / "libraries" / "robot_arms.yaml"
+    lines = lib.read_text(encoding="utf-8").splitlines(keepends=True)
+    lines.insert(3, "# TODO: check the arm's joints\n")
+    lib.write_text("".join(lines), encoding="utf-8")
+    [todo] = _report(runner, where)["problems"]
+    assert (todo["code"], todo["line"], todo["column"]) == ("todo", 4, 1)
+    assert todo["file"] == "libraries/robot_arms.yaml"
+
+
+def test_a_duplicate_edge_alone_is_reported_with_its_position(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    where = _checkout_copy(tmp_path)
+    schema = where / "schemas" / "object_repositioning.yaml"
+    text = schema.read_text(encoding="utf-8")
+    edge = "  - {consumer: perception, providers: [camera, gripper_sensor]}\n"
+    assert edge in text
+    line = text[: text.index(edge)].count("\n") + 2  # the line of the entry added below
+    schema.write_text(
+        text.replace(edge, edge + "  - {consumer: perception, providers: [camera]}\n")
+    )
+    [dup] = _report(runner, where, "--strict")["problems"]
+    assert (dup["code"], dup["severity"]) == ("duplicate-edge", "warning")
+    assert (dup["line"], dup["column"]) == (line, text.splitlines()[line - 2].index("camera") + 1)
+
+
+def test_a_semantic_problem_across_clean_files_is_reported_with_positions(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    # Every file is clean on its own; the problem shows only in the checks of the whole.
+    where = _checkout_copy(tmp_path)
+    shutil.copy(where / "libraries" / "robot_arms.yaml", where / "libraries" / "again.yaml")
+    problems = _report(runner, where)["problems"]
+    assert "duplicate-component" in {p["code"] for p in problems}
+    assert all(p["line"] > 0 for p in problems)
+
+
+def test_a_tab_before_a_comment_is_valid_yaml(runner: CliRunner, tmp_path: Path) -> None:
+    # libyaml, the reader of record, reads it as YAML 1.2 does (PyYAML's pure parser refused it).
+    where = _checkout_copy(tmp_path)
+    lib = where / "libraries" / "robot_arms.yaml"
+    text = lib.read_text(encoding="utf-8")
+    lib.write_text(text.replace("version: 1\n", "version: 1\t# the format's version\n", 1))
+    code, out, _ = _run(runner, where, ".")
+    assert code == 0, out
+
+
+def test_json_flag_is_format_json(runner: CliRunner) -> None:
+    case = CASES / "invalid" / "unknown_key"
+    assert _run(runner, case, ".", "--json") == _run(runner, case, ".", "--format", "json")
+    assert json.loads(_run(runner, case, ".", "--json")[1])["errors"] == 1
+
+
+def test_library_and_schema_options_read_what_paths_read(runner: CliRunner) -> None:
+    lib, schema = "libraries/robot_arms.yaml", "schemas/object_repositioning.yaml"
+    by_option = _run(runner, REPO, "-l", lib, "-s", schema, "--json")
+    by_path = _run(runner, REPO, lib, schema, "--json")
+    assert by_option == by_path
+    assert json.loads(by_option[1])["files"] == [lib, schema]
+    # -l alone: the schemas come from schemas/ here, as for every other command
+    _, out, _ = _run(runner, REPO, "-l", lib, "--json")
+    schemas = sorted(f"schemas/{p.name}" for p in REPO.glob("schemas/*.yaml"))
+    assert json.loads(out)["files"] == [lib, *schemas]

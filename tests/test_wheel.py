@@ -30,7 +30,6 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
         "__pycache__",
         ".*_cache",
         ".hypothesis",
-        "*.so",  # the editable install's compiled YAML reader: the wheel must build its own
     )
     shutil.copytree(REPO, source, ignore=skip)
     build = [sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps"]
@@ -54,10 +53,9 @@ def installed(tmp_path_factory: pytest.TempPathFactory) -> Path:
     # editable install's finder, so only this list shows it.
     for package in REPO.joinpath("rosreconf").rglob("__init__.py"):
         assert package.relative_to(REPO).as_posix() in names
-    # The compiled YAML reader (setup.py): make test installs libyaml-dev and a compiler, so
-    # the wheel must hold it, with its type stub.
-    assert "rosreconf/formats/_yamlc.pyi" in names
-    assert [n for n in names if n.startswith("rosreconf/formats/_yamlc.") and n.endswith(".so")]
+    # Pure Python: nothing compiled, so one wheel serves every platform.
+    assert wheel.name.endswith("-py3-none-any.whl")
+    assert not [n for n in names if n.endswith((".so", ".pyd", ".c"))]
     return target
 
 
@@ -99,27 +97,18 @@ def test_installed_wheel_renders_pddl_from_its_templates(installed: Path, tmp_pa
     assert "(define (domain" in domain and "choose-elbow_joint-nsm3" in domain
 
 
-def test_installed_wheel_reads_yaml_with_its_compiled_reader(
-    installed: Path, tmp_path: Path
-) -> None:
+def test_installed_wheel_reads_yaml_with_positions(installed: Path, tmp_path: Path) -> None:
     code = (
         "import json\n"
-        "from rosreconf.formats import _yamlc, yamlfast, yamlsource\n"
-        "tree, plain = yamlsource.parse_plain(b'a: [1, {b: c}]\\n', 'f.yaml')\n"
-        "print(json.dumps({'file': _yamlc.__file__, 'plain': plain,\n"
-        "                  'used': yamlfast.COMPILED_READ is _yamlc.read}))\n"
+        "from rosreconf.formats import nodes, yamlsource\n"
+        "tree, plain = yamlsource.read(b'a: [1, {b: no}]\\n', 'f.yaml')\n"
+        "inner = nodes.lookup(tree, ['a', 1, 'b'])\n"
+        "print(json.dumps({'file': yamlsource.__file__, 'plain': plain,\n"
+        "                  'at': list(nodes.span(inner))}))\n"
     )
-    env_free = {k: v for k, v in os.environ.items() if k != "ROSRECONF_PURE_YAML"}
-    result = subprocess.run(
-        [sys.executable, "-c", code],
-        cwd=tmp_path,
-        env={**env_free, "PYTHONPATH": str(installed)},
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    result = _run(installed, tmp_path, "-c", code)
     assert result.returncode == 0, result.stderr
     probe = json.loads(result.stdout)
-    assert probe["file"].startswith(str(installed))  # the wheel's extension, not the checkout's
-    assert probe["used"]
-    assert probe["plain"] == {"a": [1, {"b": "c"}]}
+    assert probe["file"].startswith(str(installed))  # the wheel's reader, not the checkout's
+    assert probe["plain"] == {"a": [1, {"b": "no"}]}  # YAML 1.2: 'no' is text
+    assert probe["at"] == ["f.yaml", 1, 12]

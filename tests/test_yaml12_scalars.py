@@ -1,6 +1,6 @@
 """Plain scalars resolve by YAML 1.2's core schema, whichever test decides them first.
 
-``yamltree.resolve_plain`` orders its tests for speed (names by their first character,
+``nodes.resolve_plain`` orders its tests for speed (names by their first character,
 then numbers); these are the core schema's own examples (YAML 1.2.2, 10.3.2) and the
 spellings YAML 1.1 read otherwise, so a reordering that changes an answer fails here.
 """
@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from rosreconf.formats.yamltree import Scalar, resolve_plain
+from rosreconf.formats.nodes import Scalar, resolve_plain
 
 CORE_SCHEMA: list[tuple[str, Scalar]] = [
     ("", None),

@@ -7,9 +7,10 @@ from typing import Annotated
 
 import typer
 
+from rosreconf.cli.common import JsonOption, LibraryOption, SchemaOption
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, Severity
-from rosreconf.formats.loader import load_reported, load_selection
+from rosreconf.formats.loader import load_paths, load_selection, load_split, problems_of
 from rosreconf.render.report import REPORTERS, OutputFormat
 
 
@@ -22,17 +23,31 @@ def validate(
             show_default=False,
         ),
     ] = None,
+    library: LibraryOption = None,
+    schema: SchemaOption = None,
     output_format: Annotated[
-        OutputFormat, typer.Option("--format", "-f", help="How to report problems.")
+        OutputFormat,
+        typer.Option("--format", "-f", help="How to report problems (--json: json)."),
     ] = OutputFormat.TEXT,
+    json_output: JsonOption = False,
     strict: Annotated[bool, typer.Option(help="Fail on warnings too.")] = False,
 ) -> None:
-    """Check component libraries and interoperability schemas; exit 0 valid, 1 invalid, 2 usage."""
+    """Check component libraries and interoperability schemas; exit 0 valid, 1 invalid, 2 usage.
 
-    loaded, found = load_reported(
-        lambda positions: load_selection(paths or [], positions=positions)
-    )
-    problems = sorted(found)
-    write_stdout(REPORTERS[output_format].render(loaded.files, problems, loaded.note))
+    Files are given as PATHS (either kind, told apart by their 'format' key) or, as the
+    other commands take them, with -l/--library and -s/--schema; --json is --format json.
+    """
+    if library or schema:
+        libraries, schemas = library or [], schema or []
+        loaded = (
+            load_paths([*(paths or []), *libraries, *schemas])
+            if paths
+            else load_split(libraries, schemas)
+        )
+    else:
+        loaded = load_selection(paths or [])
+    problems = sorted(problems_of(loaded))
+    shown = OutputFormat.JSON if json_output else output_format
+    write_stdout(REPORTERS[shown].render(loaded.files, problems, loaded.note))
     failing = [p for p in problems if strict or p.severity is Severity.ERROR]
     raise typer.Exit(ExitCode.FAILED if failing else ExitCode.OK)

@@ -1,44 +1,34 @@
-"""Build the paper's model objects from well-formed files, with or without positions.
+"""Build the paper's model objects from well-formed files, with their positions.
 
 The loader calls these only after a file passed its JSON Schema and value checks, so every
 key the Schema requires is present and every value has its type; what is left here is to
 turn YAML's shapes into the model (components, requirements, launch data, dynamics, system
 graphs) and to record where each value was written (``span``, ``where``), so that the
-semantic checks can point at ``file:line:column``.
-
-A document reaches this one builder in either of two forms (``Node``): the positioned tree
-(``yamlsource.parse_plain``), or its plain data alone (``yamlsource.parse_plain_only``, the
-loader's first try, several times cheaper to read). Positions are read only to report
-problems, so from plain data every span is ``NOWHERE`` and every ``where`` is empty; the
-loader reads a file again with positions whenever there is anything to report, and every
-compared field of the model is the same from either form (tests/test_lazy_positions.py).
-One thing plain data cannot give is the text as written of a scalar that is not a string
-(``1.0`` written as a name is "1.0"; its plain value is the float 1.0): there the builder
-does not guess but raises ``NeedsPositions`` (the JSON Schema makes every such field a
-string, so a checked file never gets there).
+semantic checks can point at ``file:line:column``. It reads the positioned tree
+(``yamlsource.read``) through ``nodes``: names as the text written, numbers resolved with
+YAML 1.2.
 """
 
 from __future__ import annotations
 
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from types import MappingProxyType
 from typing import TypeAlias
 
-from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.nodes import (
     NUMBER,
     SCALAR,
-    NeedsPositions,
-    Node,
+    MappingNode,
     field_text,
-    map_of,
     scalars_of,
     seq_of,
-    span_of,
     text_of,
-    value_of,
 )
+from rosreconf.formats.nodes import Node as YNode
+from rosreconf.formats.nodes import fields as map_of
+from rosreconf.formats.nodes import span as span_of
+from rosreconf.formats.nodes import value as value_of
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -61,7 +51,10 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-__all__ = ["Interfaces", "NeedsPositions", "Node", "build_library", "build_schema"]
+__all__ = ["Interfaces", "Node", "build_library", "build_schema"]
+
+Node: TypeAlias = "YNode | None"
+"""What the builder reads: a node of the positioned tree, or None for an absent key."""
 
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
@@ -82,7 +75,7 @@ library writes each of its few distinct interfaces many times, and one shared, e
 
 def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
-    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
+    items = map_of(node)
     service = "service" in items
     label = text_of(items["service" if service else "topic"])
     key = (service, label, text_of(items["type"]))
@@ -93,8 +86,7 @@ def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     if "qos" in items:
         spec = items["qos"]
         found.qos[label] = QosProfile.from_dict(scalars_of(spec))
-        if found.where is not None:
-            found.where[f"qos.{label}"] = span_of(spec)
+        found.where[f"qos.{label}"] = span_of(spec)
     return interface
 
 
@@ -110,13 +102,12 @@ class _Found:
     """What building a component's interfaces finds on the way: QoS profiles and positions.
 
     Interfaces, their QoS and the positions of both are collected in one walk over a
-    component's provisions and requirements (a large library has 35,000 of them); ``where``
-    is None when building without positions.
+    component's provisions and requirements (a large library has 35,000 of them).
     """
 
     __slots__ = ("qos", "where")
 
-    def __init__(self, where: dict[str, Span] | None) -> None:
+    def __init__(self, where: dict[str, Span]) -> None:
         self.qos: dict[str, QosProfile] = {}
         self.where = where
 
@@ -125,7 +116,7 @@ def _launch(node: Node) -> RosLaunch | None:
     items = map_of(node)
     params: dict[str, str | int | float | bool] = {}
     for key, value in map_of(items.get("parameters")).items():
-        if isinstance(value, dict | ys.YMapping):  # {substitution: ...}, marked by the user
+        if type(value) is MappingNode:  # {substitution: ...}, marked by the user
             params[key] = Substitution(text_of(map_of(value)["substitution"]))
             continue
         scalar = value_of(value)
@@ -149,11 +140,9 @@ def _number(node: Node, default: float) -> float:
     return float(value) if isinstance(value, NUMBER) else default
 
 
-def _dynamics(node: Node, key: str, where: dict[str, Span] | None) -> Dynamics:
+def _dynamics(node: Node, key: str, where: dict[str, Span]) -> Dynamics:
     """Build a transfer function or state-space model; record where its values are."""
     items = map_of(node)
-    if where is None:
-        where = {}  # without positions: every span is NOWHERE, and these are dropped
     where[key] = span_of(node)
     if "delay" in items:
         where[f"{key}.delay"] = span_of(items["delay"])
@@ -185,11 +174,9 @@ def _dynamics(node: Node, key: str, where: dict[str, Span] | None) -> Dynamics:
     return TransferFunction(coefficients["num"], coefficients["den"], delay)
 
 
-def _simulation(node: Node, where: dict[str, Span] | None) -> Simulation:
+def _simulation(node: Node, where: dict[str, Span]) -> Simulation:
     """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
     items = map_of(node)
-    if where is None:
-        where = {}  # without positions: every span is NOWHERE, and these are dropped
     where["simulation"] = span_of(node)
     loops = []
     for i, n in enumerate(seq_of(items["loops"])):
@@ -227,21 +214,16 @@ _LIST_KEYS = {
 """The ``where`` keys of a component's first provisions and requirements: one string per key
 for the whole library, not one per component."""
 
-_NOWHERE_ELSE: Mapping[str, Span] = MappingProxyType({})
-"""The ``where`` of every component and schema built without positions."""
 
-
-def _where_listed(where: dict[str, Span] | None, kind: str, listed: Sequence[Node]) -> None:
+def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[YNode]) -> None:
     """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
-    if where is None:
-        return
     names = _LIST_KEYS[kind]
     for i, n in enumerate(listed):
         where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = span_of(n)
 
 
 def _component(node: Node, seen: Interfaces) -> Component:
-    items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
+    items = map_of(node)
     get = items.get
     metrics: dict[str, float] = {}
     for key, value in map_of(get("metrics")).items():
@@ -249,20 +231,17 @@ def _component(node: Node, seen: Interfaces) -> Component:
         assert isinstance(metric, NUMBER)
         metrics[key] = float(metric)
     provides, requires = seq_of(get("provides")), seq_of(get("requires"))
-    where: dict[str, Span] | None = None
-    if isinstance(node, ys.YNode):  # positions: where each value of the component is
-        where = {"name": span_of(items["name"]), "abstraction": span_of(items["abstraction"])}
-        for key in ("needs", "excludes", "schemas"):
-            for n in seq_of(get(key)):
-                where[f"{key}.{text_of(n)}"] = span_of(n)
+    where = {"name": span_of(items["name"]), "abstraction": span_of(items["abstraction"])}
+    for key in ("needs", "excludes", "schemas"):
+        for n in seq_of(get(key)):
+            where[f"{key}.{text_of(n)}"] = span_of(n)
     found = _Found(where)
     _where_listed(where, "provides", provides)
     provided = frozenset([_interface(n, seen, found) for n in provides])
     _where_listed(where, "requires", requires)
     required = tuple([_requirement(n, seen, found) for n in requires])
-    if where is not None:
-        for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
-            where[f"ros.args.{i}"] = span_of(n)
+    for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
+        where[f"ros.args.{i}"] = span_of(n)
     fp = value_of(get("failure_probability"))
     return Component(
         name=text_of(items["name"]),
@@ -279,20 +258,17 @@ def _component(node: Node, seen: Interfaces) -> Component:
         dynamics=_dynamics(items["dynamics"], "dynamics", where) if "dynamics" in items else None,
         description=field_text(items, "description"),
         span=span_of(node),
-        where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
+        where=MappingProxyType(where),
     )
 
 
 def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
     """Build a library file's model; ``seen`` shares interfaces with files built before.
 
-    ``tree`` is the file's positioned tree or its plain data (see the module doc). One
-    ``seen`` for all the library files of a load makes every use of an interface, in any
-    file, the same object: a requirement in one file and the provision meeting it in
-    another then match by identity in every set and dict, without a comparison.
-
-    Raises:
-        NeedsPositions: plain data where only the tree can give the text as written.
+    ``tree`` is the file's positioned tree (see the module doc). One ``seen`` for all the
+    library files of a load makes every use of an interface, in any file, the same object:
+    a requirement in one file and the provision meeting it in another then match by
+    identity in every set and dict, without a comparison.
     """
     items = map_of(tree)
     if seen is None:
@@ -306,11 +282,7 @@ def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> Comp
 
 
 def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
-    """Build a schema file's model from its positioned tree or its plain data.
-
-    Raises:
-        NeedsPositions: plain data where only the tree can give the text as written.
-    """
+    """Build a schema file's model from its positioned tree."""
     items = map_of(tree)
     roles = tuple(
         Role(
@@ -329,14 +301,10 @@ def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
         for p in seq_of(e["providers"]):
             edges.append(Edge(text_of(e["consumer"]), text_of(p), interfaces, span_of(p), optional))
     nominal = {k: text_of(v) for k, v in map_of(items.get("nominal")).items()}
-    where: dict[str, Span] | None = None
-    if isinstance(tree, ys.YNode):  # positions: where each value of the schema is
-        where = {"name": span_of(items["name"])}
-        where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
-        for n in seq_of(items["roles"]):
-            where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(
-                map_of(n)["abstraction"]
-            )
+    where = {"name": span_of(items["name"])}
+    where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
+    for n in seq_of(items["roles"]):
+        where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(map_of(n)["abstraction"])
     simulation = _simulation(items["simulation"], where) if "simulation" in items else None
     return InteroperabilitySchema(
         name=text_of(items["name"]),
@@ -348,5 +316,5 @@ def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
         simulation=simulation,
         span=span_of(tree),
         source=name,
-        where=_NOWHERE_ELSE if where is None else MappingProxyType(where),
+        where=MappingProxyType(where),
     )

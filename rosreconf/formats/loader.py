@@ -1,19 +1,12 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file goes through three steps: YAML -> positioned tree and plain data (``yamlsource``),
-structure checked against the shipped JSON Schema (``structure``, errors mapped back to
-``file:line:column``) and values checked (``values``), then model objects (``build``).
-Problems are collected per file and across files; the caller gets the model of every
-well-formed file *and* the list of problems, so ``validate`` can report everything in one
-run while ``enumerate`` can refuse to work on invalid input.
-
-Positions are needed only to report a problem, and building them is most of the cost of
-reading a large library. So the commands load through ``load_reported``: every file is
-first read as plain data alone (``positions=False``: no tree, no span), checked (structure,
-values, TODO marks, then the semantic checks) and built; at the first thing to report, of
-any severity, anywhere (``NeedsPositions``), every file is loaded again the positioned way,
-and that load and its problems are the answer, so every message and position is the one the
-positioned load gives. A file with problems costs two reads; a clean one, one cheap read.
+Each file goes through three steps, once: YAML -> positioned tree and plain data
+(``yamlsource``), the plain data checked against the shipped JSON Schema (``structure``) and
+its values checked (``values``), each problem placed by looking its path up in the tree;
+then model objects (``build``), which keep where each value was written. Problems are
+collected per file and across files; the caller gets the model of every well-formed file
+*and* the list of problems, so ``validate`` can report everything in one run while
+``enumerate`` can refuse to work on invalid input.
 """
 
 from __future__ import annotations
@@ -21,47 +14,19 @@ from __future__ import annotations
 import contextlib
 import gc
 import re
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from rosreconf.errors import InvalidInputError, Problem, Severity
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.build import Interfaces, NeedsPositions, build_library, build_schema
+from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
-from rosreconf.formats.structure import (
-    DocumentKind,
-    kind_of,
-    kind_of_plain,
-    structure_problems,
-    structure_valid,
-)
-from rosreconf.formats.values import (
-    clean_values,
-    duplicate_edges,
-    repeated_edges,
-    value_problems,
-)
+from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+from rosreconf.formats.values import duplicate_edges, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
-
-__all__ = [
-    "YAML_SUFFIXES",
-    "Loaded",
-    "Source",
-    "check_loaded",
-    "discover",
-    "load_bundled",
-    "load_checked",
-    "load_paths",
-    "load_reported",
-    "load_selection",
-    "load_sources",
-    "load_split",
-    "read_sources",
-    "todo_marks",
-]
 
 
 @dataclass
@@ -98,18 +63,12 @@ class Loaded:
 
 @contextlib.contextmanager
 def _paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while a library's tree and model are built.
+    """Pause the cyclic garbage collector while files are read and built, then freeze.
 
-    Loading only adds objects (trees, plain data, model); reference counting frees the
-    trees. Each collection would walk everything loaded so far: at 1000 roles x 10 those
-    walks cost more than the loading itself (``rosreconf.solve.factors.paused_gc`` does the
-    same for the solvers' tables).
-
-    Then everything alive is frozen (``gc.freeze``): the loaded model lives as long as the
-    command, and every object made while the collector was paused sits in its youngest
-    generation, so the next three collections would each walk all of it again (0.1 s each
-    at 1000 roles, ten times that at 10,000). Frozen objects are still freed by reference
-    counting; only a reference cycle made during loading would now outlive its use.
+    Loading only adds objects, and each collection would walk everything loaded so far (at
+    1000 roles x 10, more than the loading itself). The model then lives as long as the
+    command: frozen (``gc.freeze``), the next collections do not walk it again (reference
+    counting still frees it; only a reference cycle made while loading would outlive its use).
     """
     was = gc.isenabled()
     gc.disable()
@@ -121,42 +80,10 @@ def _paused_gc() -> Iterator[None]:
             gc.enable()
 
 
-def load_sources(sources: Iterable[Source], *, positions: bool = True) -> Loaded:
-    """Parse and build every source, collecting problems instead of stopping at the first.
-
-    With ``positions=False`` the files are read as plain data and the model has no
-    positions (``load_reported``); the first thing to report raises ``NeedsPositions``.
-    """
+def load_sources(sources: Iterable[Source]) -> Loaded:
+    """Parse, check and build every source, collecting problems instead of stopping at the first."""
     with _paused_gc():
-        return _load_sources(sources) if positions else _load_plain(sources)
-
-
-def _load_plain(sources: Iterable[Source]) -> Loaded:
-    """Load clean files without positions; raise ``NeedsPositions`` at anything to report.
-
-    The same steps as ``_load_sources``, each asking only whether there is a problem: a
-    file the fast reader declines, an unknown ``format``, a JSON Schema, value or TODO
-    problem, or a duplicate edge sends every file back to be loaded with positions.
-    """
-    loaded = Loaded()
-    interfaces: Interfaces = {}  # shared by every library file (see build_library)
-    for src in sources:
-        loaded.files.append(src.name)
-        plain = ys.DECLINED if src.size > ys.MAX_BYTES else ys.parse_plain_only(src.data, src.name)
-        if isinstance(plain, ys.Declined):
-            raise NeedsPositions(f"{src.name}: the fast reader declined it")
-        kind = kind_of_plain(plain)
-        if kind is None or not structure_valid(kind, plain) or _has_todo(src):
-            raise NeedsPositions(f"{src.name}: a format, structure or TODO problem")
-        if kind is DocumentKind.LIBRARY:
-            if not clean_values(plain):
-                raise NeedsPositions(f"{src.name}: a value problem")
-            loaded.libraries.append(build_library(plain, src.name, interfaces))
-        else:
-            if repeated_edges(plain):
-                raise NeedsPositions(f"{src.name}: a duplicate edge")
-            loaded.schemas.append(build_schema(plain, src.name))
-    return loaded
+        return _load_sources(sources)
 
 
 def _load_sources(sources: Iterable[Source]) -> Loaded:
@@ -169,7 +96,7 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
             loaded.library_complete = False
             continue
         try:
-            tree, plain = ys.parse_plain(src.data, src.name)
+            tree, plain = ys.read(src.data, src.name)
         except InvalidInputError as exc:
             loaded.problems.extend(exc.problems)
             loaded.library_complete = False
@@ -181,28 +108,22 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
             continue
         loaded.problems.extend(todo_marks(src))
         structural = list(structure_problems(tree, kind, plain))
-        if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
+        if not structural and kind is DocumentKind.LIBRARY:
             structural = value_problems(tree, plain)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY
             continue
-        assert isinstance(tree, ys.YMapping)
         if kind is DocumentKind.LIBRARY:
             loaded.libraries.append(build_library(tree, src.name, interfaces))
         else:
-            loaded.problems.extend(duplicate_edges(tree))
+            loaded.problems.extend(duplicate_edges(tree, plain))
             loaded.schemas.append(build_schema(tree, src.name))
     return loaded
 
 
 TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")
 """A ``# TODO`` comment or a ``TODO_...`` placeholder, as ``rosreconf import`` writes them."""
-
-
-def _has_todo(src: Source) -> bool:
-    """Tell whether ``todo_marks`` has anything to report for ``src``."""
-    return b"TODO" in src.data and next(todo_marks(src), None) is not None
 
 
 def todo_marks(src: Source) -> Iterator[Problem]:
@@ -227,19 +148,19 @@ def todo_marks(src: Source) -> Iterator[Problem]:
         )
 
 
-def load_paths(paths: Sequence[Path], *, positions: bool = True) -> Loaded:
+def load_paths(paths: Sequence[Path]) -> Loaded:
     """Load the YAML files at ``paths`` (files or folders)."""
-    return load_sources(read_sources(discover(paths)), positions=positions)
+    return load_sources(read_sources(discover(paths)))
 
 
-def load_bundled(*, positions: bool = True) -> Loaded:
+def load_bundled() -> Loaded:
     """Load the bundled example (the paper's robot arm and the mobile robot)."""
     sources = []
     for kind in (Bundle.LIBRARIES, Bundle.SCHEMAS):
         for f in sorted(bundled(kind).iterdir(), key=lambda t: t.name):
             if f.is_file() and f.name.endswith(YAML_SUFFIXES):
                 sources.append(Source(f"<bundled>/{kind.value}/{f.name}", f.read_bytes()))
-    loaded = load_sources(sources, positions=positions)
+    loaded = load_sources(sources)
     loaded.note = "no libraries/ or schemas/ here: using the bundled example"
     return loaded
 
@@ -247,23 +168,21 @@ def load_bundled(*, positions: bool = True) -> Loaded:
 DEFAULT_FOLDERS = (Path("libraries"), Path("schemas"))
 
 
-def load_selection(
-    paths: Sequence[Path], *, base: Path | None = None, positions: bool = True
-) -> Loaded:
+def load_selection(paths: Sequence[Path], *, base: Path | None = None) -> Loaded:
     """Load what the user named, else ``libraries/`` and ``schemas/`` here, else the bundle.
 
     This is the one rule every command uses to pick its input, so that ``rosreconf
     validate``, ``enumerate`` and ``plan`` always look at the same files.
     """
     if paths:
-        return load_paths(paths, positions=positions)
+        return load_paths(paths)
     here = base or Path()
     folders = [here / f for f in DEFAULT_FOLDERS if (here / f).is_dir()]
     if folders:
-        loaded = load_paths(folders, positions=positions)
+        loaded = load_paths(folders)
         loaded.note = "using " + " and ".join(f"{f.name}/" for f in folders)
         return loaded
-    return load_bundled(positions=positions)
+    return load_bundled()
 
 
 def load_split(
@@ -271,18 +190,17 @@ def load_split(
     schema_paths: Sequence[Path],
     *,
     base: Path | None = None,
-    positions: bool = True,
 ) -> Loaded:
     """Load libraries and schemas chosen separately (``--library``/``--schema`` options).
 
     Whichever side is not given comes from the default rule of ``load_selection``.
     """
     if not library_paths and not schema_paths:
-        return load_selection([], base=base, positions=positions)
+        return load_selection([], base=base)
     if library_paths and schema_paths:  # both given: the defaults are not read at all
-        return load_paths([*library_paths, *schema_paths], positions=positions)
-    default = load_selection([], base=base, positions=positions)
-    given = load_paths([*library_paths, *schema_paths], positions=positions)
+        return load_paths([*library_paths, *schema_paths])
+    default = load_selection([], base=base)
+    given = load_paths([*library_paths, *schema_paths])
     if not library_paths:
         given.libraries = default.libraries + given.libraries
         given.files = [f for f in default.files if "librar" in f] + given.files
@@ -299,33 +217,14 @@ def check_loaded(loaded: Loaded) -> list[Problem]:
         return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
 
 
-def load_reported(
-    load: Callable[[bool], Loaded], *, errors_only: bool = False
-) -> tuple[Loaded, list[Problem]]:
-    """Load with ``load(positions)`` and check; return what was loaded and every problem.
-
-    The one place where the rule of this module's doc is applied: ``load(False)`` and the
-    semantic checks first; on anything to report, ``load(True)`` and its checks are the
-    answer, so problems and the model they point into always carry their positions.
+def problems_of(loaded: Loaded, *, errors_only: bool = False) -> list[Problem]:
+    """Return every problem of what was loaded: the files' own, then the semantic checks'.
 
     ``errors_only``: the caller reports errors only and drops warnings (the solvers, through
-    ``load_checked``). Then semantic warnings alone do not cost the second load, and the
-    problems returned are the errors only. A library given with one schema out of several
-    warns for every component whose abstraction that schema does not use, and would
-    otherwise be read twice by every command.
+    ``load_checked``).
     """
-
-    def reported(problems: list[Problem]) -> list[Problem]:
-        return [p for p in problems if p.severity is Severity.ERROR] if errors_only else problems
-
-    try:
-        loaded = load(False)
-        if not reported(check_loaded(loaded)):
-            return loaded, []
-    except NeedsPositions:
-        pass
-    loaded = load(True)
-    return loaded, reported([*loaded.problems, *check_loaded(loaded)])
+    problems = [*loaded.problems, *check_loaded(loaded)]
+    return [p for p in problems if p.severity is Severity.ERROR] if errors_only else problems
 
 
 def load_checked(
@@ -339,10 +238,8 @@ def load_checked(
     Raises:
         InvalidInputError: with every structural and semantic error of the files.
     """
-    loaded, errors = load_reported(
-        lambda positions: load_split(library_paths, schema_paths, base=base, positions=positions),
-        errors_only=True,
-    )
+    loaded = load_split(library_paths, schema_paths, base=base)
+    errors = problems_of(loaded, errors_only=True)
     if errors:
         raise InvalidInputError(errors)
     return loaded

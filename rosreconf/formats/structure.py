@@ -1,38 +1,28 @@
 """Check a YAML document's structure against the shipped JSON Schema, with positions.
 
-``jsonschema`` does the validating (the same JSON Schema files editors use, shipped in
-``rosreconf/data``); this module decides which format a document claims to be (its
-``format:`` field) and turns each ``ValidationError`` into a ``Problem`` that names the exact
-key or value (``file:line:column``), says what is wrong in words, and how to fix it
-(``x-hint`` entries in the JSON Schemas, "did you mean" for unknown keys, "quote it" for
+jsonschema-rs does the validating (the same JSON Schema files editors use, shipped in
+``rosreconf/data``), giving the verdict and every error in one pass; this module decides
+which format a document claims to be (its ``format:`` field) and turns each error into a
+``Problem`` that names the exact key or value (``file:line:column``, looked up in the
+positioned tree by the error's instance path), says what is wrong in words, and how to fix
+it (``x-hint`` entries in the JSON Schemas, "did you mean" for unknown keys, "quote it" for
 names YAML read as numbers).
-
-Valid files are the common case and need no list of errors, so a document is first given
-a verdict by the same JSON Schema written as Python code (``schemacode``, shipped as
-``fastschema_*`` modules: ten times faster than ``jsonschema`` on a thousand-role library);
-only a document it rejects goes through ``jsonschema``, which reports every error with its
-path. Tests hold the two to the same verdicts.
 """
 
 from __future__ import annotations
 
 import difflib
 import enum
-import hashlib
-import importlib
 import json
+import math
 from collections.abc import Callable, Iterator, Sequence
 from functools import cache
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from rosreconf.errors import Problem
-from rosreconf.formats import schemacode
-from rosreconf.formats import yamlsource as ys
+from rosreconf.formats import nodes
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
-
-if TYPE_CHECKING:  # jsonschema is imported only for a document the fast verdict rejects
-    import jsonschema.exceptions
 
 
 class DocumentKind(enum.StrEnum):
@@ -59,10 +49,11 @@ def json_schema(kind: DocumentKind) -> dict[str, Any]:
 # --- the format field -------------------------------------------------------------------
 
 
-def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
+def kind_of(tree: nodes.Node | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
+    """Return the format a document claims (its ``format`` field), or the problem with it."""
     known = ", ".join(k.value for k in DocumentKind)
-    if not isinstance(tree, ys.YMapping):
-        span = tree.span if tree is not None else Span(name, 1, 1)
+    if type(tree) is not nodes.MappingNode:
+        span = nodes.span(tree) if tree is not None else Span(name, 1, 1)
         return None, [
             Problem(
                 span,
@@ -71,23 +62,23 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
                 code="not-a-document",
             )
         ]
-    fmt = tree.items.get("format")
+    fmt = nodes.fields(tree).get("format")
     if fmt is None:
         return None, [
             Problem(
-                tree.span,
+                nodes.span(tree),
                 "missing 'format' key",
                 f"add 'format: <kind>' where kind is one of {known}",
                 code="missing-format",
             )
         ]
-    raw = fmt.raw if isinstance(fmt, ys.YScalar) else ""
+    raw = fmt.value if type(fmt) is nodes.ScalarNode else ""
     for kind in DocumentKind:
         if raw == kind.value:
             return kind, []
     return None, [
         Problem(
-            fmt.span,
+            nodes.span(fmt),
             f"unknown format '{raw}'",
             f"use one of {known}",
             code="unknown-format",
@@ -95,134 +86,182 @@ def kind_of(tree: ys.YNode | None, name: str) -> tuple[DocumentKind | None, list
     ]
 
 
-def kind_of_plain(plain: ys.Plain) -> DocumentKind | None:
-    """Return the kind a document's plain data claims, or None for ``kind_of`` to report.
-
-    The same answer as ``kind_of`` whenever that finds no problem (a text ``format`` is
-    its own raw text), without a positioned tree; None asks for the tree, to say where the
-    problem is.
-    """
-    fmt = plain.get("format") if isinstance(plain, dict) else None
-    if type(fmt) is str:
-        for kind in DocumentKind:
-            if fmt == kind.value:
-                return kind
-    return None
-
-
 # --- structure: JSON Schema, with friendly positioned messages ---------------------------
 
 
 @cache
-def fast_validator(kind: DocumentKind) -> Callable[[Any], bool]:
-    """Return the verdict of ``kind``'s JSON Schema as a function: is the document valid?
+def validator(kind: DocumentKind) -> Any:
+    """Return jsonschema-rs's validator of ``kind``'s JSON Schema (built once per process)."""
+    import jsonschema_rs  # imported only by commands that read files
 
-    Writing and compiling that code costs time in every process, so the package ships it as
-    modules written by ``scripts/fast_validators.py`` (``FAST_MODULES``); a shipped module
-    whose JSON Schema or generator is not the one in use is ignored and the code written
-    here instead, so a stale module can cost time but never change a verdict.
-    """
-    module = importlib.import_module(f"rosreconf.formats.{FAST_MODULES[kind]}")
-    if getattr(module, "SOURCE", None) == fast_validator_source(kind):
-        shipped: Callable[[Any], bool] = module.VALIDATE
-        return shipped
-    namespace: dict[str, Any] = {}
-    exec(compile(fast_validator_code(kind), f"<verdict: {kind.value}>", "exec"), namespace)
-    validate: Callable[[Any], bool] = namespace["validate"]
-    return validate
-
-
-FAST_MODULES = {
-    DocumentKind.LIBRARY: "fastschema_library",
-    DocumentKind.SCHEMA: "fastschema_schema",
-}
-"""The modules in ``rosreconf.formats`` holding ``fast_validator_module``'s code."""
-
-
-def fast_validator_source(kind: DocumentKind) -> str:
-    """Return what ``kind``'s validator code is written from: the Schema and the generator.
-
-    A digest of the JSON Schema file's bytes (no parsing: every process asks, and a valid
-    document needs nothing else of the file) and ``schemacode.GENERATOR_VERSION``; a
-    shipped module records it as ``SOURCE``.
-    """
-    digest = hashlib.sha256(bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_bytes())
-    digest.update(schemacode.GENERATOR_VERSION.encode("ascii"))
-    return digest.hexdigest()
-
-
-def fast_validator_module(kind: DocumentKind) -> str:
-    """Return the text of ``kind``'s shipped validator module (see ``fast_validator``)."""
-    return (
-        f'"""The verdict of {JSON_SCHEMA_FILES[kind]} as code: written by\n'
-        f"scripts/fast_validators.py, do not edit (see structure.fast_validator).\n"
-        f'"""\n\n# ruff: noqa\n# fmt: off\n# mypy: ignore-errors\n'
-        f"SOURCE = {fast_validator_source(kind)!r}\n"
-        f"{fast_validator_code(kind).rstrip()}\n\n\nVALIDATE = validate\n"
-    )
-
-
-def fast_validator_code(kind: DocumentKind) -> str:
-    """Return the Python code of ``fast_validator``: ``validate(data) -> bool``.
-
-    ``rosreconf.formats.schemacode`` writes it from the published JSON Schema itself (the
-    file jsonschema reads for the messages), so the two judge the same rules.
-    """
-    return schemacode.verdict_code(json_schema(kind))
-
-
-def structure_valid(kind: DocumentKind, plain: ys.Plain) -> bool:
-    """Tell whether ``plain`` satisfies ``kind``'s JSON Schema (no tree needed to say yes).
-
-    ``structure_problems`` (which needs the positioned tree, for positions) reports why
-    when the answer is no.
-    """
-    return fast_validator(kind)(plain)
+    return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
 def structure_problems(
-    tree: ys.YNode, kind: DocumentKind, plain: ys.Plain | None = None
+    tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain
 ) -> Iterator[Problem]:
-    """Yield every structural problem of ``tree`` against ``kind``'s JSON Schema.
+    """Yield every structural problem of ``plain`` against ``kind``'s JSON Schema.
 
-    ``plain`` is the tree as plain data when the reader already built it (``parse_plain``).
+    jsonschema-rs gives the verdict and the errors in one pass; each error's instance path
+    is looked up in ``tree`` (the positioned tree ``plain`` was read from) for its position.
     """
-    if plain is None:
-        plain = ys.to_plain(tree)
-    if structure_valid(kind, plain):
+    errors = list(validator(kind).iter_errors(plain))
+    if not errors:
         return
-    # Invalid: jsonschema finds every error, with paths (imported here: valid files, the
-    # common case, never pay its import time).
-    import jsonschema
-
-    validator = jsonschema.Draft202012Validator(json_schema(kind))
-    for error in sorted(validator.iter_errors(plain), key=lambda e: list(map(str, e.path))):
-        yield _problem_of(error, tree)
+    root = json_schema(kind)
+    for error in sorted(errors, key=lambda e: list(map(str, e.instance_path))):
+        found = _Error(error, root).as_number(plain)
+        if found is not None:
+            yield _problem_of(found, tree)
 
 
-def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) -> Problem:
+class _Error:
+    """One jsonschema-rs error with what the messages need: keyword, subschema, branches."""
+
+    def __init__(self, error: Any, root: dict[str, Any], branch: int = 0) -> None:
+        self.branch = branch  # which branch of the parent's oneOf or anyOf
+        self.path: list[str | int] = list(error.instance_path)
+        self.instance = error.instance
+        self.message: str = error.message
+        self.validator: str = str(error.schema_path[-1]) if error.schema_path else ""
+        schema: Any = root
+        for step in list(error.schema_path)[:-1]:
+            schema = schema[step]
+        self.schema: dict[str, Any] = schema if isinstance(schema, dict) else {}
+        self.validator_value = self.schema.get(self.validator)
+        if self.validator in _MESSAGES:  # jsonschema's words, which the pinned outputs keep
+            self.message = _MESSAGES[self.validator].format(self.instance, self.validator_value)
+        self.many_valid = type(error.kind).__name__ == "OneOfMultipleValid"
+        branches: list[Any] = getattr(error.kind, "context", None) or []
+        self.context: list[_Error] = []
+        if not self.many_valid:
+            for index, errors in enumerate(branches):  # in the JSON Schema's keyword order
+                found = [_Error(e, root, index) for e in errors]
+                found.sort(key=lambda e: e.keyword_rank())
+                self.context += found
+
+    def as_number(self, plain: nodes.Plain) -> _Error | None:
+        """Return this error as JSON Schema judges a YAML ``.inf`` or ``.nan``: a number.
+
+        JSON has no such numbers, and jsonschema-rs reads them as null; rosreconf
+        treats them as numbers that compare as Python does (``values`` and the dynamics
+        checks say they are not finite). So a type error on one becomes the range error it
+        would break (``maximum`` for ``.inf``...), or nothing; a ``oneOf`` whose branch
+        fails only so is satisfied.
+        """
+        if self.context:
+            branches: dict[int, list[_Error | None]] = {}
+            for e in self.context:
+                branches.setdefault(e.branch, []).append(e.as_number(plain))
+            if any(all(e is None for e in found) for found in branches.values()):
+                return None
+            return self
+        if self.validator != "type" or self.instance is not None:
+            return self
+        instance: Any = plain
+        for step in self.path:  # the value itself: jsonschema-rs gives it as None
+            instance = instance[step]
+        if not _non_finite(instance):
+            return self
+        self.instance = instance
+        want = self.validator_value
+        wanted = want if isinstance(want, list) else [want]
+        if "number" not in wanted:
+            return self
+        for keyword, broken in _RANGES.items():
+            limit = self.schema.get(keyword)
+            if isinstance(limit, int | float) and broken(instance, limit):
+                self.validator, self.validator_value = keyword, limit
+                return self
+        return None
+
+    def keyword_rank(self) -> int:
+        """Return where this error's keyword is written in its subschema (jsonschema's order)."""
+        keys = list(self.schema)
+        return keys.index(self.validator) if self.validator in keys else len(keys)
+
+    def matches_type(self) -> bool:
+        """Tell whether the instance has the subschema's ``type`` (jsonschema's heuristic)."""
+        expected = self.schema.get("type")
+        if expected is None:
+            return False
+        names = [expected] if isinstance(expected, str) else list(expected)
+        return any(_is_type(self.instance, name) for name in names)
+
+
+def _non_finite(instance: Any) -> bool:
+    return isinstance(instance, float) and not math.isfinite(instance)
+
+
+_RANGES: dict[str, Callable[[float, float], bool]] = {
+    "minimum": lambda x, limit: x < limit,
+    "maximum": lambda x, limit: x > limit,
+    "exclusiveMinimum": lambda x, limit: x <= limit,
+    "exclusiveMaximum": lambda x, limit: x >= limit,
+}
+"""How a number breaks each range keyword (false for NaN, as in every comparison)."""
+
+
+def _is_type(instance: Any, name: str) -> bool:
+    if name in ("number", "integer"):
+        number = isinstance(instance, int | float) and not isinstance(instance, bool)
+        return number and (name == "number" or float(instance).is_integer())
+    kinds = {"object": dict, "array": list, "string": str, "boolean": bool, "null": type(None)}
+    return name in kinds and isinstance(instance, kinds[name])
+
+
+def _best_match(errors: list[_Error], parent: _Error) -> _Error:
+    """Pick the error to blame among a ``oneOf``'s branches, as ``jsonschema.best_match`` does.
+
+    The same relevance: deeper and earlier instance paths, a keyword other than ``oneOf`` or
+    ``anyOf``, an instance of the subschema's type; ties keep the JSON Schema's order.
+    """
+
+    def relevance(e: _Error) -> tuple[Any, ...]:
+        relative = e.path[len(parent.path) :]
+        return (-len(relative), relative, e.validator not in _WEAK, False, not e.matches_type())
+
+    best = max(errors, key=relevance)
+    while best.context:
+        smallest = sorted(best.context, key=relevance)[:2]
+        if len(smallest) == 2 and relevance(smallest[0]) == relevance(smallest[1]):
+            return best
+        best = smallest[0]
+    return best
+
+
+_WEAK = frozenset({"oneOf", "anyOf"})
+
+_MESSAGES = {
+    "enum": "{0!r} is not one of {1!r}",
+    "exclusiveMinimum": "{0!r} is less than or equal to the minimum of {1!r}",
+    "exclusiveMaximum": "{0!r} is greater than or equal to the maximum of {1!r}",
+    "maxItems": "{0!r} is too long",
+    "minLength": "{0!r} is too short",
+}
+"""Messages reported in jsonschema-rs's words elsewhere, kept as rosreconf always wrote them."""
+
+
+def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     if error.validator in ("oneOf", "anyOf") and error.context:
-        hint = str(error.schema.get("x-hint", "")) if isinstance(error.schema, dict) else ""
-        from jsonschema.exceptions import best_match
-
-        best = best_match(error.context)
-        problem = _problem_of(best, tree)
+        hint = str(error.schema.get("x-hint", ""))
+        problem = _problem_of(_best_match(error.context, error), tree)
         return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
-    path = list(error.absolute_path)
-    node = ys.lookup(tree, path)
-    span = node.span if node is not None else tree.span
+    path = error.path
+    node = nodes.lookup(tree, path)
+    span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)
     where = _describe_path(path)
-    schema = error.schema if isinstance(error.schema, dict) else {}
+    schema = error.schema
     hint = str(schema.get("x-hint", ""))
     validator = error.validator
     if validator == "required":
-        missing = str(error.message).split("'")[1] if "'" in error.message else "?"
+        missing = str(error.message).split('"')[1] if '"' in error.message else "?"
         return Problem(span, f"{where} is missing required key '{missing}'", code="missing-key")
     if validator == "additionalProperties" and isinstance(error.instance, dict):
         allowed = sorted(schema.get("properties", {}))
         extra = sorted(set(error.instance) - set(allowed))
         name = extra[0] if extra else "?"
-        kspan = ys.key_span(tree, [*path, name]) or span
+        kspan = nodes.key_span(tree, [*path, name]) or span
         close = difflib.get_close_matches(name, allowed, n=1)
         fix = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(allowed)}"
         return Problem(kspan, f"unknown key '{name}' in {where}", fix, code="unknown-key")
@@ -231,48 +270,36 @@ def _problem_of(error: jsonschema.exceptions.ValidationError, tree: ys.YNode) ->
         want = error.validator_value
         wanted = " or ".join(want) if isinstance(want, list) else str(want)
         fix = hint
-        if "string" in wanted and isinstance(node, ys.YScalar) and node.plain:
-            fix = f"quote it ('{node.raw}') if you mean the text"
+        if "string" in wanted and node is not None and nodes.is_plain(node):
+            fix = f"quote it ('{node.value}') if you mean the text"
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
         return Problem(span, f"{where} {_written(node)} is not valid", hint, code="bad-name")
+    limit, written = error.validator_value, _written(node)
     if validator == "const":
         return Problem(
-            span,
-            f"{where} must be {json.dumps(error.validator_value)}, not {_written(node)}",
-            hint,
-            code="wrong-value",
+            span, f"{where} must be {json.dumps(limit)}, not {written}", hint, "wrong-value"
         )
     if validator in ("minimum", "maximum"):
-        return Problem(
-            span,
-            f"{where} is {_written(node)}, which is out of range",
-            f"{validator} is {error.validator_value}",
-            code="out-of-range",
-        )
+        message, fix = f"{where} is {written}, which is out of range", f"{validator} is {limit}"
+        return Problem(span, message, fix, "out-of-range")
     if validator == "minItems":
-        return Problem(
-            span,
-            f"{where} needs at least {error.validator_value} item(s)",
-            code="too-few",
-        )
+        return Problem(span, f"{where} needs at least {limit} item(s)", code="too-few")
     if validator == "uniqueItems":
         return Problem(span, f"{where} lists the same item twice", code="duplicate-item")
     if validator == "oneOf":  # with no failing branch to blame: several branches matched
-        return Problem(
-            span, f"{where} gives more than one of its alternatives", hint, code="one-of"
-        )
+        return Problem(span, f"{where} gives more than one of its alternatives", hint, "one-of")
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 
-def _written(node: ys.YNode | None) -> str:
-    if isinstance(node, ys.YScalar):
-        kind = type(node.value).__name__.replace("NoneType", "null").replace("str", "text")
+def _written(node: nodes.Node | None) -> str:
+    if type(node) is nodes.ScalarNode:
+        kind = type(nodes.value(node)).__name__.replace("NoneType", "null").replace("str", "text")
         kind = {"int": "number", "float": "number", "bool": "boolean"}.get(kind, kind)
-        return f"{kind} {node.raw!r}" if node.raw else "empty value"
-    if isinstance(node, ys.YMapping):
+        return f"{kind} {node.value!r}" if node.value else "empty value"
+    if type(node) is nodes.MappingNode:
         return "a mapping"
-    if isinstance(node, ys.YSequence):
+    if type(node) is nodes.SequenceNode:
         return "a list"
     return "nothing"
 

@@ -12,8 +12,9 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ``name: {substitution: "$(find my_pkg)/config.yaml"}``;
 - integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit).
 
-These checks run on the positioned tree, before model objects are built, so every problem
-has the value's ``file:line:column`` and nothing downstream ever sees such a value.
+These checks run on the plain data once its JSON Schema check passed, before model objects
+are built; a value found wrong is looked up in the positioned tree for its ``file:line:column``
+and its text as written, so nothing downstream ever sees such a value.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ import math
 from collections.abc import Iterator
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import yamlsource as ys
+from rosreconf.formats import nodes
 from rosreconf.model import Span
 
 MAX_METRIC = 1e12
@@ -35,109 +36,61 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
+def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Return the problems of a structurally valid component library's numbers and launch values.
 
-    ``plain`` is the tree as plain data when the reader built it (``parse_plain``): a
-    component whose plain values ``_clean`` passes has no problem to report, and only the
-    others are walked in the positioned tree, for their positions. A caller holding only
-    the plain data asks ``clean_values`` first, and builds the tree only when it says no.
+    ``plain`` is the library's plain data and ``tree`` the positioned tree it was read from,
+    where each value found wrong is looked up (by its path) for its position and text.
     """
     problems: list[Problem] = []
-    components = _items(tree.items.get("components"))
-    fast = plain.get("components") if isinstance(plain, dict) else None
-    if not (isinstance(fast, list) and len(fast) == len(components)):
-        fast = [None] * len(components)
-    for component, values in zip(components, fast, strict=True):
-        if isinstance(values, dict) and _clean(values):
+    components = plain.get("components") if isinstance(plain, dict) else None
+    for i, component in enumerate(components if isinstance(components, list) else []):
+        if not isinstance(component, dict):
             continue
-        fields = component.items if isinstance(component, ys.YMapping) else {}
-        fp = fields.get("failure_probability")
-        if isinstance(fp, ys.YScalar):
-            problems.extend(_number(fp, "failure_probability", 0.0, 1.0))
-        metrics = fields.get("metrics")
-        if isinstance(metrics, ys.YMapping):
-            for key, value in metrics.items.items():
-                if isinstance(value, ys.YScalar):
-                    problems.extend(_number(value, f"metric '{key}'", 0.0, MAX_METRIC))
-        ros = fields.get("ros")
-        params = ros.items.get("parameters") if isinstance(ros, ys.YMapping) else None
-        if isinstance(params, ys.YMapping):
-            for key, value in params.items.items():
-                problems.extend(_parameter(key, value))
+
+        def at(*path: str, i: int = i) -> nodes.Node | None:
+            return nodes.lookup(tree, ["components", i, *path])
+
+        if not _within(component.get("failure_probability"), 1.0):
+            problems.extend(_number(at("failure_probability"), "failure_probability", 0.0, 1.0))
+        metrics = component.get("metrics")
+        for key, value in metrics.items() if isinstance(metrics, dict) else ():
+            if not _within(value, MAX_METRIC):
+                problems.extend(_number(at("metrics", key), f"metric '{key}'", 0.0, MAX_METRIC))
+        ros = component.get("ros")
+        params = ros.get("parameters") if isinstance(ros, dict) else None
+        for key, value in params.items() if isinstance(params, dict) else ():
+            if not _fine_parameter(value):
+                problems.extend(_parameter(key, at("ros", "parameters", key)))
     return problems
 
 
-def clean_values(plain: ys.Plain) -> bool:
-    """Tell whether ``value_problems`` has nothing to report, from the plain data alone.
+def _within(value: nodes.Plain, high: float) -> bool:
+    """Tell whether ``_number`` accepts ``value`` in [0, ``high``] (anything not a number too).
 
-    For a structurally valid library (the JSON Schema passed); no positioned tree is
-    needed to say yes, only to report a problem when the answer is no.
+    A comparison with NaN is false, so NaN is never within.
     """
-    components = plain.get("components") if isinstance(plain, dict) else None
-    if not isinstance(components, list):
-        return False
-    clean = _clean
-    return all([type(c) is dict and clean(c) for c in components])
-
-
-_NUMBERS = (int, float)
-"""The exact types of a YAML number (``bool`` is not one: the Schema reports it)."""
-
-
-def _clean(component: dict[str, ys.Plain]) -> bool:
-    """Tell whether a component's plain values give ``value_problems`` nothing to report.
-
-    The same tests as ``_number`` and ``_parameter`` on plain values, without building
-    problems: a comparison with NaN is false, so NaN is never clean. A large library's
-    components are almost all clean, and need no walk through their positioned tree. A
-    plain int or float is tested inline; anything else goes through ``_within``.
-    """
-    fp = component.get("failure_probability")
-    if fp is not None:
-        if type(fp) in _NUMBERS:
-            if not 0.0 <= fp <= 1.0:  # type: ignore[operator]
-                return False
-        elif not _within(fp, 1.0):
-            return False
-    metrics = component.get("metrics")
-    if isinstance(metrics, dict):
-        for value in metrics.values():
-            if type(value) in _NUMBERS:
-                if not 0.0 <= value <= MAX_METRIC:  # type: ignore[operator]
-                    return False
-            elif not _within(value, MAX_METRIC):
-                return False
-    ros = component.get("ros")
-    if ros is None:
-        return True
-    params = ros.get("parameters") if isinstance(ros, dict) else None
-    if isinstance(params, dict):
-        for value in params.values():
-            if isinstance(value, str) and SUBSTITUTION in value:
-                return False
-            if isinstance(value, float) and not math.isfinite(value):
-                return False
-            integer = isinstance(value, int) and not isinstance(value, bool)
-            if integer and not INT32[0] <= value <= INT32[1]:  # type: ignore[operator]
-                return False
-    return True
-
-
-def _within(value: ys.Plain, high: float) -> bool:
-    """Tell whether ``_number`` accepts ``value`` in [0, ``high``] (anything not a number too)."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         return True
     return 0.0 <= value <= high
 
 
-def _items(node: ys.YNode | None) -> list[ys.YNode]:
-    return node.items if isinstance(node, ys.YSequence) else []
+def _fine_parameter(value: nodes.Plain) -> bool:
+    """Tell whether ``_parameter`` has nothing to say about a launch parameter's value."""
+    if isinstance(value, str):
+        return SUBSTITUTION not in value
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if isinstance(value, int) and not isinstance(value, bool):
+        return INT32[0] <= value <= INT32[1]
+    return True
 
 
-def _number(node: ys.YScalar, what: str, low: float, high: float) -> Iterator[Problem]:
+def _number(node: nodes.Node | None, what: str, low: float, high: float) -> Iterator[Problem]:
     """Refuse a non-finite number, one too large for a float, or one outside [low, high]."""
-    value = node.value
+    if type(node) is not nodes.ScalarNode:
+        return
+    value = nodes.value(node)
     if isinstance(value, bool) or not isinstance(value, int | float):
         return  # the JSON Schema reports the type
     try:
@@ -147,30 +100,28 @@ def _number(node: ys.YScalar, what: str, low: float, high: float) -> Iterator[Pr
     if not math.isfinite(number):
         how = "too large to compute with" if isinstance(value, int) else "not a finite number"
         yield Problem(
-            node.span,
-            f"{what} is {_shown(node.raw)}, {how}",
+            nodes.span(node),
+            f"{what} is {_shown(node.value)}, {how}",
             f"give a number between {low:g} and {high:g}",
             code="not-finite",
         )
     elif not low <= number <= high:
         yield Problem(
-            node.span,
-            f"{what} is {_shown(node.raw)}, outside [{low:g}, {high:g}]",
+            nodes.span(node),
+            f"{what} is {_shown(node.value)}, outside [{low:g}, {high:g}]",
             f"give a number between {low:g} and {high:g}",
             code="out-of-range",
         )
 
 
-def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
+def _parameter(key: str, node: nodes.Node | None) -> Iterator[Problem]:
     """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry."""
-    if isinstance(node, ys.YMapping):
+    if type(node) is not nodes.ScalarNode:
         return  # {substitution: "..."}: marked by the user (its shape is the Schema's job)
-    if not isinstance(node, ys.YScalar):
-        return
-    value = node.value
+    value = nodes.value(node)
     if isinstance(value, str) and SUBSTITUTION in value:
         yield Problem(
-            node.span,
+            nodes.span(node),
             f"parameter '{key}' contains '$(', which roslaunch would evaluate as a "
             "substitution ($(eval ...) runs Python, $(env ...) reads the environment)",
             f'if it is meant as one, mark it: {key}: {{substitution: "{value}"}}; '
@@ -179,8 +130,8 @@ def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
         )
     elif isinstance(value, float) and not math.isfinite(value):
         yield Problem(
-            node.span,
-            f"parameter '{key}' is {node.raw}, not a finite number",
+            nodes.span(node),
+            f"parameter '{key}' is {node.value}, not a finite number",
             "give a finite number",
             code="not-finite",
         )
@@ -188,8 +139,9 @@ def _parameter(key: str, node: ys.YNode) -> Iterator[Problem]:
         isinstance(value, int) and not isinstance(value, bool) and not INT32[0] <= value <= INT32[1]
     ):
         yield Problem(
-            node.span,
-            f"parameter '{key}' is {_shown(node.raw)}, outside the 32-bit integers ROS 1 can carry",
+            nodes.span(node),
+            f"parameter '{key}' is {_shown(node.value)}, outside the 32-bit integers ROS 1 can "
+            "carry",
             "write it as a float (with a '.') or as a quoted string",
             code="out-of-range",
         )
@@ -200,61 +152,41 @@ def _shown(raw: str) -> str:
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
 
 
-def repeated_edges(plain: ys.Plain) -> bool:
-    """Tell whether ``duplicate_edges`` may find a pair listed twice, from the plain data.
-
-    False (nothing to report) needs no positioned tree: a schema's tree is needed only
-    to say where a repeated pair is. True when some value is not a text (the structure
-    check's to report) or a pair repeats.
-    """
-    edges = plain.get("edges", []) if isinstance(plain, dict) else None
-    if not isinstance(edges, list):
-        return True
-    pairs: set[tuple[str, str]] = set()
-    count = 0
-    for entry in edges:
-        if not isinstance(entry, dict):
-            return True
-        consumer, providers = entry.get("consumer"), entry.get("providers", [])
-        if type(consumer) is not str or not isinstance(providers, list):
-            return True
-        for provider in providers:
-            if type(provider) is not str:
-                return True
-            pairs.add((consumer, provider))
-        count += len(providers)
-    return len(pairs) != count
-
-
-def duplicate_edges(tree: ys.YMapping) -> list[Problem]:
+def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Warn about a consumer-provider pair listed twice in a schema's edges.
 
     The loader merges them (the entry without an ``interfaces`` restriction wins), which may
     not be what the author meant: one of the two entries is ignored, silently until now.
+    ``plain`` is a structurally valid schema's plain data; ``tree`` gives the positions.
     """
-    seen: dict[tuple[str, str], Span] = {}
+    seen: dict[tuple[str, str], tuple[int, int]] = {}
     problems: list[Problem] = []
-    for entry in _items(tree.items.get("edges")):
-        fields = entry.items if isinstance(entry, ys.YMapping) else {}
-        consumer = fields.get("consumer")
-        if not isinstance(consumer, ys.YScalar):
+    edges = plain.get("edges", []) if isinstance(plain, dict) else []
+    for i, entry in enumerate(edges if isinstance(edges, list) else []):
+        if not isinstance(entry, dict):
             continue
-        for provider in _items(fields.get("providers")):
-            if not isinstance(provider, ys.YScalar):
+        consumer = entry.get("consumer")
+        providers = entry.get("providers", [])
+        for j, provider in enumerate(providers if isinstance(providers, list) else []):
+            key = (str(consumer), str(provider))
+            if key not in seen:
+                seen[key] = (i, j)
                 continue
-            key = (consumer.raw, provider.raw)
-            if key in seen:
-                problems.append(
-                    Problem(
-                        provider.span,
-                        f"edge {provider.raw} -> {consumer.raw} is listed again (first at "
-                        f"{seen[key]}); the two entries are merged and the one without "
-                        "'interfaces' wins",
-                        "list each consumer-provider pair once",
-                        code="duplicate-edge",
-                        severity=Severity.WARNING,
-                    )
+            first = _provider_span(tree, *seen[key])
+            problems.append(
+                Problem(
+                    _provider_span(tree, i, j),
+                    f"edge {provider} -> {consumer} is listed again (first at "
+                    f"{first}); the two entries are merged and the one without "
+                    "'interfaces' wins",
+                    "list each consumer-provider pair once",
+                    code="duplicate-edge",
+                    severity=Severity.WARNING,
                 )
-            else:
-                seen[key] = provider.span
+            )
     return problems
+
+
+def _provider_span(tree: nodes.Node, edge: int, index: int) -> Span:
+    node = nodes.lookup(tree, ["edges", edge, "providers", index])
+    return nodes.span(node) if node is not None else nodes.span(tree)

@@ -1,87 +1,76 @@
-"""Read YAML into a tree that remembers where every value was written.
+"""Read YAML into PyYAML's positioned node tree and plain data, applying rosreconf's rules.
 
-PyYAML's ``safe_load`` forgets positions, follows YAML 1.1 (where ``no`` and ``on`` become
-booleans), accepts duplicate keys silently and recurses once per nesting level. Users need
-``file:line:column`` in every error, so this module builds its own tree from PyYAML's
-event stream (which is produced by a non-recursive state machine) and applies the rules
-rosreconf promises:
+The reader of record is PyYAML's composer over libyaml (``yaml.CSafeLoader``; without
+libyaml, the same code over ``yaml.SafeLoader``, slower): it builds the tree in C and every
+node keeps its start mark, so ``file:line:column`` comes from the library. Nothing is
+constructed. rosreconf's rules: no tags but the string ones; duplicate keys are errors naming
+both lines; no anchors or aliases ("billion laughs"); at most ``MAX_BYTES`` and ``MAX_DEPTH``;
+plain scalars resolve with YAML 1.2's core schema (``nodes.resolve_plain``).
 
-* safe by construction: no tags other than the standard string ones, nothing is constructed;
-* duplicate keys are errors naming both lines;
-* anchors and aliases are rejected (they hide structure and allow "billion laughs");
-* input over ``MAX_BYTES`` and nesting deeper than ``MAX_DEPTH`` are errors, not crashes;
-* plain scalars are resolved with YAML 1.2's core schema: only ``true``/``false`` are
-  booleans, so ``no``, ``on`` and ``yes`` stay strings; the written text is always kept
-  (``raw``) so a value such as ``0755`` can be reported exactly as the user wrote it.
-
-Three modules do the work: ``yamltree`` (the tree and the YAML 1.2 resolver), ``yamlfast``
-(one flat loop over libyaml's events for clean files, declining anything to report or that
-libyaml might read differently; compiled in ``_yamlc.c`` when built) and ``yamlbuilder``
-(PyYAML's pure parser, the reader of record, with every message). ``parse`` tries the
-first and falls back to the second, so answers never depend on whether libyaml is installed.
-
-``parse_plain_only`` is the loader's first try at every file: the plain data alone, built by
-the fast reader without a node or a position (positions serve only to report problems), or
-``DECLINED`` wherever the fast reader declines or anything else might need reporting; the
-loader then reads again with ``parse_plain``, the positioned way.
+``read`` composes the tree once and walks it once into the plain data the JSON Schema check
+reads. What shows in the event stream alone (a tag, an anchor or alias, a second document,
+a syntax error) is found by one pass over libyaml's events (``_event_problems``), made only
+when the text holds ``!``, ``&`` or ``*`` or when composing failed.
 """
 
 from __future__ import annotations
 
-import gc
+import io
+from typing import Any
 
 import yaml
 
 from rosreconf.errors import InvalidInputError, Problem
-from rosreconf.formats.yamlbuilder import offset_span, read_pure
-from rosreconf.formats.yamlfast import DECLINED, Declined, fast_read
-from rosreconf.formats.yamltree import (
-    MAX_DEPTH,
-    Plain,
-    Scalar,
-    YMapping,
-    YNode,
-    YScalar,
-    YSequence,
-    key_span,
-    lookup,
-    resolve_plain,
-    to_plain,
-    walk,
-)
+from rosreconf.formats.nodes import MappingNode, Node, Plain, ScalarNode, span, value
 from rosreconf.model import Span
-
-__all__ = [
-    "DECLINED",
-    "FAST_LOADER",
-    "MAX_BYTES",
-    "MAX_DEPTH",
-    "Declined",
-    "Plain",
-    "Scalar",
-    "YMapping",
-    "YNode",
-    "YScalar",
-    "YSequence",
-    "key_span",
-    "lookup",
-    "parse",
-    "parse_plain",
-    "parse_plain_only",
-    "resolve_plain",
-    "to_plain",
-    "too_large",
-    "walk",
-]
 
 MAX_BYTES = 64 * 1024 * 1024
 """Largest YAML file rosreconf reads: room for a 10,000-role, 10-candidate library (27 MB as
 ``rosreconf generate`` writes it); the loader reads no more than this of any file."""
 
-FAST_LOADER: type[yaml.CSafeLoader] | None = (
-    yaml.CSafeLoader if getattr(yaml, "__with_libyaml__", False) else None
+MAX_DEPTH = 32
+"""Deepest nesting accepted; rosreconf's formats need 6 levels."""
+
+PLAIN = ""
+"""The tag ``read`` gives an untagged plain scalar (resolved with YAML 1.2) and an untagged
+collection: PyYAML's own resolver (YAML 1.1, ``no`` -> False) is never asked."""
+TEXT = "tag:yaml.org,2002:str"
+"""The tag of a quoted or block scalar, and of ``!!str``: a string as written."""
+STR_TAGS = frozenset({TEXT, "!"})
+"""The explicit tags a scalar may carry: both mean a string."""
+
+BASE_LOADER: type[Any] = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+"""libyaml's composer when PyYAML was built with it (the wheels are), else the pure one."""
+
+_SYNTAX = "check the indentation, and quote values that contain ': ' or start with a symbol"
+_ALIAS = "write the value out in full; rosreconf rejects anchors and aliases"
+_TAG = "remove the tag; quote the value if you mean a string"
+_DEEP = "rosreconf's formats need far fewer; check the indentation"
+_MULTI, _ONE_FILE = (
+    "file holds more than one YAML document",
+    "keep one library or one schema per file",
 )
-"""libyaml's parser when PyYAML was built with it (the wheels are), else None."""
+_TEXT = "remove control characters; rosreconf reads text files only"
+
+
+class _TooDeep(Exception):
+    """Raised by ``_plain`` at a collection nested deeper than ``MAX_DEPTH``."""
+
+
+class _Loader(BASE_LOADER):  # type: ignore[misc]
+    """The composer with rosreconf's resolver: no YAML 1.1 tags.
+
+    The composer calls ``resolve`` for every untagged node; this one only tells plain
+    scalars (``PLAIN``, resolved later with YAML 1.2) from the others. Its nesting is
+    bounded by libyaml itself (measured: over 1000 levels, "exceeded maximum nesting depth")
+    or, for the pure parser, by Python's recursion limit; ``_plain`` applies ``MAX_DEPTH``.
+    """
+
+    def resolve(self, kind: type[Node], value: Any, implicit: Any) -> str:
+        """Tag a plain scalar and a collection ``PLAIN``, another untagged scalar ``TEXT``."""
+        if kind is ScalarNode:
+            return PLAIN if implicit[0] else TEXT
+        return PLAIN if implicit else "!"
 
 
 def too_large(file: str, size: int) -> Problem:
@@ -94,70 +83,151 @@ def too_large(file: str, size: int) -> Problem:
     )
 
 
-def parse(data: bytes, file: str) -> YNode | None:
-    """Parse one YAML document into a positioned tree; ``None`` for an empty file.
+def read(data: bytes, file: str) -> tuple[Node | None, Plain]:
+    """Return the positioned tree of one YAML document and its plain data; None for no document.
 
     Raises:
-        InvalidInputError: with every structural problem found (the YAML syntax errors stop
-            parsing at the first one, because nothing after it can be trusted).
-    """
-    return parse_plain(data, file)[0]
-
-
-def parse_plain(data: bytes, file: str) -> tuple[YNode | None, Plain]:
-    """Parse like ``parse`` and also return the tree as plain data (``to_plain``'s answer).
-
-    The fast reader builds both in one pass over libyaml's events, which saves walking a
-    large library's tree a second time for its JSON Schema check.
-
-    Raises:
-        InvalidInputError: as ``parse``.
+        InvalidInputError: with every problem found (a syntax error stops reading at the
+            first one, because nothing after it can be trusted).
     """
     if len(data) > MAX_BYTES:
         raise InvalidInputError([too_large(file, len(data))])
     try:
-        text = data.decode("utf-8")
+        data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        good = data[: exc.start].decode("utf-8", errors="replace")
         raise InvalidInputError(
             [
                 Problem(
-                    offset_span(file, good, len(good)),
+                    _offset_span(file, data, exc.start),
                     "file is not valid UTF-8 text",
                     "save it as UTF-8",
                     code="encoding",
                 )
             ]
         ) from None
-    if FAST_LOADER is not None:
-        # libyaml reads about six times faster. On any problem, and wherever libyaml might
-        # read the text differently, the pure reader reads the file again (``yamlfast``).
-        collecting = gc.isenabled()
-        gc.disable()  # the tree only grows: collections would walk all of it, finding nothing
-        try:
-            fast = fast_read(text, file, FAST_LOADER)
-        finally:
-            if collecting:
-                gc.enable()
-        if not isinstance(fast, Declined):
-            return fast
-    tree = read_pure(text, file)
-    return tree, to_plain(tree)
-
-
-def parse_plain_only(data: bytes, file: str) -> Plain | Declined:
-    """Return the plain data of a clean file, building no tree; else ``DECLINED``.
-
-    Declined wherever ``parse_plain`` would report a problem or read with the pure reader
-    (over the size limit, not UTF-8, no libyaml, anything ``fast_read`` declines), so that
-    whatever is to be reported is read again, with positions, by ``parse_plain``. The caller
-    pauses the cyclic garbage collector (``loader``): the data only grows here.
-    """
-    if FAST_LOADER is None or len(data) > MAX_BYTES:
-        return DECLINED
+    if b"!" in data or b"&" in data or b"*" in data:  # a tag, anchor or alias may be there
+        shown = _event_problems(data, file)
+        if shown:
+            raise InvalidInputError(shown)
+    stream = io.BytesIO(data)
+    stream.name = file  # the marks' file name
+    loader = _Loader(stream)
+    problems: list[Problem] = []
     try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        return DECLINED
-    read = fast_read(text, file, FAST_LOADER, positions=False)
-    return read if isinstance(read, Declined) else read[1]
+        root: Node | None = loader.get_single_node()
+        collection = root is not None and type(root) is not ScalarNode
+        plain = _plain(root, problems, 1) if collection else value(root)  # type: ignore[arg-type]
+    except (yaml.YAMLError, RecursionError, _TooDeep):
+        raise InvalidInputError(_event_problems(data, file)) from None
+    finally:
+        loader.dispose()
+    if problems:
+        raise InvalidInputError(problems)
+    return root, plain
+
+
+def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
+    """Return ``node`` (a collection at ``depth``) as plain data; add key problems to ``problems``.
+
+    Duplicate and complex keys are reported here; each mapping node also keeps its values
+    by key (``nodes.fields``). Scalars are resolved inline, collections recursively.
+
+    Raises:
+        _TooDeep: a collection is nested deeper than ``MAX_DEPTH``.
+    """
+    if depth > MAX_DEPTH:
+        raise _TooDeep
+    if type(node) is not MappingNode:
+        return [
+            value(item) if type(item) is ScalarNode else _plain(item, problems, depth + 1)
+            for item in node.value
+        ]
+    out: dict[str, Plain] = {}
+    by_key: dict[str, Node] = {}
+    for key, item in node.value:
+        if type(key) is not ScalarNode:
+            message = "a mapping key must be a plain value, not a list or mapping"
+            problems.append(Problem(span(key), message, code="complex-key"))
+        elif key.value in out:
+            first = _first_key(node, key.value).start_mark.line + 1
+            message = f"duplicate key '{key.value}' (first written at line {first})"
+            problems.append(
+                Problem(span(key), message, "remove or rename one of the two", "duplicate-key")
+            )
+        else:
+            by_key[key.value] = item
+            scalar = type(item) is ScalarNode
+            out[key.value] = value(item) if scalar else _plain(item, problems, depth + 1)
+    node.fields = by_key  # type: ignore[attr-defined]
+    return out
+
+
+def _first_key(node: Node, name: str) -> Node:
+    """Return the first key node of mapping ``node`` written as ``name``."""
+    return next(k for k, _ in node.value if type(k) is ScalarNode and k.value == name)
+
+
+def _event_problems(data: bytes, file: str) -> list[Problem]:
+    """Return what libyaml's event stream shows wrong: tags, anchors, aliases, documents, depth.
+
+    Reading stops at a syntax error (reported with libyaml's words) or past ``MAX_DEPTH``.
+    """
+    problems: list[Problem] = []
+    depth = documents = 0
+    stream = io.BytesIO(data)
+    stream.name = file
+    try:
+        for event in yaml.parse(stream, Loader=BASE_LOADER):
+            where = _mark_span(file, event.start_mark)
+            said = problems.append
+            if isinstance(event, yaml.DocumentStartEvent):
+                documents += 1
+                if documents > 1:
+                    said(Problem(where, _MULTI, _ONE_FILE, "multi-document"))
+            elif isinstance(event, yaml.AliasEvent):
+                said(Problem(where, f"alias '*{event.anchor}' is not allowed", _ALIAS, "alias"))
+            elif isinstance(event, yaml.NodeEvent):
+                if event.anchor is not None:
+                    said(
+                        Problem(where, f"anchor '&{event.anchor}' is not allowed", _ALIAS, "alias")
+                    )
+                collection = isinstance(event, yaml.CollectionStartEvent)
+                tag = getattr(event, "tag", None)
+                if tag is not None and (collection or tag not in STR_TAGS):
+                    said(Problem(where, f"YAML tag '{tag}' is not allowed", _TAG, "tag"))
+                if collection and depth >= MAX_DEPTH:
+                    said(
+                        Problem(
+                            where, f"nesting is deeper than {MAX_DEPTH} levels", _DEEP, "too-deep"
+                        )
+                    )
+                    break  # nothing deeper is read
+                depth += collection
+            elif isinstance(event, yaml.CollectionEndEvent):
+                depth -= 1
+    except yaml.reader.ReaderError as exc:
+        character = exc.character if isinstance(exc.character, int) else ord(exc.character)
+        at = _offset_span(file, data, exc.position)
+        problems.append(
+            Problem(at, f"character U+{character:04X} is not allowed in YAML", _TEXT, "syntax")
+        )
+    except yaml.MarkedYAMLError as exc:
+        what = " ".join(p for p in (exc.context, exc.problem) if p)
+        at = _mark_span(file, exc.problem_mark or exc.context_mark)
+        problems.append(Problem(at, f"YAML syntax error: {what}", _SYNTAX, "syntax"))
+    return problems
+
+
+def _mark_span(file: str, mark: Any) -> Span:
+    """Turn a PyYAML mark (0-based) into a 1-based Span."""
+    if mark is None:
+        return Span(file, 1, 1)
+    return Span(file, mark.line + 1, mark.column + 1)
+
+
+def _offset_span(file: str, data: bytes, offset: int) -> Span:
+    """Return the 1-based line and column (in characters) of byte ``offset`` in ``data``."""
+    before = data[:offset]
+    line_start = before.rfind(b"\n") + 1
+    column = len(before[line_start:].decode("utf-8", "replace")) + 1
+    return Span(file, before.count(b"\n") + 1, column)

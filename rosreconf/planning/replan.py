@@ -2,9 +2,11 @@
 
 ``plan`` joins the stages: ``instance`` (static tables) -> ``pddl`` (text and names) ->
 ``planners.solve`` (an external planner) -> back through ``PddlNames`` to a Configuration,
-which is accepted only if ``validity.violations`` finds nothing wrong with it. clingo answers
-first whether any configuration exists at all, so that an impossible task gets its why-not
-text instead of a planner's bare "unsolvable", and how few changes are possible, so that the
+which is accepted only if ``validity.violations`` finds nothing wrong with it. The solver
+answers first (``solve.solver.optimise``: exact min-plus elimination, clingo only when a
+table would be too big; clingo's first model when there is no current configuration)
+whether any configuration exists at all, so that an impossible task gets its why-not text
+instead of a planner's bare "unsolvable", and how few changes are possible, so that the
 report can say whether the planner's plan is a minimal change.
 """
 
@@ -43,7 +45,7 @@ class ReplanResult:
         explanation: sentences for the operator.
         why_not: why no configuration exists (empty unless UNSOLVABLE_PROVEN).
         message: how the planner run went, or what was wrong with its plan.
-        fewest_changes: the fewest role changes any valid configuration needs (clingo's proof).
+        fewest_changes: the fewest role changes any valid configuration needs (the optimum's proof).
         planner: the planner's result (None when no planner ran).
         unaffected: why no planner ran because the running configuration stays valid (no
             failed component in it); empty when the schema was re-planned.

@@ -39,7 +39,7 @@ from datetime import datetime
 from types import MappingProxyType
 from typing import Any
 
-import jsonschema
+import jsonschema_rs
 
 from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem
@@ -329,10 +329,10 @@ def _node_from_json(n: dict[str, Any]) -> LiveNode:
 def _schema_problems(doc: Any, source: str) -> list[Problem]:
     """Return every way ``doc`` breaks the snapshot schema, each naming its JSON path."""
     schema = json.loads(bundled(Bundle.DATA, "live_graph.schema.json").read_text("utf-8"))
-    validator = jsonschema.Draft202012Validator(schema)
+    validator = jsonschema_rs.Draft202012Validator(schema)
     problems = []
     for err in validator.iter_errors(doc):
-        path = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in err.absolute_path)
+        path = "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in err.instance_path)
         where = path.lstrip(".") or "snapshot"
         hint = f"this reader understands {SNAPSHOT_FORMAT} version {SNAPSHOT_VERSION}"
         problems.append(Problem(Span(source, 1, 1), f"{where}: {err.message}", hint, "schema"))
