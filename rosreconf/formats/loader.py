@@ -38,9 +38,11 @@ from rosreconf.formats.structure import (
     structure_valid,
 )
 from rosreconf.formats.values import (
+    clean_numbers,
     clean_values,
     duplicate_edges,
     repeated_edges,
+    schema_value_problems,
     value_problems,
 )
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
@@ -155,6 +157,8 @@ def _load_plain(sources: Iterable[Source]) -> Loaded:
         else:
             if repeated_edges(plain):
                 raise NeedsPositions(f"{src.name}: a duplicate edge")
+            if isinstance(plain, dict) and not clean_numbers(plain.get("simulation")):
+                raise NeedsPositions(f"{src.name}: a number too large for a float")
             loaded.schemas.append(build_schema(plain, src.name))
     return loaded
 
@@ -183,6 +187,8 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
         structural = list(structure_problems(tree, kind, plain))
         if not structural and kind is DocumentKind.LIBRARY and isinstance(tree, ys.YMapping):
             structural = value_problems(tree, plain)
+        elif not structural and isinstance(tree, ys.YMapping):
+            structural = schema_value_problems(tree)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY

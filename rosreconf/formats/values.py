@@ -10,7 +10,11 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ...)``, ``$(env ...)`` and ``$(find ...)`` in every attribute, so a library file could run
   Python on the robot. A value that really is a substitution must be marked as one:
   ``name: {substitution: "$(find my_pkg)/config.yaml"}``;
-- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit).
+- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit);
+- integers too large for a float (a 401-digit coefficient) anywhere in a model's dynamics or
+  a schema's simulation block, which could not even be built, and QoS depths and durations
+  beyond DDS's 32-bit ``long`` (``number_problems``, ``clean_numbers``); the ranges a
+  simulation computes correctly within are ``simchecks``'s, on the built model.
 
 These checks run on the positioned tree, before model objects are built, so every problem
 has the value's ``file:line:column`` and nothing downstream ever sees such a value.
@@ -19,6 +23,7 @@ has the value's ``file:line:column`` and nothing downstream ever sees such a val
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterator
 
 from rosreconf.errors import Problem, Severity
@@ -30,6 +35,13 @@ MAX_METRIC = 1e12
 
 INT32 = (-(2**31), 2**31 - 1)
 """The integers a ROS 1 parameter can hold (XML-RPC ``i4``)."""
+
+DDS_LONG = 2**31 - 1
+"""Largest QoS history depth and Duration_t seconds (deadline, lease): DDS's ``long`` is int32,
+and rmw's ``size_t`` depth reaches DDS as one (rmw_fastrtps, rmw_cyclonedds)."""
+
+QOS_LIMITS = {"depth": DDS_LONG, "deadline": DDS_LONG, "lease_duration": DDS_LONG}
+"""The QoS numbers and their largest value (seconds for the durations)."""
 
 SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
@@ -48,7 +60,7 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
     fast = plain.get("components") if isinstance(plain, dict) else None
     if not (isinstance(fast, list) and len(fast) == len(components)):
         fast = [None] * len(components)
-    for component, values in zip(components, fast, strict=True):
+    for n, (component, values) in enumerate(zip(components, fast, strict=True)):
         if isinstance(values, dict) and _clean(values):
             continue
         fields = component.items if isinstance(component, ys.YMapping) else {}
@@ -65,6 +77,8 @@ def value_problems(tree: ys.YMapping, plain: ys.Plain = None) -> list[Problem]:
         if isinstance(params, ys.YMapping):
             for key, value in params.items.items():
                 problems.extend(_parameter(key, value))
+        problems.extend(_huge(fields.get("dynamics"), f"components[{n}].dynamics"))
+        problems.extend(_qos_numbers(fields))
     return problems
 
 
@@ -108,6 +122,8 @@ def _clean(component: dict[str, ys.Plain]) -> bool:
                     return False
             elif not _within(value, MAX_METRIC):
                 return False
+    if not clean_numbers(component.get("dynamics")) or not _clean_qos(component):
+        return False
     ros = component.get("ros")
     if ros is None:
         return True
@@ -121,6 +137,104 @@ def _clean(component: dict[str, ys.Plain]) -> bool:
             integer = isinstance(value, int) and not isinstance(value, bool)
             if integer and not INT32[0] <= value <= INT32[1]:  # type: ignore[operator]
                 return False
+    return True
+
+
+def schema_value_problems(tree: ys.YMapping) -> list[Problem]:
+    """Return the problems of a schema's numbers that no model could hold (``number_problems``).
+
+    The simulation block's numbers (reference, duration, requirements, the plants) become
+    floats when the schema is built; an integer too large for one is refused here, at its
+    position, before it can stop the build.
+    """
+    return list(_huge(tree.items.get("simulation"), "simulation"))
+
+
+def clean_numbers(plain: ys.Plain) -> bool:
+    """Tell whether ``plain`` (a subtree as plain data) holds no integer too large for a float."""
+    if type(plain) is int:
+        return -FLOAT_MAX <= plain <= FLOAT_MAX
+    if isinstance(plain, dict):
+        return all(clean_numbers(v) for v in plain.values())
+    if isinstance(plain, list):
+        return all(clean_numbers(v) for v in plain)
+    return True
+
+
+FLOAT_MAX = sys.float_info.max
+"""The largest float: an integer beyond it cannot become one (``OverflowError``)."""
+
+
+def _huge(node: ys.YNode | None, where: str) -> Iterator[Problem]:
+    """Refuse every integer under ``node`` too large for a float, at its position."""
+    if isinstance(node, ys.YMapping):
+        for key, value in node.items.items():
+            yield from _huge(value, f"{where}.{key}")
+    elif isinstance(node, ys.YSequence):
+        for i, value in enumerate(node.items):
+            yield from _huge(value, f"{where}[{i}]")
+    elif isinstance(node, ys.YScalar) and type(node.value) is int and abs(node.value) > FLOAT_MAX:
+        yield Problem(
+            node.span,
+            f"'{where}' is {_shown(node.raw)}, too large to compute with",
+            "write a number within the ranges docs/simulation.md gives (at most 1e12)",
+            code="not-finite",
+        )
+
+
+def _interfaces(fields: dict[str, ys.YNode]) -> Iterator[ys.YMapping]:
+    """Yield the interface mappings a component provides and requires (any_of's too)."""
+    for key in ("provides", "requires"):
+        for entry in _items(fields.get(key)):
+            if isinstance(entry, ys.YMapping):
+                yield entry
+                for option in _items(entry.items.get("any_of")):
+                    if isinstance(option, ys.YMapping):
+                        yield option
+
+
+def _qos_numbers(fields: dict[str, ys.YNode]) -> Iterator[Problem]:
+    """Refuse QoS depths and durations beyond DDS's 32-bit ``long`` (``QOS_LIMITS``)."""
+    for interface in _interfaces(fields):
+        qos = interface.items.get("qos")
+        if not isinstance(qos, ys.YMapping):
+            continue
+        for key, high in QOS_LIMITS.items():
+            node = qos.items.get(key)
+            if not isinstance(node, ys.YScalar) or not isinstance(node.value, int | float):
+                continue
+            if isinstance(node.value, bool) or not node.value > high:
+                continue  # NaN, and what the Schema refuses, are reported elsewhere
+            unit = "" if key == "depth" else " s"
+            yield Problem(
+                node.span,
+                f"QoS {key} is {_shown(node.raw)}, more than DDS can carry ({high}{unit}, a "
+                "32-bit 'long')",
+                "give a depth of at most 2147483647 (0 keeps all)"
+                if key == "depth"
+                else "give at most 2147483647 seconds, or null for none",
+                code="out-of-range",
+            )
+
+
+def _clean_qos(component: dict[str, ys.Plain]) -> bool:
+    """Tell whether ``_qos_numbers`` has nothing to report, from the plain data alone."""
+    for key in ("provides", "requires"):
+        entries = component.get(key)
+        if not isinstance(entries, list):
+            continue
+        for entry in entries:
+            if not isinstance(entry, dict):
+                continue
+            options = entry.get("any_of")
+            for item in [entry, *(options if isinstance(options, list) else [])]:
+                qos = item.get("qos") if isinstance(item, dict) else None
+                if not isinstance(qos, dict):
+                    continue
+                for name, high in QOS_LIMITS.items():
+                    value = qos.get(name)
+                    if type(value) in _NUMBERS and value > high:  # type: ignore[operator]
+                        return False
     return True
 
 
