@@ -122,8 +122,16 @@ def _clean(component: dict[str, ys.Plain]) -> bool:
                     return False
             elif not _within(value, MAX_METRIC):
                 return False
-    if not clean_numbers(component.get("dynamics")) or not _clean_qos(component):
+    dynamics = component.get("dynamics")
+    if dynamics is not None and not clean_numbers(dynamics):
         return False
+    for key in ("provides", "requires"):  # QoS numbers; most interfaces have neither key
+        entries = component.get(key)
+        if type(entries) is list:
+            for entry in entries:
+                has = type(entry) is dict and ("qos" in entry or "any_of" in entry)
+                if has and not _clean_interface(entry):  # type: ignore[arg-type]
+                    return False
     ros = component.get("ros")
     if ros is None:
         return True
@@ -217,24 +225,22 @@ def _qos_numbers(fields: dict[str, ys.YNode]) -> Iterator[Problem]:
             )
 
 
-def _clean_qos(component: dict[str, ys.Plain]) -> bool:
-    """Tell whether ``_qos_numbers`` has nothing to report, from the plain data alone."""
-    for key in ("provides", "requires"):
-        entries = component.get(key)
-        if not isinstance(entries, list):
-            continue
-        for entry in entries:
-            if not isinstance(entry, dict):
-                continue
-            options = entry.get("any_of")
-            for item in [entry, *(options if isinstance(options, list) else [])]:
-                qos = item.get("qos") if isinstance(item, dict) else None
-                if not isinstance(qos, dict):
-                    continue
-                for name, high in QOS_LIMITS.items():
-                    value = qos.get(name)
-                    if type(value) in _NUMBERS and value > high:  # type: ignore[operator]
-                        return False
+def _clean_interface(entry: dict[str, ys.Plain]) -> bool:
+    """Tell whether ``_qos_numbers`` has nothing to report on one interface (any_of's too)."""
+    options = entry.get("any_of")
+    items = [entry, *options] if isinstance(options, list) else [entry]
+    return all(_clean_profile(item) for item in items)
+
+
+def _clean_profile(interface: ys.Plain) -> bool:
+    """Tell whether an interface's ``qos`` holds no number over ``QOS_LIMITS``."""
+    qos = interface.get("qos") if isinstance(interface, dict) else None
+    if not isinstance(qos, dict):
+        return True
+    for name, high in QOS_LIMITS.items():
+        value = qos.get(name)
+        if type(value) in _NUMBERS and value > high:  # type: ignore[operator]
+            return False
     return True
 
 
