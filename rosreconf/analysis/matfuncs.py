@@ -2,11 +2,13 @@
 
 Discretising a loop (``lti.step_response``) needs two things from linear algebra: a
 diagonal balancing of its companion matrix and the matrix exponential of the augmented
-system. scipy.linalg offers both, but importing it costs about 0.15 s of CPU per process,
-a tenth of ``plan``'s whole-process time (issue 12), to compute a handful of 5x5 to 30x30
-matrices. So both are written out here on numpy, step for step as scipy 1.17 computes them,
-and tests/test_lti.py holds them to ``scipy.linalg.expm`` and ``scipy.linalg.matrix_balance``
-on random, ill-conditioned, stiff, triangular, nilpotent and large-norm matrices.
+system. scipy.linalg offers both, but importing it costs about 0.3 s of CPU per process:
+``plan --fail NSM3`` on the bundled example took 27 % more CPU with it and ``simulate`` 87 %
+more (once per worker), to compute a handful of 5x5 to 30x30 matrices, and it computes the
+same figures (docs/PERFORMANCE.md, "What stayed and why", issue 24). So both are written
+out here on numpy, step for step as scipy 1.17 computes them, and tests/test_lti.py holds
+them to ``scipy.linalg.expm`` and ``scipy.linalg.matrix_balance`` on random,
+ill-conditioned, stiff, triangular, nilpotent and large-norm matrices.
 
 What is reproduced exactly: the balancing (bit for bit: it only compares norms and
 multiplies by powers of two), and the exponential's choice of Pade degree and number of

@@ -42,6 +42,7 @@ from rosreconf.analysis.lti import (
     step_response,
 )
 from rosreconf.analysis.numeric import np
+from rosreconf.errors import RosreconfError
 from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
 
 SETTLING_BAND = 0.02
@@ -138,19 +139,43 @@ def simulate_loop(spec: LoopSpec) -> LoopResult:
     a stable loop, whatever the duration); settling time and overshoot as python-control's
     ``step_info`` reads them over the simulated horizon, relative to that final value.
     """
-    loop = closed_loop(spec)
-    if loop is None or not is_stable(np.roots(loop[1])):
-        return LoopResult(False, None, None, None, None)
-    num, den = loop
-    gain = float(np.polyval(num, 0.0) / np.polyval(den, 0.0))  # the DC gain, T(0)
-    final = spec.reference * gain
-    error = abs(1.0 - gain)
-    if not math.isfinite(final) or abs(gain) < 1e-12:
-        return LoopResult(True, None, error if math.isfinite(error) else None, None, final)
-    t = time_points(spec)
-    y = spec.reference * step_response(num, den, t)
+    with np.errstate(all="ignore"):
+        loop = closed_loop(spec)
+        if loop is not None and not np.all(np.isfinite(loop[1])):
+            raise _beyond_floats(spec)
+        if loop is None or not is_stable(np.roots(loop[1])):
+            return LoopResult(False, None, None, None, None)
+        num, den = loop
+        gain = float(np.polyval(num, 0.0) / np.polyval(den, 0.0))  # the DC gain, T(0)
+        final = spec.reference * gain
+        error = abs(1.0 - gain)
+        if not math.isfinite(final) or abs(gain) < 1e-12:
+            return LoopResult(True, None, error if math.isfinite(error) else None, None, final)
+        t = time_points(spec)
+        try:
+            y = spec.reference * step_response(num, den, t)
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+            raise _beyond_floats(spec) from exc
+    if not np.all(np.isfinite(y)):
+        raise _beyond_floats(spec)
     settling, overshoot = step_figures(t, y, final, SETTLING_BAND)
     return LoopResult(True, settling, error, overshoot, final)
+
+
+def _beyond_floats(spec: LoopSpec) -> RosreconfError:
+    """Say that a stable loop's step response overflowed: its blocks multiply beyond a float.
+
+    Each block passed validation's ranges (``formats.simchecks``), but a loop multiplies its
+    blocks' coefficients: three gains of 1e12 make a loop gain of 1e36, whose matrix
+    exponential overflows. Reported rather than given a figure that would be wrong.
+    """
+    blocks = "; ".join(str(b) for b in (*spec.forward, spec.plant, *spec.feedback))
+    return RosreconfError(
+        f"a control loop cannot be simulated in floating point: its blocks ({blocks}) "
+        "multiply to coefficients a float cannot hold apart (keep the product of a loop's "
+        "gains, and its fastest and slowest time constants, within the ranges of "
+        "docs/simulation.md)"
+    )
 
 
 @functools.cache

@@ -24,7 +24,7 @@ from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
 from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
-from rosreconf.formats.values import duplicate_edges, value_problems
+from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
 
@@ -110,6 +110,8 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
         structural = list(structure_problems(tree, kind, plain))
         if not structural and kind is DocumentKind.LIBRARY:
             structural = value_problems(tree, plain)
+        elif not structural:
+            structural = schema_value_problems(tree, plain)
         if structural:
             loaded.problems.extend(structural)
             loaded.library_complete &= kind is not DocumentKind.LIBRARY

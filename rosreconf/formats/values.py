@@ -10,7 +10,11 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ...)``, ``$(env ...)`` and ``$(find ...)`` in every attribute, so a library file could run
   Python on the robot. A value that really is a substitution must be marked as one:
   ``name: {substitution: "$(find my_pkg)/config.yaml"}``;
-- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit).
+- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit);
+- integers too large for a float (a 401-digit coefficient) anywhere in a model's dynamics or
+  a schema's simulation block, which could not even be built, and QoS depths and durations
+  beyond DDS's 32-bit ``long`` (``clean_numbers``, ``schema_value_problems``); the ranges a
+  simulation computes correctly within are ``simchecks``'s, on the built model.
 
 These checks run on the plain data once its JSON Schema check passed, before model objects
 are built; a value found wrong is looked up in the positioned tree for its ``file:line:column``
@@ -20,6 +24,7 @@ and its text as written, so nothing downstream ever sees such a value.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterator
 
 from rosreconf.errors import Problem, Severity
@@ -31,6 +36,15 @@ MAX_METRIC = 1e12
 
 INT32 = (-(2**31), 2**31 - 1)
 """The integers a ROS 1 parameter can hold (XML-RPC ``i4``)."""
+
+DDS_LONG = 2**31 - 1
+"""The largest DDS ``long``: history depth and ``Duration_t`` seconds are 32-bit."""
+
+QOS_LIMITS = {"depth": DDS_LONG, "deadline": DDS_LONG, "lease_duration": DDS_LONG}
+"""The QoS numbers and their largest value (seconds for the durations)."""
+
+FLOAT_MAX = sys.float_info.max
+"""The largest float: an integer beyond it cannot become one (``OverflowError``)."""
 
 SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
@@ -62,7 +76,103 @@ def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
         for key, value in params.items() if isinstance(params, dict) else ():
             if not _fine_parameter(value):
                 problems.extend(_parameter(key, at("ros", "parameters", key)))
+        if not clean_numbers(component.get("dynamics")):
+            problems.extend(_huge(at("dynamics"), f"components[{i}].dynamics"))
+        if not _clean_qos(component):
+            problems.extend(_qos_numbers(nodes.lookup(tree, ["components", i])))
     return problems
+
+
+def schema_value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
+    """Return the problems of a schema's numbers that no model could hold.
+
+    The simulation block's numbers (reference, duration, requirements, the plants) become
+    floats when the schema is built; an integer too large for one is refused here, at its
+    position, before it can stop the build.
+    """
+    simulation = plain.get("simulation") if isinstance(plain, dict) else None
+    if clean_numbers(simulation):
+        return []
+    return list(_huge(nodes.fields(tree).get("simulation"), "simulation"))
+
+
+def clean_numbers(plain: nodes.Plain) -> bool:
+    """Tell whether ``plain`` (a subtree as plain data) holds no integer too large for a float."""
+    if type(plain) is int:
+        return -FLOAT_MAX <= plain <= FLOAT_MAX
+    if isinstance(plain, dict):
+        return all(clean_numbers(v) for v in plain.values())
+    if isinstance(plain, list):
+        return all(clean_numbers(v) for v in plain)
+    return True
+
+
+def _huge(node: nodes.Node | None, where: str) -> Iterator[Problem]:
+    """Refuse every integer under ``node`` too large for a float, at its position."""
+    if type(node) is nodes.MappingNode:
+        for key, child in nodes.fields(node).items():
+            yield from _huge(child, f"{where}.{key}")
+    elif type(node) is nodes.SequenceNode:
+        for i, child in enumerate(nodes.seq_of(node)):
+            yield from _huge(child, f"{where}[{i}]")
+    elif type(node) is nodes.ScalarNode:
+        value = nodes.value(node)
+        if type(value) is int and abs(value) > FLOAT_MAX:
+            yield Problem(
+                nodes.span(node),
+                f"'{where}' is {_shown(node.value)}, too large to compute with",
+                "write a number within the ranges docs/simulation.md gives (at most 1e12)",
+                code="not-finite",
+            )
+
+
+def _profiles(component: dict[str, nodes.Plain]) -> Iterator[dict[str, nodes.Plain]]:
+    """Yield the interfaces (``any_of``'s options too) a component provides and requires."""
+    for key in ("provides", "requires"):
+        entries = component.get(key)
+        for entry in entries if isinstance(entries, list) else ():
+            if isinstance(entry, dict):
+                yield entry
+                options = entry.get("any_of")
+                for option in options if isinstance(options, list) else ():
+                    if isinstance(option, dict):
+                        yield option
+
+
+def _clean_qos(component: dict[str, nodes.Plain]) -> bool:
+    """Tell whether ``_qos_numbers`` has nothing to report on a component's interfaces."""
+    for interface in _profiles(component):
+        qos = interface.get("qos")
+        if isinstance(qos, dict):
+            for name, high in QOS_LIMITS.items():
+                value = qos.get(name)
+                if type(value) in nodes.NUMBER and value > high:  # type: ignore[operator]
+                    return False
+    return True
+
+
+def _qos_numbers(component: nodes.Node | None) -> Iterator[Problem]:
+    """Refuse QoS depths and durations beyond DDS's 32-bit ``long`` (``QOS_LIMITS``)."""
+    for key in ("provides", "requires"):
+        for entry in nodes.seq_of(nodes.fields(component).get(key)):
+            options = nodes.seq_of(nodes.fields(entry).get("any_of"))
+            for interface in (entry, *options):
+                qos = nodes.fields(interface).get("qos")
+                for name, high in QOS_LIMITS.items():
+                    node = nodes.fields(qos).get(name)
+                    value = nodes.value(node)
+                    if type(value) not in nodes.NUMBER or not value > high:  # type: ignore[operator]
+                        continue  # NaN, and what the Schema refuses, are reported elsewhere
+                    unit = "" if name == "depth" else " s"
+                    yield Problem(
+                        nodes.span(node),
+                        f"QoS {name} is {_shown(nodes.text_of(node))}, more than DDS can carry "
+                        f"({high}{unit}, a 32-bit 'long')",
+                        "give a depth of at most 2147483647 (0 keeps all)"
+                        if name == "depth"
+                        else "give at most 2147483647 seconds, or null for none",
+                        code="out-of-range",
+                    )
 
 
 def _within(value: nodes.Plain, high: float) -> bool:
