@@ -5,7 +5,7 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = 'd307ab20f27de0d41b4a277e9c66f6598ec1fb415d507f609f384baeeead5619'
+SOURCE = '813d848e930efe719d38e71b18f79ced22d1113629c40e7302916d34b649d83d'
 import re
 
 _NUMBER = (int, float)
@@ -13,7 +13,7 @@ _MISSING = object()
 _C0 = frozenset({'edges', 'environment', 'format', 'name', 'nominal', 'roles', 'simulation', 'skill', 'title', 'version'})
 _C1 = re.compile('^[A-Za-z][A-Za-z0-9_]*$').search
 _C2 = set()  # texts _C1 matched
-_C3 = frozenset({'abstraction', 'description', 'name'})
+_C3 = frozenset({'abstraction', 'description', 'name', 'optional'})
 _C4 = frozenset({'consumer', 'interfaces', 'optional', 'providers'})
 _C5 = re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$').search
 _C6 = set()  # texts _C5 matched
@@ -100,75 +100,71 @@ def validate(data):
         if v11 is not _MISSING:
             if not type(v11) is str:
                 return False
-    v12 = data.get('edges', _MISSING)
-    if v12 is not _MISSING:
-        if not type(v12) is list:
+        v12 = v8.get('optional', _MISSING)
+        if v12 is not _MISSING:
+            if not type(v12) is bool:
+                return False
+    v13 = data.get('edges', _MISSING)
+    if v13 is not _MISSING:
+        if not type(v13) is list:
             return False
-        for v13 in v12:
-            if not type(v13) is dict:
+        for v14 in v13:
+            if not type(v14) is dict:
                 return False
-            if not v13.keys() <= _C4:
+            if not v14.keys() <= _C4:
                 return False
-            v14 = v13.get('consumer', _MISSING)
-            if v14 is _MISSING:
-                return False
-            if not type(v14) is str:
-                return False
-            if v14 not in _C2:
-                if _C1(v14) is None:
-                    return False
-                if len(_C2) < 100000:
-                    _C2.add(v14)
-            v15 = v13.get('providers', _MISSING)
+            v15 = v14.get('consumer', _MISSING)
             if v15 is _MISSING:
                 return False
-            if not type(v15) is list:
+            if not type(v15) is str:
                 return False
-            if len(v15) < 1:
-                return False
-            for v16 in v15:
-                if not type(v16) is str:
-                    return False
-                if v16 not in _C2:
-                    if _C1(v16) is None:
-                        return False
-                    if len(_C2) < 100000:
-                        _C2.add(v16)
-            if len(set(v15)) != len(v15):
-                return False
-            v17 = v13.get('interfaces', _MISSING)
-            if v17 is not _MISSING:
-                if not type(v17) is list:
-                    return False
-                if len(v17) < 1:
-                    return False
-                for v18 in v17:
-                    if not type(v18) is str:
-                        return False
-                    if v18 not in _C6:
-                        if _C5(v18) is None:
-                            return False
-                        if len(_C6) < 100000:
-                            _C6.add(v18)
-                if len(set(v17)) != len(v17):
-                    return False
-            v19 = v13.get('optional', _MISSING)
-            if v19 is not _MISSING:
-                if not type(v19) is bool:
-                    return False
-    v20 = data.get('nominal', _MISSING)
-    if v20 is not _MISSING:
-        if not type(v20) is dict:
-            return False
-        for v22 in v20.values():
-            if not type(v22) is str:
-                return False
-            if v22 not in _C2:
-                if _C1(v22) is None:
+            if v15 not in _C2:
+                if _C1(v15) is None:
                     return False
                 if len(_C2) < 100000:
-                    _C2.add(v22)
-        for v23 in v20:
+                    _C2.add(v15)
+            v16 = v14.get('providers', _MISSING)
+            if v16 is _MISSING:
+                return False
+            if not type(v16) is list:
+                return False
+            if len(v16) < 1:
+                return False
+            for v17 in v16:
+                if not type(v17) is str:
+                    return False
+                if v17 not in _C2:
+                    if _C1(v17) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v17)
+            if len(set(v16)) != len(v16):
+                return False
+            v18 = v14.get('interfaces', _MISSING)
+            if v18 is not _MISSING:
+                if not type(v18) is list:
+                    return False
+                if len(v18) < 1:
+                    return False
+                for v19 in v18:
+                    if not type(v19) is str:
+                        return False
+                    if v19 not in _C6:
+                        if _C5(v19) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v19)
+                if len(set(v18)) != len(v18):
+                    return False
+            v20 = v14.get('optional', _MISSING)
+            if v20 is not _MISSING:
+                if not type(v20) is bool:
+                    return False
+    v21 = data.get('nominal', _MISSING)
+    if v21 is not _MISSING:
+        if not type(v21) is dict:
+            return False
+        for v23 in v21.values():
             if not type(v23) is str:
                 return False
             if v23 not in _C2:
@@ -176,208 +172,216 @@ def validate(data):
                     return False
                 if len(_C2) < 100000:
                     _C2.add(v23)
-    v24 = data.get('simulation', _MISSING)
-    if v24 is not _MISSING:
-        if not type(v24) is dict:
-            return False
-        if not v24.keys() <= _C7:
-            return False
-        v25 = v24.get('loops', _MISSING)
-        if v25 is _MISSING:
-            return False
-        if not type(v25) is list:
-            return False
-        if len(v25) < 1:
-            return False
-        for v26 in v25:
-            if not type(v26) is dict:
+        for v24 in v21:
+            if not type(v24) is str:
                 return False
-            if not v26.keys() <= _C8:
-                return False
-            v27 = v26.get('name', _MISSING)
-            if v27 is _MISSING:
-                return False
-            if not type(v27) is str:
-                return False
-            if v27 not in _C2:
-                if _C1(v27) is None:
+            if v24 not in _C2:
+                if _C1(v24) is None:
                     return False
                 if len(_C2) < 100000:
-                    _C2.add(v27)
-            v28 = v26.get('forward', _MISSING)
+                    _C2.add(v24)
+    v25 = data.get('simulation', _MISSING)
+    if v25 is not _MISSING:
+        if not type(v25) is dict:
+            return False
+        if not v25.keys() <= _C7:
+            return False
+        v26 = v25.get('loops', _MISSING)
+        if v26 is _MISSING:
+            return False
+        if not type(v26) is list:
+            return False
+        if len(v26) < 1:
+            return False
+        for v27 in v26:
+            if not type(v27) is dict:
+                return False
+            if not v27.keys() <= _C8:
+                return False
+            v28 = v27.get('name', _MISSING)
             if v28 is _MISSING:
                 return False
-            if not type(v28) is list:
+            if not type(v28) is str:
                 return False
-            if len(v28) < 1:
-                return False
-            for v29 in v28:
-                if not type(v29) is str:
+            if v28 not in _C2:
+                if _C1(v28) is None:
                     return False
-                if v29 not in _C2:
-                    if _C1(v29) is None:
+                if len(_C2) < 100000:
+                    _C2.add(v28)
+            v29 = v27.get('forward', _MISSING)
+            if v29 is _MISSING:
+                return False
+            if not type(v29) is list:
+                return False
+            if len(v29) < 1:
+                return False
+            for v30 in v29:
+                if not type(v30) is str:
+                    return False
+                if v30 not in _C2:
+                    if _C1(v30) is None:
                         return False
                     if len(_C2) < 100000:
-                        _C2.add(v29)
-            if len(set(v28)) != len(v28):
+                        _C2.add(v30)
+            if len(set(v29)) != len(v29):
                 return False
-            v30 = v26.get('plant', _MISSING)
-            if v30 is _MISSING:
+            v31 = v27.get('plant', _MISSING)
+            if v31 is _MISSING:
                 return False
-            if not type(v30) is dict:
+            if not type(v31) is dict:
                 return False
-            if ((not ('transfer_function' not in v30)) + (not ('state_space' not in v30))) != 1:
+            if ((not ('transfer_function' not in v31)) + (not ('state_space' not in v31))) != 1:
                 return False
-            if not v30.keys() <= _C9:
+            if not v31.keys() <= _C9:
                 return False
-            v31 = v30.get('transfer_function', _MISSING)
-            if v31 is not _MISSING:
-                if not type(v31) is dict:
+            v32 = v31.get('transfer_function', _MISSING)
+            if v32 is not _MISSING:
+                if not type(v32) is dict:
                     return False
-                if not v31.keys() <= _C10:
+                if not v32.keys() <= _C10:
                     return False
-                v32 = v31.get('num', _MISSING)
-                if v32 is _MISSING:
+                v33 = v32.get('num', _MISSING)
+                if v33 is _MISSING:
                     return False
-                if not type(v32) is list:
+                if not type(v33) is list:
                     return False
-                if len(v32) < 1:
+                if len(v33) < 1:
                     return False
-                for v33 in v32:
-                    if not type(v33) in _NUMBER:
+                for v34 in v33:
+                    if not type(v34) in _NUMBER:
                         return False
-                v34 = v31.get('den', _MISSING)
-                if v34 is _MISSING:
+                v35 = v32.get('den', _MISSING)
+                if v35 is _MISSING:
                     return False
-                if not type(v34) is list:
+                if not type(v35) is list:
                     return False
-                if len(v34) < 1:
+                if len(v35) < 1:
                     return False
-                for v35 in v34:
-                    if not type(v35) in _NUMBER:
+                for v36 in v35:
+                    if not type(v36) in _NUMBER:
                         return False
-            v36 = v30.get('state_space', _MISSING)
-            if v36 is not _MISSING:
-                if not type(v36) is dict:
+            v37 = v31.get('state_space', _MISSING)
+            if v37 is not _MISSING:
+                if not type(v37) is dict:
                     return False
-                if not v36.keys() <= _C11:
+                if not v37.keys() <= _C11:
                     return False
-                v37 = v36.get('A', _MISSING)
-                if v37 is _MISSING:
+                v38 = v37.get('A', _MISSING)
+                if v38 is _MISSING:
                     return False
-                if not type(v37) is list:
+                if not type(v38) is list:
                     return False
-                if len(v37) < 1:
+                if len(v38) < 1:
                     return False
-                for v38 in v37:
-                    if not type(v38) is list:
+                for v39 in v38:
+                    if not type(v39) is list:
                         return False
-                    if len(v38) < 1:
+                    if len(v39) < 1:
                         return False
-                    for v39 in v38:
-                        if not type(v39) in _NUMBER:
+                    for v40 in v39:
+                        if not type(v40) in _NUMBER:
                             return False
-                v40 = v36.get('B', _MISSING)
-                if v40 is _MISSING:
+                v41 = v37.get('B', _MISSING)
+                if v41 is _MISSING:
                     return False
-                if not type(v40) is list:
+                if not type(v41) is list:
                     return False
-                if len(v40) < 1:
+                if len(v41) < 1:
                     return False
-                for v41 in v40:
-                    if not type(v41) is list:
+                for v42 in v41:
+                    if not type(v42) is list:
                         return False
-                    if len(v41) < 1:
+                    if len(v42) < 1:
                         return False
-                    for v42 in v41:
-                        if not type(v42) in _NUMBER:
+                    for v43 in v42:
+                        if not type(v43) in _NUMBER:
                             return False
-                v43 = v36.get('C', _MISSING)
-                if v43 is _MISSING:
+                v44 = v37.get('C', _MISSING)
+                if v44 is _MISSING:
                     return False
-                if not type(v43) is list:
+                if not type(v44) is list:
                     return False
-                if len(v43) < 1:
+                if len(v44) < 1:
                     return False
-                for v44 in v43:
-                    if not type(v44) is list:
+                for v45 in v44:
+                    if not type(v45) is list:
                         return False
-                    if len(v44) < 1:
+                    if len(v45) < 1:
                         return False
-                    for v45 in v44:
-                        if not type(v45) in _NUMBER:
+                    for v46 in v45:
+                        if not type(v46) in _NUMBER:
                             return False
-                v46 = v36.get('D', _MISSING)
-                if v46 is _MISSING:
+                v47 = v37.get('D', _MISSING)
+                if v47 is _MISSING:
                     return False
-                if not type(v46) is list:
+                if not type(v47) is list:
                     return False
-                if len(v46) < 1:
+                if len(v47) < 1:
                     return False
-                for v47 in v46:
-                    if not type(v47) is list:
+                for v48 in v47:
+                    if not type(v48) is list:
                         return False
-                    if len(v47) < 1:
+                    if len(v48) < 1:
                         return False
-                    for v48 in v47:
-                        if not type(v48) in _NUMBER:
+                    for v49 in v48:
+                        if not type(v49) in _NUMBER:
                             return False
-            v49 = v30.get('delay', _MISSING)
-            if v49 is not _MISSING:
-                if not type(v49) in _NUMBER:
-                    return False
-                if v49 < 0:
-                    return False
-            v50 = v26.get('feedback', _MISSING)
+            v50 = v31.get('delay', _MISSING)
             if v50 is not _MISSING:
-                if not type(v50) is list:
+                if not type(v50) in _NUMBER:
                     return False
-                for v51 in v50:
-                    if not type(v51) is str:
+                if v50 < 0:
+                    return False
+            v51 = v27.get('feedback', _MISSING)
+            if v51 is not _MISSING:
+                if not type(v51) is list:
+                    return False
+                for v52 in v51:
+                    if not type(v52) is str:
                         return False
-                    if v51 not in _C2:
-                        if _C1(v51) is None:
+                    if v52 not in _C2:
+                        if _C1(v52) is None:
                             return False
                         if len(_C2) < 100000:
-                            _C2.add(v51)
-                if len(set(v50)) != len(v50):
+                            _C2.add(v52)
+                if len(set(v51)) != len(v51):
                     return False
-        v52 = v24.get('reference', _MISSING)
-        if v52 is not _MISSING:
-            if not type(v52) in _NUMBER:
+        v53 = v25.get('reference', _MISSING)
+        if v53 is not _MISSING:
+            if not type(v53) in _NUMBER:
                 return False
-            if v52 <= 0:
+            if v53 <= 0:
                 return False
-        v53 = v24.get('duration', _MISSING)
-        if v53 is _MISSING:
+        v54 = v25.get('duration', _MISSING)
+        if v54 is _MISSING:
             return False
-        if not type(v53) in _NUMBER:
+        if not type(v54) in _NUMBER:
             return False
-        if v53 <= 0:
+        if v54 <= 0:
             return False
-        v54 = v24.get('requirements', _MISSING)
-        if v54 is not _MISSING:
-            if not type(v54) is dict:
+        v55 = v25.get('requirements', _MISSING)
+        if v55 is not _MISSING:
+            if not type(v55) is dict:
                 return False
-            if not v54.keys() <= _C12:
+            if not v55.keys() <= _C12:
                 return False
-            v55 = v54.get('settling_time', _MISSING)
-            if v55 is not _MISSING:
-                if not type(v55) in _NUMBER:
-                    return False
-                if v55 < 0:
-                    return False
-            v56 = v54.get('steady_state_error', _MISSING)
+            v56 = v55.get('settling_time', _MISSING)
             if v56 is not _MISSING:
                 if not type(v56) in _NUMBER:
                     return False
                 if v56 < 0:
                     return False
-            v57 = v54.get('overshoot', _MISSING)
+            v57 = v55.get('steady_state_error', _MISSING)
             if v57 is not _MISSING:
                 if not type(v57) in _NUMBER:
                     return False
                 if v57 < 0:
+                    return False
+            v58 = v55.get('overshoot', _MISSING)
+            if v58 is not _MISSING:
+                if not type(v58) in _NUMBER:
+                    return False
+                if v58 < 0:
                     return False
     return True
 

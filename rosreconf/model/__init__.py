@@ -47,6 +47,7 @@ from rosreconf.model.library import (
     Substitution,
 )
 from rosreconf.model.schema import (
+    EMPTY,
     Configuration,
     ConfigurationLibrary,
     Edge,
@@ -72,6 +73,7 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = [
+    "EMPTY",
     "NOWHERE",
     "Component",
     "ComponentLibrary",
