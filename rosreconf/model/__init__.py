@@ -57,6 +57,8 @@ from rosreconf.model.schema import (
     VertexKind,
     interface_vertex,
     node_vertex,
+    shown,
+    shown_text,
 )
 
 if TYPE_CHECKING:
@@ -99,4 +101,6 @@ __all__ = [
     "VertexKind",
     "interface_vertex",
     "node_vertex",
+    "shown",
+    "shown_text",
 ]

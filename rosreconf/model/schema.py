@@ -26,6 +26,16 @@ Never a component's name (names start with a letter). Reports print it as ``(emp
 JSON as ``null``."""
 
 
+def shown(mapping: Mapping[str, str]) -> dict[str, str | None]:
+    """Return role -> component with ``None`` for an empty role: the JSON documents' form."""
+    return {r: (c if c != EMPTY else None) for r, c in mapping.items()}
+
+
+def shown_text(component: str) -> str:
+    """Return a component as reports print it (``(empty)`` for an empty optional role)."""
+    return component if component != EMPTY else "(empty)"
+
+
 @dataclass(frozen=True)
 class Role:
     """A vertex of a system graph: a place one component fills.
@@ -111,7 +121,7 @@ class SystemGraph:
 
         g = nx.DiGraph()
         for r in self.roles:
-            g.add_node(r.name, abstraction=r.abstraction)
+            g.add_node(r.name, abstraction=r.abstraction, optional=r.optional)
         for e in self.edges:
             g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces), optional=e.optional)
         return g
@@ -215,6 +225,11 @@ class Configuration:
     def mapping(self) -> dict[str, str]:
         """Return role -> component as a fresh dict (``EMPTY`` for an empty role)."""
         return dict(self.assignment)
+
+    @property
+    def shown(self) -> dict[str, str | None]:
+        """Return role -> component with ``None`` for an empty role (JSON documents)."""
+        return shown(self.mapping)
 
     @property
     def filled(self) -> dict[str, str]:

@@ -130,7 +130,7 @@ class Conformance:
             "conformant": self.ok,
             "master_uri": self.live.master_uri,
             "taken_at": self.live.taken_at.isoformat(),
-            "configuration": self.configuration.mapping,
+            "configuration": self.configuration.shown,
             "expected_nodes": self.expected_nodes,
             "findings": [
                 {

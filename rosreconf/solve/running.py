@@ -199,7 +199,7 @@ def checked(
     Raises:
         RosreconfError: a role is empty or a rule of validity is broken (exit 1).
     """
-    roles = {r.name for r in s.graph.roles}
+    roles = {r.name for r in s.graph.roles if not r.optional}  # optional: may stay empty
     missing = sorted(roles - set(mapping))
     if missing:
         raise RosreconfError(f"{source}: {s.name}: roles not filled: {', '.join(missing)}")
