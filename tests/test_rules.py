@@ -704,26 +704,35 @@ def test_relaxed_edges_matter(rule: Rule, case: Case) -> None:
 
 
 def test_map_navigation_needs_its_optional_edges() -> None:
-    """libraries/nav_robot.yaml has 24 configurations; with plain edges it has none."""
+    """libraries/nav_robot.yaml has 36 configurations; with plain edges and roles it has none.
+
+    24 fill the optional map role; the 12 that localise with SLAM may also leave it empty
+    (issue 22: a map server not needed under SLAM), and AMCL never does.
+    """
     loaded = load_bundled()
     library = loaded.library
     schema = next(s for s in loaded.schemas if s.name == "map_navigation")
-    assert any(e.optional for e in schema.graph.edges)
+    assert any(e.optional for e in schema.graph.edges) and schema.graph.role("map").optional
     inst = compile_instance(library, schema)
     listed = list(ClingoEngine().configurations(inst))
-    assert len(listed) == count(inst) == 24
+    assert len(listed) == count(inst) == 36
     assert all(is_valid(c, library, schema) for c in listed)
     teb = [c for c in listed if c.mapping["controller"] == "TEB_CONTROLLER"]
-    assert len(teb) == 12  # TEB does not read the lidar, and is still chosen
+    assert len(teb) == 18  # TEB does not read the lidar, and is still chosen
+    empty = [c for c in listed if c.mapping["map"] == EMPTY]
+    assert len(empty) == 12 and {c.mapping["localisation"] for c in empty} == {"NAV_SLAM"}
     plain = replace(
         schema,
         graph=SystemGraph(
-            schema.graph.roles, tuple(replace(e, optional=False) for e in schema.graph.edges)
+            tuple(replace(r, optional=False) for r in schema.graph.roles),
+            tuple(replace(e, optional=False) for e in schema.graph.edges),
         ),
     )
     strict = compile_instance(library, plain)
     assert count(strict) == 0
     assert not any(is_valid(c, library, plain) for c in listed)
+    filled = replace(schema, graph=replace(plain.graph, edges=schema.graph.edges))
+    assert count(compile_instance(library, filled)) == 24  # the map role required again
     best = EliminationEngine().best(inst, Objective(weights={"cost": 1.0}))
     assert best is not None and is_valid(best, library, schema)
 
