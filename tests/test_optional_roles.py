@@ -31,6 +31,7 @@ from typer.testing import CliRunner
 
 from rosreconf.analysis.library import analyse
 from rosreconf.analysis.marginals import marginals
+from rosreconf.analysis.whatif import evaluate, make_task
 from rosreconf.cli.app import app
 from rosreconf.formats.loader import Source, load_sources
 from rosreconf.model import (
@@ -289,3 +290,21 @@ def test_validate_lets_a_nominal_leave_an_optional_role_out_but_not_a_required_o
     task.write_text(text.replace("  laser: lidar\n", ""), encoding="utf-8")
     bad = runner.invoke(app, ["validate", str(tmp_path)])
     assert bad.exit_code == 1 and "leaves role 'laser' empty" in bad.stdout
+
+
+def test_whatif_clingo_task_survives_exactly_when_a_configuration_avoids_the_failures() -> None:
+    """The what-if workers' clingo task (``make_task``) takes the empty choices along."""
+    loaded = load_sources(
+        [Source(p.name, p.read_bytes()) for p in (NAV2 / "lib.yaml", NAV2 / "task.yaml")]
+    )
+    library, (schema,) = loaded.library, loaded.schemas
+    configs = [frozenset(c.components) for c in brute_force(library, schema)]
+    task = make_task(library, schema)
+    names = [c.name for c in library]
+    for failed in itertools.chain(
+        itertools.combinations(names, 1), itertools.combinations(names, 2)
+    ):
+        outcome = evaluate(task, failed)
+        assert outcome.survives == any(not (c & set(failed)) for c in configs), failed
+        if outcome.configuration is not None:
+            assert frozenset(outcome.configuration) in configs
