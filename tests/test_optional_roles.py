@@ -13,6 +13,8 @@ import itertools
 import json
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import replace
 from datetime import UTC, datetime
 from importlib.resources import as_file
@@ -46,6 +48,7 @@ from rosreconf.model.validity import is_valid, ros_graph
 from rosreconf.resources import Bundle, bundled
 from rosreconf.ros.conformance import compare, node_live_name
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
+from rosreconf.solve import dense
 from rosreconf.solve.counting import count
 from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.instance import compile_instance
@@ -55,6 +58,15 @@ from rosreconf.solve.solver import ClingoEngine, EliminationEngine, Objective
 PROPS = settings(max_examples=examples(100))
 WHEN = datetime(2026, 1, 1, tzinfo=UTC)
 Problem = tuple[ComponentLibrary, InteroperabilitySchema]
+
+
+@contextmanager
+def _grids(dense_grids: bool) -> Iterator[None]:
+    """Let the dense grids answer (the default), or make every grid too wide (sparse tables)."""
+    with pytest.MonkeyPatch.context() as mp:
+        if not dense_grids:
+            mp.setattr(dense, "DENSE_CELLS", 0)
+        yield
 
 
 @PROPS
@@ -69,9 +81,12 @@ def test_optional_roles_enumeration_count_and_first_agree_with_brute_force(
     expected = brute_force(library, schema, failed)
     listed = list(ClingoEngine().configurations(inst))
     assert [c.assignment for c in listed] == [c.assignment for c in expected]
-    assert count(inst) == len(expected)
-    found = first(inst)
-    assert (found.assignment if found else None) == (expected[0].assignment if expected else None)
+    for dense_grids in (True, False):  # the dense grids, and the sparse tables they fall back to
+        with _grids(dense_grids):
+            assert count(inst) == len(expected)
+            found = first(inst)
+        want = expected[0].assignment if expected else None
+        assert (found.assignment if found else None) == want
 
 
 @PROPS
@@ -89,11 +104,14 @@ def test_optional_roles_optimum_is_the_brute_force_least_change(
     current = data.draw(st.sampled_from(configs)).mapping
     objective = Objective(current=current, weights={"cost": 1.0})
     least = min(objective.cost(inst, c) for c in configs)
-    for engine in (EliminationEngine(), ClingoEngine()):
-        best = engine.best(inst, objective)
-        assert best is not None
-        assert best in configs, engine.name
-        assert objective.cost(inst, best) == least == (0, least[1]), engine.name
+    for dense_grids in (True, False):  # elimination: dense grids, then the sparse tables
+        with _grids(dense_grids):
+            best = EliminationEngine().best(inst, objective)
+        assert best is not None and best in configs, dense_grids
+        assert objective.cost(inst, best) == least == (0, least[1]), dense_grids
+    best = ClingoEngine().best(inst, objective)
+    assert best is not None and best in configs
+    assert objective.cost(inst, best) == least
 
 
 @PROPS
