@@ -305,6 +305,12 @@ def test_validate_lets_a_nominal_leave_an_optional_role_out_but_not_a_required_o
     task.write_text(text.replace("  ekf: ekf_filter_node\n", ""), encoding="utf-8")
     ok = runner.invoke(app, ["validate", str(tmp_path)])
     assert ok.exit_code == 0, ok.output
+    files = ["-l", str(tmp_path / "lib.yaml"), "-s", str(task)]
+    out = tmp_path / "nominal.launch"
+    launched = runner.invoke(app, ["launch", *files, "--ros1", "-o", str(out)])
+    assert launched.exit_code == 0, launched.output  # the nominal runs: no EKF node
+    names = {n.get("name") for n in ET.parse(out).getroot().iter("node")}
+    assert "ekf_filter_node" not in names and {"map_server", "amcl"} <= names
     task.write_text(text.replace("  laser: lidar\n", ""), encoding="utf-8")
     bad = runner.invoke(app, ["validate", str(tmp_path)])
     assert bad.exit_code == 1 and "leaves role 'laser' empty" in bad.stdout

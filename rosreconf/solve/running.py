@@ -38,7 +38,8 @@ from rosreconf.solve.solver import best_configuration, configurations, why_not
 
 def declared_nominal(schema: InteroperabilitySchema) -> Configuration | None:
     """Return the schema's declared nominal configuration, or None when it declares none."""
-    if not schema.nominal or any(r.name not in schema.nominal for r in schema.graph.roles):
+    roles = schema.graph.roles  # an optional role the nominal leaves out is empty
+    if not schema.nominal or any(r.name not in schema.nominal for r in roles if not r.optional):
         return None
     return Configuration.of(schema.name, schema.nominal, schema.graph.roles)
 
