@@ -8,6 +8,7 @@ from dataclasses import replace
 from hypothesis import strategies as st
 
 from rosreconf.model import (
+    EMPTY,
     Component,
     ComponentLibrary,
     Configuration,
@@ -30,11 +31,20 @@ IFACES = [
 
 
 @st.composite
-def problems(draw: st.DrawFn) -> tuple[ComponentLibrary, InteroperabilitySchema]:
-    """Draw a library of up to ~9 components and a schema of 2-4 roles (some edges optional)."""
+def problems(
+    draw: st.DrawFn, optional_roles: bool = False
+) -> tuple[ComponentLibrary, InteroperabilitySchema]:
+    """Draw a library of up to ~9 components and a schema of 2-4 roles (some edges optional).
+
+    With ``optional_roles`` some roles are optional too (issue 22); without, the draws are
+    what they always were.
+    """
     n_roles = draw(st.integers(2, 4))
     labels = [f"l{i}" for i in range(n_roles)]
-    roles = tuple(Role(f"r{i}", labels[i]) for i in range(n_roles))
+    roles = tuple(
+        Role(f"r{i}", labels[i], optional=optional_roles and draw(st.booleans()))
+        for i in range(n_roles)
+    )
     edges = []
     for u, v in itertools.permutations(range(n_roles), 2):
         if draw(st.booleans()) and draw(st.booleans()):
@@ -71,9 +81,15 @@ def problems(draw: st.DrawFn) -> tuple[ComponentLibrary, InteroperabilitySchema]
 def brute_force(
     library: ComponentLibrary, schema: InteroperabilitySchema, failed: frozenset[str] = frozenset()
 ) -> list[Configuration]:
-    """Return every valid configuration by trying every label-respecting assignment."""
+    """Return every valid configuration by trying every label-respecting assignment.
+
+    An optional role is also tried empty, after its candidates (the solvers' order).
+    """
     roles = schema.graph.roles
-    doms = [[c.name for c in library.candidates(r.abstraction)] for r in roles]
+    doms = [
+        [c.name for c in library.candidates(r.abstraction)] + ([EMPTY] if r.optional else [])
+        for r in roles
+    ]
     out = []
     for combo in itertools.product(*doms):
         config = Configuration.of(

@@ -145,3 +145,73 @@ def test_launch_from_a_configuration_file(tmp_path: Path, runner: CliRunner) -> 
     first = json.loads(listing.stdout)["schemas"][0]["configurations"][0]["components"]
     names = [n.get("name") for n in ET.parse(path).getroot().iter("node")]
     assert names == first
+
+
+TWO_PUBLISHERS_LIBRARY = """\
+format: rosreconf/component-library
+version: 1
+name: nav2_velocity
+components:
+  - name: controller_server
+    abstraction: controller
+    provides: [{topic: cmd_vel_nav, type: geometry_msgs/Twist}]
+    ros:
+      package: nav2_controller
+      executable: controller_server
+      remappings: {cmd_vel_nav: /nav2/cmd_vel_nav}
+  - name: behavior_server
+    abstraction: behaviors
+    provides: [{topic: cmd_vel_nav, type: geometry_msgs/Twist}]
+    ros:
+      package: nav2_behaviors
+      executable: behavior_server
+      remappings: {cmd_vel_nav: /nav2/cmd_vel_nav}
+  - name: velocity_smoother
+    abstraction: smoother
+    requires: [{topic: cmd_vel_nav, type: geometry_msgs/Twist}]
+    ros: {package: nav2_velocity_smoother, executable: velocity_smoother}
+"""
+TWO_PUBLISHERS_SCHEMA = """\
+format: rosreconf/interoperability-schema
+version: 1
+name: drive
+skill: drive with the controller, or with a recovery behaviour
+environment: anywhere
+roles:
+  - {name: controller, abstraction: controller}
+  - {name: behaviors, abstraction: behaviors}
+  - {name: smoother, abstraction: smoother}
+edges:
+  - {consumer: smoother, providers: [controller, behaviors]}
+"""
+
+
+@pytest.mark.ros
+def test_two_chosen_nodes_publishing_one_topic_are_launched(
+    tmp_path: Path, runner: CliRunner
+) -> None:
+    """Issue 22: Nav2's controller_server and behavior_server both publish cmd_vel_nav.
+
+    ``launch`` died with "too many values to unpack"; now both publishers are started and
+    the subscriber is remapped once, to the name both publish under; roslaunch (ROS 1) and
+    the ROS 2 launch XSD accept the files.
+    """
+    lib, sch = tmp_path / "lib.yaml", tmp_path / "task.yaml"
+    lib.write_text(TWO_PUBLISHERS_LIBRARY, encoding="utf-8")
+    sch.write_text(TWO_PUBLISHERS_SCHEMA, encoding="utf-8")
+    common = ["launch", "-l", str(lib), "-s", str(sch), "--only", "drive"]
+    ros1, ros2 = tmp_path / "drive.launch", tmp_path / "drive.launch.xml"
+    for version, out in (("--ros1", ros1), ("--ros2", ros2)):
+        result = runner.invoke(app, [*common, version, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+    read = run_program([SYSTEM_PYTHON, "-c", ROSLAUNCH_READER, str(ros1)], timeout=60).check()
+    nodes = json.loads(read.stdout)["nodes"]
+    assert set(nodes) == {"controller_server", "behavior_server", "velocity_smoother"}
+    assert nodes["velocity_smoother"]["remaps"] == [["cmd_vel_nav", "/nav2/cmd_vel_nav"]]
+    assert nodes["controller_server"]["remaps"] == [] and nodes["behavior_server"]["remaps"] == []
+    _xsd().validate(str(ros2))
+    root = ET.parse(ros2).getroot()
+    (smoother,) = [n for n in root.iter("node") if n.get("name") == "velocity_smoother"]
+    assert [(r.get("from"), r.get("to")) for r in smoother.iter("remap")] == [
+        ("cmd_vel_nav", "/nav2/cmd_vel_nav")
+    ]

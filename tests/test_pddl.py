@@ -26,7 +26,7 @@ from rosreconf.model import (
     SystemGraph,
 )
 from rosreconf.model.validity import is_valid
-from rosreconf.planning.pddl import PddlNameError, PddlNames, label, render
+from rosreconf.planning.pddl import PddlNames, label, render
 from rosreconf.planning.planners import FastDownward, solve
 from rosreconf.planning.replan import write_task
 from rosreconf.solve.instance import compile_instance
@@ -44,14 +44,17 @@ def normalise(text: str) -> list[str]:
     return [" ".join(line.split()) for line in text.splitlines() if line.strip()]
 
 
-def test_labels_and_names_are_lower_case_and_collisions_are_refused() -> None:
+def test_labels_and_names_are_lower_case_and_collisions_get_a_prefix() -> None:
     assert label("/arm/cmd") == "root__arm__cmd"
     assert label("Camera_Image") == "camera_image"
     names = PddlNames()
     assert names.role("Camera") == "camera"
     assert names.component("NSM3") == "nsm3"
-    with pytest.raises(PddlNameError, match="rename one"):
-        names.component("CAMERA")
+    assert names.component("CAMERA") == "component-camera"  # a role has the name: a prefix
+    assert names.role("cAmera") == "role-camera"  # roles differing only in case
+    assert names.role("CAMERA") == "role2-camera"
+    assert names.component("CAMERA") == "component-camera"  # the same name, asked again
+    assert names.objects["component-camera"] == ("component", "CAMERA")
 
 
 @pytest.mark.parametrize("name", ["disc_loading", "indoor_navigation", "object_repositioning"])

@@ -166,3 +166,55 @@ def test_unaffected_agrees_with_the_proven_fewest_changes() -> None:
             elif kept is not None:
                 assert best is not None and Objective(current).score(inst, best)[0] == 0
                 assert kept[0] == best
+
+
+ROLE_NAMED_LIKE_COMPONENT_LIBRARY = """\
+format: rosreconf/component-library
+version: 1
+name: named_alike
+components:
+  - name: camera
+    abstraction: camera
+    provides: [{topic: image, type: sensor_msgs/Image}]
+  - name: Viewer
+    abstraction: viewer
+    requires: [{topic: image, type: sensor_msgs/Image}]
+  - name: viewer2
+    abstraction: viewer
+    requires: [{topic: image, type: sensor_msgs/Image}]
+"""
+ROLE_NAMED_LIKE_COMPONENT_SCHEMA = """\
+format: rosreconf/interoperability-schema
+version: 1
+name: look
+skill: look at the image
+environment: anywhere
+roles:
+  - {name: camera, abstraction: camera}
+  - {name: viewer, abstraction: viewer}
+edges:
+  - {consumer: viewer, providers: [camera]}
+nominal: {camera: camera, viewer: Viewer}
+"""
+
+
+@pytest.mark.planner
+def test_a_role_named_like_its_only_component_is_planned(runner: CliRunner, tmp_path: Path) -> None:
+    """Issue 22: validate passed it, plan refused it ("both become the PDDL name") with no JSON.
+
+    Role ``camera`` is filled by component ``camera`` and role ``viewer`` by ``Viewer`` (one
+    PDDL name apart from case): plan must still work and print one JSON document.
+    """
+    lib, sch = tmp_path / "lib.yaml", tmp_path / "task.yaml"
+    lib.write_text(ROLE_NAMED_LIKE_COMPONENT_LIBRARY, encoding="utf-8")
+    sch.write_text(ROLE_NAMED_LIKE_COMPONENT_SCHEMA, encoding="utf-8")
+    files = ["-l", str(lib), "-s", str(sch)]
+    assert runner.invoke(app, ["validate", str(lib), str(sch)]).exit_code == 0
+    result = runner.invoke(app, ["plan", *files, "--fail", "Viewer", "--json"])
+    assert result.exit_code == 0, result.stderr
+    (look,) = json.loads(result.stdout)["schemas"]
+    assert look["status"] == "solved"
+    assert look["configurations"][0]["assignment"] == {"camera": "camera", "viewer": "viewer2"}
+    assert look["fewest_changes"] == 1
+    pddl = runner.invoke(app, ["render-pddl", *files, "-o", str(tmp_path / "pddl")])
+    assert pddl.exit_code == 0, pddl.stderr

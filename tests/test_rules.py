@@ -29,6 +29,7 @@ from pddlcheck import chosen, plan_all
 
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import (
+    EMPTY,
     Component,
     ComponentLibrary,
     Configuration,
@@ -45,6 +46,7 @@ from rosreconf.model.validity import RULES, Encoding, Rule, is_valid, violations
 from rosreconf.planning.pddl import render
 from rosreconf.planning.planners import FastDownward, solve
 from rosreconf.solve.counting import count
+from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.factors import constraint_factors
 from rosreconf.solve.instance import compile_instance, prune
 from rosreconf.solve.solver import PROGRAM, ClingoEngine, EliminationEngine, Objective
@@ -104,21 +106,28 @@ class Case:
 def make(
     name: str,
     comps: Sequence[Component],
-    roles: Sequence[tuple[str, str]],
+    roles: Sequence[tuple[str, str] | tuple[str, str, bool]],
     edges: Sequence[Edge],
     *witnesses: dict[str, str],
     failed: Sequence[str] = (),
 ) -> Case:
-    """Build a case; components get costs 0, 1, 2, 0, ... so optima are not all ties."""
+    """Build a case; components get costs 0, 1, 2, 0, ... so optima are not all ties.
+
+    A role given as ``(name, abstraction, True)`` is optional.
+    """
     costed = tuple(
         replace(c, metrics={"cost": float(i % 3)}) if not c.metrics else c
         for i, c in enumerate(comps)
     )
-    graph = SystemGraph(tuple(Role(r, a) for r, a in roles), tuple(edges))
+    made = tuple(Role(r[0], r[1], optional=len(r) > 2 and bool(r[2])) for r in roles)
+    graph = SystemGraph(made, tuple(edges))
     schema = InteroperabilitySchema("s", graph, "skill", "env")
     without = None
-    if any(e.optional for e in edges):
-        strict = SystemGraph(graph.roles, tuple(replace(e, optional=False) for e in edges))
+    if any(e.optional for e in edges) or any(r.optional for r in made):
+        strict = SystemGraph(
+            tuple(replace(r, optional=False) for r in made),
+            tuple(replace(e, optional=False) for e in edges),
+        )
         without = replace(schema, graph=strict)
     return Case(
         name,
@@ -432,6 +441,69 @@ def cases_optional_edge() -> list[Case]:
     ]
 
 
+def cases_optional_role() -> list[Case]:
+    """Issue 22: an add-on EKF, and a map server not needed under SLAM."""
+    ekf_lib = [
+        comp("Dwb", "planner", ["cmd"], [["odom_filtered", "odom"]]),
+        comp("Teb", "planner", ["cmd"], [["odom_filtered"]]),  # only the EKF serves it
+        comp("Wheels", "odometry", ["odom"]),
+        comp("Ekf", "ekf", ["odom_filtered"], [["odom"]]),
+        comp("Ukf", "ekf", ["odom_filtered"], [["odom"]]),
+    ]
+    ekf_roles = [("planner", "planner"), ("odometry", "odometry"), ("ekf", "ekf", True)]
+    ekf_edges = [  # planner <- ekf is required: it binds only when the EKF is there
+        Edge("planner", "odometry", optional=True),
+        Edge("planner", "ekf"),
+        Edge("ekf", "odometry"),
+    ]
+    map_lib = [
+        comp("Amcl", "localization", ["pose"], [["map"], ["scan"]]),
+        comp("Slam", "localization", ["pose", "slam_map"], [["scan"]]),
+        comp("MapServer", "map_server", ["map"]),
+        comp("Lidar", "laser", ["scan"]),
+    ]
+    map_roles = [("localization", "localization"), ("map", "map_server", True), ("laser", "laser")]
+    map_edges = [Edge("localization", "map"), Edge("localization", "laser")]
+    need_lib = [  # a component needing the optional role's component forces it filled
+        comp("Viewer", "viewer", [], [["image"]], needs=frozenset({"Logger"})),
+        comp("Glance", "viewer", [], [["image"]]),
+        comp("Camera", "camera", ["image"]),
+        comp("Logger", "logger", ["log"]),
+    ]
+    need_roles = [("viewer", "viewer"), ("camera", "camera"), ("logger", "logger", True)]
+    return [
+        make(
+            "ekf-add-on",
+            ekf_lib,
+            ekf_roles,
+            ekf_edges,
+            {"planner": "Dwb", "odometry": "Wheels", "ekf": EMPTY},
+        ),
+        make(
+            "map-server-under-slam",
+            map_lib,
+            map_roles,
+            map_edges,
+            {"localization": "Slam", "map": EMPTY, "laser": "Lidar"},
+        ),
+        make(
+            "needed-add-on",
+            need_lib,
+            need_roles,
+            [Edge("viewer", "camera"), Edge("viewer", "logger", optional=True)],
+            {"viewer": "Glance", "camera": "Camera", "logger": EMPTY},
+        ),
+        make(
+            "every-role-optional",
+            ekf_lib,
+            [(r[0], r[1], True) for r in ekf_roles],
+            ekf_edges,
+            {"planner": EMPTY, "odometry": EMPTY, "ekf": EMPTY},
+            {"planner": EMPTY, "odometry": "Wheels", "ekf": EMPTY},
+        ),
+    ]
+
+
 CASES: dict[str, Callable[[], list[Case]]] = {
     "complete": cases_complete,
     "available": cases_available,
@@ -446,6 +518,7 @@ CASES: dict[str, Callable[[], list[Case]]] = {
     "excludes": cases_excludes,
     "one-type-per-label": cases_one_type_per_label,
     "optional-edge": cases_optional_edge,
+    "optional-role": cases_optional_role,
 }
 """Rule name -> its cases. Every rule of ``RULES`` needs an entry."""
 
@@ -464,8 +537,9 @@ def brute_force(case: Case, schema: InteroperabilitySchema | None = None) -> lis
     schema = schema or case.schema
     roles = schema.graph.roles
     names = [c.name for c in case.library]
+    choices = [[*names, EMPTY] if r.optional else names for r in roles]
     out = []
-    for combo in itertools.product(names, repeat=len(roles)):
+    for combo in itertools.product(*choices):
         config = Configuration.of(
             schema.name, dict(zip([r.name for r in roles], combo, strict=True)), roles
         )
@@ -577,8 +651,8 @@ def test_counting_counts_the_definitions_configurations(rule: Rule, case: Case) 
     assert count(inst) == len(expected)
     alive, _, _ = prune(inst)  # pruning is sound: it keeps every valid configuration
     for config in expected:
-        for u, (_, name) in enumerate(config.assignment):
-            assert name in alive[u]
+        for u, (role, name) in enumerate(config.assignment):
+            assert as_candidate(role, name) in alive[u]
 
 
 @pytest.mark.parametrize(("rule", "case"), PAIRS, ids=IDS)
@@ -617,12 +691,12 @@ def test_pddl_plans_the_definitions_configurations(rule: Rule, case: Case) -> No
     ("rule", "case"), [p for p in PAIRS if p[1].without], ids=lambda x: getattr(x, "name", "")
 )
 def test_relaxed_edges_matter(rule: Rule, case: Case) -> None:
-    """Each case with an optional edge has fewer configurations when it is made required."""
+    """Each case with an optional edge or role has fewer configurations when it is required."""
     assert case.without is not None
     strict = brute_force(case, case.without)
     loose = brute_force(case)
     assert {c.assignment for c in strict} <= {c.assignment for c in loose}
-    if rule.name == "optional-edge":
+    if rule.name in ("optional-edge", "optional-role"):
         assert len(strict) < len(loose)
 
 
@@ -630,26 +704,35 @@ def test_relaxed_edges_matter(rule: Rule, case: Case) -> None:
 
 
 def test_map_navigation_needs_its_optional_edges() -> None:
-    """libraries/nav_robot.yaml has 24 configurations; with plain edges it has none."""
+    """libraries/nav_robot.yaml has 36 configurations; with plain edges and roles it has none.
+
+    24 fill the optional map role; the 12 that localise with SLAM may also leave it empty
+    (issue 22: a map server not needed under SLAM), and AMCL never does.
+    """
     loaded = load_bundled()
     library = loaded.library
     schema = next(s for s in loaded.schemas if s.name == "map_navigation")
-    assert any(e.optional for e in schema.graph.edges)
+    assert any(e.optional for e in schema.graph.edges) and schema.graph.role("map").optional
     inst = compile_instance(library, schema)
     listed = list(ClingoEngine().configurations(inst))
-    assert len(listed) == count(inst) == 24
+    assert len(listed) == count(inst) == 36
     assert all(is_valid(c, library, schema) for c in listed)
     teb = [c for c in listed if c.mapping["controller"] == "TEB_CONTROLLER"]
-    assert len(teb) == 12  # TEB does not read the lidar, and is still chosen
+    assert len(teb) == 18  # TEB does not read the lidar, and is still chosen
+    empty = [c for c in listed if c.mapping["map"] == EMPTY]
+    assert len(empty) == 12 and {c.mapping["localisation"] for c in empty} == {"NAV_SLAM"}
     plain = replace(
         schema,
         graph=SystemGraph(
-            schema.graph.roles, tuple(replace(e, optional=False) for e in schema.graph.edges)
+            tuple(replace(r, optional=False) for r in schema.graph.roles),
+            tuple(replace(e, optional=False) for e in schema.graph.edges),
         ),
     )
     strict = compile_instance(library, plain)
     assert count(strict) == 0
     assert not any(is_valid(c, library, plain) for c in listed)
+    filled = replace(schema, graph=replace(plain.graph, edges=schema.graph.edges))
+    assert count(compile_instance(library, filled)) == 24  # the map role required again
     best = EliminationEngine().best(inst, Objective(weights={"cost": 1.0}))
     assert best is not None and is_valid(best, library, schema)
 

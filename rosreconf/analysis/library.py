@@ -28,6 +28,7 @@ from rosreconf.analysis.reliability import (
 )
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.counting import count
+from rosreconf.solve.emptyroles import empty_choice, is_empty_choice
 from rosreconf.solve.factors import paused_gc
 from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.solver import ClingoEngine
@@ -66,12 +67,15 @@ class RoleRedundancy:
         candidates: available components with the label that may serve in the schema (r).
         usable: the candidates that appear in at least one valid configuration (None when
             there were too many configurations to list).
+        may_stay_empty: the role is optional and some valid configuration leaves it empty
+            (its empty choice is no candidate and no single point of failure).
     """
 
     role: str
     abstraction: str
     candidates: tuple[str, ...]
     usable: tuple[str, ...] | None
+    may_stay_empty: bool = False
 
 
 @dataclass
@@ -129,9 +133,13 @@ def analyse(
     result.unusable = unusable
     result.counterexamples_complete = complete
     for u, role in enumerate(inst.roles):
-        candidates = tuple(c.name for c in inst.domains[u])
+        names = tuple(c.name for c in inst.domains[u])
+        candidates = tuple(c for c in names if not is_empty_choice(c))  # rule optional-role
         usable = tuple(c for c in candidates if marg.per_role[u].get(c, 0))
-        result.redundancy.append(RoleRedundancy(role.name, role.abstraction, candidates, usable))
+        empty = role.optional and bool(marg.per_role[u].get(empty_choice(role.name), 0))
+        result.redundancy.append(
+            RoleRedundancy(role.name, role.abstraction, candidates, usable, empty)
+        )
     if valid == 0:
         return result
     listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
@@ -217,9 +225,10 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
                 role = inst.roles[w].name
                 for other in inst.domains[w]:
                     if other.name != need:
+                        took = "would leave" if is_empty_choice(other.name) else "would take"
                         out.setdefault(
                             _key(c.name, other.name),
-                            f"{c.name} needs {need}; {other.name} would take role {role}",
+                            f"{c.name} needs {need}; {other.name} {took} role {role}",
                         )
             for ex in sorted(c.excludes):
                 if ex in holders:

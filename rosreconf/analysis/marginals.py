@@ -27,6 +27,7 @@ import operator
 from collections import defaultdict
 from dataclasses import dataclass
 
+from rosreconf.solve.emptyroles import is_empty_choice
 from rosreconf.solve.factors import constraint_factors, elimination_order
 from rosreconf.solve.instance import Instance, prune
 from rosreconf.solve.tables import MAX_FACTOR_ROWS, Factor, _join_all, key_of, paused_gc
@@ -52,8 +53,12 @@ class Marginals:
         return sum(m.get(component, 0) for m in self.per_role)
 
     def usable(self) -> set[str]:
-        """Return the components in at least one valid configuration."""
-        return {c for m in self.per_role for c, k in m.items() if k}
+        """Return the components in at least one valid configuration.
+
+        An optional role's empty choice is no component: never listed (so never a single
+        point of failure).
+        """
+        return {c for m in self.per_role for c, k in m.items() if k and not is_empty_choice(c)}
 
     def in_every(self) -> list[str]:
         """Return the components in every valid configuration (none when there is none)."""

@@ -239,7 +239,8 @@ def most_reliable(
     """
     with paused_gc():
         inst = compile_instance(library, schema, failed)
-    costs = [{c.name: (_log_cost(p[c.name]),) for c in dom} for dom in inst.domains]
+    # an optional role's empty choice is not in p: it never fails
+    costs = [{c.name: (_log_cost(p.get(c.name, 0.0)),) for c in dom} for dom in inst.domains]
     try:
         found = minimise(inst, costs)
         config = found[0] if found is not None else None

@@ -83,11 +83,15 @@ def simulation_of(schema: InteroperabilitySchema) -> Simulation:
 def loop_spec(
     library: ComponentLibrary, sim: Simulation, loop: ControlLoop, mapping: Mapping[str, str]
 ) -> tuple[LoopSpec, tuple[str, ...]]:
-    """Return the loop's spec under ``mapping`` and its roles simulated as unity gain."""
+    """Return the loop's spec under ``mapping`` and its roles simulated as unity gain.
+
+    A role without dynamics, or an optional role left empty, is simulated as unity gain.
+    """
     unity: list[str] = []
 
     def block(role: str) -> TransferFunction:
-        dyn = library[mapping[role]].dynamics
+        name = mapping[role]  # an empty optional role in a loop passes its signal through
+        dyn = library[name].dynamics if name in library else None
         if dyn is None:
             unity.append(role)
             return UNITY

@@ -27,6 +27,7 @@ import clingo
 from rosreconf.analysis.marginals import Marginals, marginals
 from rosreconf.analysis.workers import executor as open_executor
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
+from rosreconf.solve.emptyroles import as_chosen
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.solver import PROGRAM, _facts, first_configuration
@@ -83,7 +84,8 @@ class Outcome:
 def make_task(library: ComponentLibrary, schema: InteroperabilitySchema) -> Task:
     """Compile ``schema`` over ``library`` into a worker's task description."""
     inst = compile_instance(library, schema)
-    ids = {c.name: i for i, c in enumerate(library.components)}
+    # the instance's library: the library with each optional role's empty choice after it
+    ids = {c.name: i for i, c in enumerate(inst.library.components)}
     atoms: dict[str, list[tuple[int, int]]] = {}
     for r, dom in enumerate(inst.domains):
         for c in dom:
@@ -92,7 +94,7 @@ def make_task(library: ComponentLibrary, schema: InteroperabilitySchema) -> Task
         schema.name,
         PROGRAM + _facts(inst),
         tuple(r.name for r in inst.roles),
-        tuple(c.name for c in library.components),
+        tuple(as_chosen(c.name) for c in inst.library.components),
         {name: tuple(pairs) for name, pairs in atoms.items()},
     )
 
@@ -123,7 +125,8 @@ def evaluate_chunk(chunk: Chunk) -> list[Outcome]:
 
 def _keep(task: Task, found: list[tuple[str, ...]], model: clingo.Model) -> None:
     chosen = {s.arguments[0].number: s.arguments[1].number for s in model.symbols(shown=True)}
-    found.append(tuple(task.components[chosen[r]] for r in range(len(task.roles))))
+    picked = (task.components[chosen[r]] for r in range(len(task.roles)))
+    found.append(tuple(name for name in picked if name))  # an empty optional role: nothing
 
 
 def evaluate(task: Task, failed: Iterable[str]) -> Outcome:
@@ -137,7 +140,8 @@ def relevant_components(task: Task) -> frozenset[str]:
     last: list[str] = []
 
     def on_model(model: clingo.Model) -> None:
-        last[:] = [task.components[s.arguments[1].number] for s in model.symbols(shown=True)]
+        picked = (task.components[s.arguments[1].number] for s in model.symbols(shown=True))
+        last[:] = [name for name in picked if name]  # an empty optional role is no component
 
     result = ctl.solve(on_model=on_model)
     return frozenset(last) if result.satisfiable else frozenset()

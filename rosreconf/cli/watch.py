@@ -136,7 +136,7 @@ def watch_command(
                 "started",
                 f"watching {sch.display_name} on {source.uri} {what}: "
                 f"{', '.join(config.components)}",
-                {"configuration": config.mapping},
+                {"configuration": config.shown},
             )
         )
         check = watcher.run(interval, once=once)

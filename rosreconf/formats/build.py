@@ -290,6 +290,7 @@ def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
             abstraction=text_of(map_of(n)["abstraction"]),
             description=field_text(map_of(n), "description"),
             span=span_of(n),
+            optional=value_of(map_of(n).get("optional")) is True,
         )
         for n in seq_of(items["roles"])
     )

@@ -297,12 +297,13 @@ def _nominal(s: InteroperabilitySchema, roles: dict[str, Span], index: _Index) -
                 "choose a component with the role's abstraction label",
                 code="wrong-abstraction",
             )
+    optional = {r.name for r in s.graph.roles if r.optional}  # these may stay empty
     for role in roles:
-        if role not in s.nominal:
+        if role not in s.nominal and role not in optional:
             yield Problem(
                 s.span,
                 f"nominal configuration of '{s.name}' leaves role '{role}' empty",
-                "fill every role, or remove 'nominal'",
+                "fill every role that is not optional, or remove 'nominal'",
                 code="incomplete-nominal",
             )
 

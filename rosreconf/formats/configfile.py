@@ -12,6 +12,8 @@ A configuration file is either
       configurations:
         object_repositioning: {base_joint: NSM1, shoulder_joint: NSM2, ...}
 
+An optional role left empty is ``null`` there (or left out).
+
 Whether a configuration is *valid* is not decided here (see ``rosreconf.model.validity``).
 """
 
@@ -25,7 +27,7 @@ from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem, UsageError
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.nodes import span
-from rosreconf.model import Span
+from rosreconf.model import EMPTY, Span
 
 FORMAT = "rosreconf/configuration"
 
@@ -46,7 +48,7 @@ def read_configurations(path: Path) -> dict[str, dict[str, str]]:
     if isinstance(doc, dict) and doc.get("format") == FORMAT:
         configs = doc.get("configurations")
         if isinstance(configs, dict) and all(_is_assignment(v) for v in configs.values()):
-            return {str(k): {str(r): str(c) for r, c in v.items()} for k, v in configs.items()}  # type: ignore[union-attr]
+            return {str(k): _roles(v) for k, v in configs.items()}
     elif isinstance(doc, dict) and isinstance(schemas := doc.get("schemas"), list):
         out: dict[str, dict[str, str]] = {}
         for entry in schemas:
@@ -56,7 +58,7 @@ def read_configurations(path: Path) -> dict[str, dict[str, str]]:
             if isinstance(configs, list) and configs and isinstance(configs[0], dict):
                 assignment = configs[0].get("assignment")
                 if _is_assignment(assignment):
-                    out[str(entry.get("name"))] = {str(r): str(c) for r, c in assignment.items()}  # type: ignore[union-attr]
+                    out[str(entry.get("name"))] = _roles(assignment)
         if out:
             return out
     raise InvalidInputError(
@@ -75,8 +77,13 @@ def read_configurations(path: Path) -> dict[str, dict[str, str]]:
 
 def _is_assignment(value: Any) -> bool:
     return isinstance(value, dict) and all(
-        isinstance(k, str) and isinstance(v, str) for k, v in value.items()
+        isinstance(k, str) and (isinstance(v, str) or v is None) for k, v in value.items()
     )
+
+
+def _roles(assignment: Any) -> dict[str, str]:
+    """Return role -> component; ``null`` (an optional role left empty) becomes ``EMPTY``."""
+    return {str(r): EMPTY if c is None else str(c) for r, c in assignment.items()}
 
 
 def render_configurations(configs: Mapping[str, Mapping[str, str]]) -> str:

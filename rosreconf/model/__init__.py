@@ -47,6 +47,7 @@ from rosreconf.model.library import (
     Substitution,
 )
 from rosreconf.model.schema import (
+    EMPTY,
     Configuration,
     ConfigurationLibrary,
     Edge,
@@ -56,6 +57,8 @@ from rosreconf.model.schema import (
     VertexKind,
     interface_vertex,
     node_vertex,
+    shown,
+    shown_text,
 )
 
 if TYPE_CHECKING:
@@ -72,6 +75,7 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = [
+    "EMPTY",
     "NOWHERE",
     "Component",
     "ComponentLibrary",
@@ -97,4 +101,6 @@ __all__ = [
     "VertexKind",
     "interface_vertex",
     "node_vertex",
+    "shown",
+    "shown_text",
 ]

@@ -56,6 +56,7 @@ _I = "rosreconf.solve.instance:"
 _S = "rosreconf.solve.solver:"
 _F = "rosreconf.solve.factors:"
 _P = "rosreconf.planning.pddl:"
+_E = "rosreconf.solve.emptyroles:"
 _CANDIDATES = {  # who may fill a role is decided once, by the candidate domains
     Encoding.CLINGO: (_I + "compile_instance", _S + "_facts"),
     Encoding.COUNTING: (_I + "compile_instance", _I + "prune"),
@@ -214,6 +215,26 @@ RULES: tuple[Rule, ...] = (
             Encoding.COUNTING: (_I + "compile_instance",),
             Encoding.ELIMINATION: (_I + "compile_instance",),
             Encoding.PDDL: (_I + "compile_instance",),
+        },
+    ),
+    Rule(
+        "optional-role",
+        "extension (roles a stack may leave empty: an add-on EKF, a map server under SLAM; "
+        "issue 22)",
+        "an optional role may be left empty; an edge touching an empty role imposes nothing, "
+        "but every requirement of every chosen component is still met along the remaining "
+        "edges (so a consumer only that role can serve forces it to be filled)",
+        (),
+        {
+            Encoding.DEFINITION: (_V + "_violations", _V + "requirement_met"),
+            Encoding.CLINGO: (_I + "compile_instance", _E + "with_empty_choices", _S + "_Reader"),
+            Encoding.COUNTING: (_I + "compile_instance", _E + "with_empty_choices"),
+            Encoding.ELIMINATION: (_I + "compile_instance", _E + "with_empty_choices"),
+            Encoding.PDDL: (
+                _I + "compile_instance",
+                _E + "with_empty_choices",
+                _P + "_choose_actions",
+            ),
         },
     ),
 )

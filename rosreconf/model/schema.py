@@ -19,6 +19,23 @@ if TYPE_CHECKING:  # networkx costs 0.2 s to import: only the commands that buil
     import networkx as nx
 
 
+EMPTY = ""
+"""The component of an optional role a configuration leaves empty (``Configuration``).
+
+Never a component's name (names start with a letter). Reports print it as ``(empty)`` and
+JSON as ``null``."""
+
+
+def shown(mapping: Mapping[str, str]) -> dict[str, str | None]:
+    """Return role -> component with ``None`` for an empty role: the JSON documents' form."""
+    return {r: (c if c != EMPTY else None) for r, c in mapping.items()}
+
+
+def shown_text(component: str) -> str:
+    """Return a component as reports print it (``(empty)`` for an empty optional role)."""
+    return component if component != EMPTY else "(empty)"
+
+
 @dataclass(frozen=True)
 class Role:
     """A vertex of a system graph: a place one component fills.
@@ -28,12 +45,18 @@ class Role:
         abstraction: the label (from Lambda) a component needs to fill it.
         description: free text.
         span: where it was written.
+        optional: True when a configuration may leave the role empty (an extension of
+            Def. 5: an add-on EKF, a map server not needed under SLAM). Edges touching an empty
+            role impose nothing; every requirement of every chosen component must still be
+            met along the remaining edges (Lemma 4), so a consumer only the role can serve
+            forces it to be filled (docs/formats.md, "Optional roles").
     """
 
     name: str
     abstraction: str
     description: str = ""
     span: Span = field(default=NOWHERE, compare=False)
+    optional: bool = False
 
 
 @dataclass(frozen=True)
@@ -98,7 +121,7 @@ class SystemGraph:
 
         g = nx.DiGraph()
         for r in self.roles:
-            g.add_node(r.name, abstraction=r.abstraction)
+            g.add_node(r.name, abstraction=r.abstraction, optional=r.optional)
         for e in self.edges:
             g.add_edge(e.provider, e.consumer, interfaces=sorted(e.interfaces), optional=e.optional)
         return g
@@ -170,13 +193,14 @@ class ConfigurationLibrary:
 
 @dataclass(frozen=True)
 class Configuration:
-    """A filling of every role of one schema by one component.
+    """A filling of every role of one schema by one component (optional roles may be empty).
 
     Whether it is *valid* is decided by ``rosreconf.model.validity``; this class only holds it.
 
     Attributes:
         schema: the schema's name.
-        assignment: role -> component name, in the schema's role order.
+        assignment: role -> component name, in the schema's role order; an optional role
+            left empty holds ``EMPTY``.
     """
 
     schema: str
@@ -184,18 +208,38 @@ class Configuration:
 
     @staticmethod
     def of(schema: str, mapping: Mapping[str, str], roles: Iterable[Role]) -> Configuration:
-        """Build a configuration from a mapping, ordered by the schema's roles."""
-        return Configuration(schema, tuple((r.name, mapping[r.name]) for r in roles))
+        """Build a configuration from a mapping, ordered by the schema's roles.
+
+        An optional role the mapping leaves out (or maps to ``EMPTY``) is empty; a required
+        one it leaves out is a ``KeyError``.
+        """
+        return Configuration(
+            schema,
+            tuple(
+                (r.name, mapping.get(r.name, EMPTY) if r.optional else mapping[r.name])
+                for r in roles
+            ),
+        )
 
     @property
     def mapping(self) -> dict[str, str]:
-        """Return role -> component as a fresh dict."""
+        """Return role -> component as a fresh dict (``EMPTY`` for an empty role)."""
         return dict(self.assignment)
+
+    @property
+    def shown(self) -> dict[str, str | None]:
+        """Return role -> component with ``None`` for an empty role (JSON documents)."""
+        return shown(self.mapping)
+
+    @property
+    def filled(self) -> dict[str, str]:
+        """Return role -> component of the filled roles only, as a fresh dict."""
+        return {r: c for r, c in self.assignment if c != EMPTY}
 
     @property
     def components(self) -> tuple[str, ...]:
         """Return the chosen components in role order (the paper's configuration rows)."""
-        return tuple(c for _, c in self.assignment)
+        return tuple(c for _, c in self.assignment if c != EMPTY)
 
 
 class VertexKind(enum.StrEnum):

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rosreconf.model import (
+    EMPTY,
     Component,
     ComponentLibrary,
     Configuration,
@@ -152,8 +153,9 @@ def _violations(
     chosen: dict[str, Component] = {}
     for role in schema.graph.roles:
         name = mapping.get(role.name)
-        if name is None:
-            yield Violation("missing-role", f"role '{role.name}' is not filled")
+        if name is None or name == EMPTY:
+            if not role.optional:  # rule optional-role: only an optional role may be empty
+                yield Violation("missing-role", f"role '{role.name}' is not filled")
             continue
         if name not in library:
             yield Violation("unknown-component", f"'{name}' is not in the library", (name,))
@@ -248,19 +250,24 @@ def ros_graph(
 ) -> RosGraph:
     """Build the concrete ROS-graph (Def. 1) of a valid configuration.
 
-    Nodes are the chosen components; along every system-graph edge (optional ones too, where
-    the pair shares something), each interface that realises it becomes a topic or service
-    vertex with edges provider -> vertex -> consumer.
+    Nodes are the chosen components (an empty optional role has none); along every
+    system-graph edge between two filled roles (optional edges too, where the pair shares
+    something), each interface that realises it becomes a topic or service vertex with edges
+    provider -> vertex -> consumer.
     Provisions nobody uses stay dormant (Section 3) and are not drawn.
     """
     import networkx as nx  # here, not at the top: validating files never builds a ROS-graph
 
     g: RosGraph = nx.DiGraph()
-    mapping = configuration.mapping
+    mapping = configuration.filled  # an empty optional role has no node and no edges
     for role in schema.graph.roles:
+        if role.name not in mapping:
+            continue
         comp = library[mapping[role.name]]
         g.add_node(node_vertex(comp.name), kind=VertexKind.NODE, role=role.name, label=comp.name)
     for edge in schema.graph.edges:
+        if edge.consumer not in mapping or edge.provider not in mapping:
+            continue
         consumer = library[mapping[edge.consumer]]
         provider = library[mapping[edge.provider]]
         for iface in edge_interfaces(consumer, provider, edge):

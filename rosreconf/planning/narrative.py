@@ -11,6 +11,7 @@ from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 
 from rosreconf.model import (
+    EMPTY,
     Component,
     ComponentLibrary,
     Configuration,
@@ -22,12 +23,13 @@ from rosreconf.model.validity import requirement_met, violations
 
 @dataclass(frozen=True)
 class Change:
-    """What happens to one role: keep its component, replace it, or start one in it.
+    """What happens to one role: keep it, replace its component, start one, or stop it.
 
     Attributes:
         role: the role.
-        before: the component running now (None when nothing runs there).
-        after: the component of the new configuration.
+        before: the component running now (None when nothing is known to run there,
+            ``EMPTY`` when the optional role is left empty now).
+        after: the component of the new configuration (``EMPTY``: left empty).
     """
 
     role: str
@@ -36,16 +38,25 @@ class Change:
 
     @property
     def kind(self) -> str:
-        """Return ``keep``, ``replace`` or ``start``."""
-        if self.before == self.after:
+        """Return ``keep``, ``replace``, ``start`` or ``stop`` (an optional role emptied)."""
+        if (self.before or EMPTY) == self.after:
             return "keep"
-        return "start" if self.before is None else "replace"
+        if not self.before:
+            return "start"
+        return "stop" if self.after == EMPTY else "replace"
+
+    @property
+    def counted(self) -> bool:
+        """Tell whether the objective counts this as a change (something ran, or was empty)."""
+        return self.before is not None and self.before != self.after
 
     def __str__(self) -> str:
         if self.kind == "keep":
-            return f"{self.role}: keep {self.after}"
+            return f"{self.role}: keep {self.after or 'it empty'}"
         if self.kind == "start":
             return f"{self.role}: start {self.after}"
+        if self.kind == "stop":
+            return f"{self.role}: stop {self.before}, leave it empty"
         return f"{self.role}: stop {self.before}, start {self.after}"
 
 
@@ -149,24 +160,23 @@ def explain_replan(
     for role, comp in current.items():
         if comp in failed:
             lines.append(f"{comp} ({role}) has failed.")
-    replaced = [c for c in changes(current, new) if c.kind == "replace"]
+    every = changes(current, new)
+    replaced = [c for c in every if c.kind in ("replace", "stop")]
     for change in replaced:
         assert change.before is not None
         why = _why_not_kept(library, schema, failed, new, change.role, change.before)
+        after = f"{change.after} takes over" if change.after else "the role is left empty"
         if why:
             because = "; ".join(why)
-            lines.append(
-                f"{change.role}: {change.before} cannot stay ({because}); "
-                f"{change.after} takes over."
-            )
+            lines.append(f"{change.role}: {change.before} cannot stay ({because}); {after}.")
         else:
             lines.append(
                 f"{change.role}: {change.before} is replaced by {change.after} although it could "
                 "have stayed (the planner's choice; see the change count below)."
             )
-    if not replaced:
+    n = sum(1 for c in every if c.counted)
+    if not n:
         lines.append("Nothing has to change." if current else "")
-    n = len(replaced)
     if fewest_changes is not None and current:
         if n == fewest_changes:
             lines.append(f"{n} part(s) change: the fewest possible.")

@@ -45,6 +45,7 @@ import jinja2
 from rosreconf.model import Configuration, Requirement
 from rosreconf.planning.pddl_names import PddlNameError, PddlNames, Step, label
 from rosreconf.resources import Bundle, bundled
+from rosreconf.solve.emptyroles import as_candidate, as_chosen
 from rosreconf.solve.instance import Instance
 from rosreconf.solve.objective import Objective
 
@@ -157,7 +158,7 @@ def render(
         "actions": actions,
         "start": f"(choosing {roles[0]})" if roles else "(finished)",
         "failed": sorted(comps[n] for n in inst.failed if n in comps),
-        "current": [(names.role(r), c) for r, c in current.items()],
+        "current": [(names.role(r), c or "(empty)") for r, c in current.items()],
         "weights": dict(objective.weights),
         "forbid": [f[1:-1] for f in forbidden],
     }
@@ -287,11 +288,14 @@ def _choose_actions(
                 for w, q in t.serves.get((u, c.name), ())
             ]
             keep = objective.current.get(role.name)
+            keep = None if keep is None else as_candidate(role.name, keep)
             cost = costs.metric[c.name] + (costs.change if keep and keep != c.name else 0)
+            chosen = as_chosen(c.name)  # rule optional-role: the empty choice is EMPTY
             name = names.action(
-                f"choose-{roles[u]}-{comps[c.name]}", Step("choose", role.name, c.name)
+                f"choose-{roles[u]}-{comps[c.name]}", Step("choose", role.name, chosen)
             )
-            comment = f"{'keep' if keep == c.name else 'start'} {c.name} as {role.name}"
+            verb = "keep" if keep == c.name else "start" if chosen else "leave"
+            comment = f"{verb} {c.name} as {role.name}" if chosen else f"{verb} {role.name} empty"
             out.append(Action(name, comment, list(dict.fromkeys(pre)), eff, cost))
     return out
 
@@ -330,7 +334,7 @@ def _finish_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Action
             pre += [f"(met {roles[u]} {t.reqs[r]})" for r in dict.fromkeys(c.requires)]
             pre += [f"(chosen {comps[d]})" for d in sorted(c.needs)]
             name = names.action(
-                f"finish-{roles[u]}-{comps[c.name]}", Step("finish", role.name, c.name)
+                f"finish-{roles[u]}-{comps[c.name]}", Step("finish", role.name, as_chosen(c.name))
             )
             comment = f"{c.name} has all it requires and needs"
             out.append(Action(name, comment, pre, t.after("checking", u), 0))
@@ -345,10 +349,12 @@ def _avoid_actions(
     usable = [  # a configuration using a non-candidate cannot come out anyway
         f
         for f in forbid
-        if f.assignment and all(c in t.comps and r in index for r, c in f.assignment)
+        if f.assignment
+        and all(as_candidate(r, c) in t.comps and r in index for r, c in f.assignment)
     ]
     for k, f in enumerate(usable, start=1):
-        for r, c in f.assignment:
+        for r, given in f.assignment:
+            c = as_candidate(r, given)  # rule optional-role: an empty role's empty choice
             role = t.roles[index[r]]
             pre = ["(finished)", f"(not (avoided-{k}))", f"(not (uses {role} {t.comps[c]}))"]
             if k > 1:

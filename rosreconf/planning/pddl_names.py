@@ -1,7 +1,10 @@
-"""Turn model names into PDDL names and back, refusing any two that would collide.
+"""Turn model names into PDDL names and back, never letting two model names share one.
 
 PDDL is case-insensitive and has one object namespace; model names are
-``[A-Za-z][A-Za-z0-9_]*`` and interface labels may contain ``/``. See docs/pddl.md.
+``[A-Za-z][A-Za-z0-9_]*`` and interface labels may contain ``/``. A role and a component may
+have the same name (a role named like its only component), and two roles may differ only in
+case: such a name is given a prefix with ``-`` (which no model name has), so every library
+``validate`` passes can be planned. See docs/pddl.md.
 """
 
 from __future__ import annotations
@@ -38,11 +41,15 @@ class Step:
 
 
 class PddlNames:
-    """Turn model names into PDDL names and back; refuse any two names that would collide.
+    """Turn model names into PDDL names and back; never give two model names one PDDL name.
 
     PDDL is case-insensitive, so every name is lower-cased; interface labels may contain ``/``
     (ROS graph resource names), which becomes ``__``, and a leading ``/`` becomes ``root__``.
-    Roles, components and requirements share PDDL's one object namespace.
+    Roles, components and requirements share PDDL's one object namespace: a role or component
+    whose lower-cased name is already another's becomes ``role-NAME`` or ``component-NAME``
+    (then ``role2-NAME`` ...), deterministic in the order names are registered (``render``
+    registers the roles first, in schema order). Model names never hold ``-``, so a prefixed
+    name cannot be any other role's or component's.
 
     Attributes:
         objects: PDDL object name -> (kind, model name) for roles and components.
@@ -56,27 +63,27 @@ class PddlNames:
         self.actions: dict[str, Step] = {}
         self._of: dict[tuple[str, str], str] = {}
 
-    def _claim(self, pddl: str, what: str, model: str) -> None:
-        owner = self.objects.get(pddl)
-        if owner is not None and owner != (what, model):
-            raise PddlNameError(
-                f"{owner[0]} '{owner[1]}' and {what} '{model}' both become the PDDL name "
-                f"'{pddl}' (PDDL ignores case and shares one namespace): rename one"
-            )
+    def _claim(self, what: str, model: str) -> str:
+        """Return the PDDL name of ``model``, registering a free one on first sight."""
+        known = self._of.get((what, model))
+        if known is not None:
+            return known
+        base = model.lower()
+        pddl, n = base, 1
+        while pddl in self.objects:  # taken by another role or component (or a requirement)
+            pddl = f"{what}{n if n > 1 else ''}-{base}"
+            n += 1
         self.objects[pddl] = (what, model)
         self._of[(what, model)] = pddl
+        return pddl
 
     def role(self, name: str) -> str:
         """Return (and register) the PDDL name of the role ``name``."""
-        pddl = name.lower()
-        self._claim(pddl, "role", name)
-        return pddl
+        return self._claim("role", name)
 
     def component(self, name: str) -> str:
         """Return (and register) the PDDL name of the component ``name``."""
-        pddl = name.lower()
-        self._claim(pddl, "component", name)
-        return pddl
+        return self._claim("component", name)
 
     def requirement(self, req: Requirement, *, qualified: bool) -> str:
         """Return (and register) the PDDL name of a requirement: its labels joined by ``-or-``.
@@ -87,7 +94,7 @@ class PddlNames:
         parts = [label(o.label) + (f"-{label(o.type)}" if qualified else "") for o in req.options]
         pddl = "-or-".join(parts)
         if pddl not in self.requirements and pddl in self.objects:
-            pddl = f"req_{pddl}"  # a role or component has the label's name (role map, topic map)
+            pddl = f"req-{pddl}"  # a role or component has the label's name ('-': no model name)
         known = self.requirements.get(pddl)
         if (known is not None and known.options != req.options) or (
             known is None and pddl in self.objects

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from rosreconf.errors import UsageError
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import EMPTY, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
 from rosreconf.outfiles import output_folder, write_files_atomic
 from rosreconf.planning.narrative import Change, changes, explain_impossible, explain_replan
@@ -198,7 +198,7 @@ def unaffected(
     ``validity.violations``, so a failure that breaks it indirectly is never missed).
     """
     roles = schema.graph.roles
-    if not current or any(r.name not in current for r in roles):
+    if not current or any(r.name not in current for r in roles if not r.optional):
         return None
     down = set(failed)
     if down & set(current.values()):
@@ -270,9 +270,11 @@ def _step_text(step: Step, current: Mapping[str, str], chosen: Mapping[str, str]
     """Say one plan step the way Figure 8 of the paper lists them."""
     if step.kind == "choose":
         before = current.get(step.role)
-        if before == step.component:
-            return f"keep {step.component} as {step.role}"
-        if before is None:
+        if (before or EMPTY) == step.component:
+            return f"keep {step.component} as {step.role}" if before else f"keep {step.role} empty"
+        if step.component == EMPTY:  # rule optional-role
+            return f"stop {before}, leave {step.role} empty"
+        if not before:
             return f"start {step.component} as {step.role}"
         return f"stop {before}, start {step.component} as {step.role}"
     assert step.requirement is not None and step.provider_role is not None

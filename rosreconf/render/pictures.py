@@ -117,7 +117,10 @@ def system_dot(schemas: Sequence[InteroperabilitySchema]) -> str:
         nx_graph = s.graph.to_networkx()
         for role, data in nx_graph.nodes(data=True):
             label = f"{role}\n({data['abstraction']})"
-            g.node(f"{s.name}:role:{role}", label=label, shape="box", style="rounded")
+            style = "rounded"
+            if data["optional"]:  # may stay empty (docs/formats.md, "Optional roles")
+                label, style = label + "\noptional", "rounded,dashed"
+            g.node(f"{s.name}:role:{role}", label=label, shape="box", style=style)
         for provider, consumer, data in nx_graph.edges(data=True):
             extra = {"label": ", ".join(data["interfaces"])} if data["interfaces"] else {}
             if data["optional"]:
@@ -159,6 +162,17 @@ def ros_dot(
                 tooltip=f"{kind.value} {name}" + (f" ({data['type']})" if "type" in data else ""),
                 **STYLES[status],
             )
+        for role, comp in p.configuration.assignment:
+            if not comp:  # an optional role left empty: drawn as such, no node runs there
+                g.node(
+                    f"{p.schema.name}:empty:{role}",
+                    label=f"{role}\n(empty)",
+                    shape="box",
+                    style="rounded,dotted",
+                    color="#999999",
+                    fontcolor="#999999",
+                    tooltip=f"optional role {role}, left empty",
+                )
         for tail, head in _edges(new, old):
             data = _data(new, old, (tail, head))
             status = _status(
@@ -199,7 +213,9 @@ def library_dot(
             candidates = library.candidates(role.abstraction)
             for c in candidates:
                 rows.append(f"<TR><TD{_cell(c, s, dead, role.name)}</TD></TR>")
-            if not candidates:
+            if role.optional:
+                rows.append('<TR><TD><FONT COLOR="#999999"><I>may stay empty</I></FONT></TD></TR>')
+            elif not candidates:
                 rows.append('<TR><TD><FONT COLOR="#cc0000">no candidate</FONT></TD></TR>')
             table = '<TABLE BORDER="0" CELLBORDER="1" CELLSPACING="0" CELLPADDING="4">'
             g.node(

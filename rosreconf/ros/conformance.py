@@ -130,7 +130,7 @@ class Conformance:
             "conformant": self.ok,
             "master_uri": self.live.master_uri,
             "taken_at": self.live.taken_at.isoformat(),
-            "configuration": self.configuration.mapping,
+            "configuration": self.configuration.shown,
             "expected_nodes": self.expected_nodes,
             "findings": [
                 {
@@ -192,42 +192,67 @@ def _edges(
         if kind is VertexKind.NODE:
             continue
         label, typ = str(data["label"]), str(data["type"])
-        (provider,) = (p for _, p in expected.predecessors(vertex))
         consumers = sorted(c for _, c in expected.successors(vertex))
-        name = interface_live_name(comps[provider], label)
-        node = answering.get(node_live_name(comps[provider]))
-        what = "service" if kind is VertexKind.SERVICE else "topic"
-        if node is not None and name not in (node.serves if what == "service" else node.publishes):
-            verb = "serve" if what == "service" else "publish"
-            msg = f"{provider} does not {verb} {what} {name} ({label})"
-            found.append(Finding(f"missing-{what}", msg, provider, name))
-        live_type = graph.topic_types.get(name)
-        if what == "topic" and live_type is not None and not same_type(live_type, typ):
-            msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
-            found.append(Finding("wrong-type", msg, provider, name))
-        for consumer in consumers:
-            user = answering.get(node_live_name(comps[consumer]))
-            own = interface_live_name(comps[consumer], label)
-            if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
-                msg = f"{consumer} does not subscribe to topic {name} ({label})"
-                found.append(Finding("missing-topic", msg, consumer, name))
-            if (
-                what == "service"
-                and graph.ros_version == 2
-                and user is not None
-                and not {name, own} & set(user.clients)
-            ):
-                msg = f"{consumer} does not call service {name} ({label})"
-                found.append(Finding("missing-client", msg, consumer, name))
-            if what == "topic" and node is not None and user is not None:
-                found += _qos(provider, node, consumer, user, name, own, label)
-            if user is not None and name not in (served if what == "service" else published):
-                how = "serves" if what == "service" else "publishes"
-                msg = (
-                    f"{consumer} uses {what} {name} ({label}, {typ}) of {provider}, "
-                    f"which nothing live {how} (Lemma 4)"
-                )
-                found.append(Finding("unmet-requirement", msg, consumer, name))
+        # a topic may have several chosen publishers (Nav2's controller_server and
+        # behavior_server both publish cmd_vel_nav): each is checked
+        for provider in sorted(p for _, p in expected.predecessors(vertex)):
+            found += _interface(
+                graph, answering, comps, (served, published), provider, consumers, label, typ, kind
+            )
+    return list(dict.fromkeys(found))  # two publishers under one name: one finding each
+
+
+def _interface(
+    graph: LiveGraph,
+    answering: dict[str, LiveNode],
+    comps: dict[str, Component],
+    live: tuple[set[str], set[str]],
+    provider: str,
+    consumers: list[str],
+    label: str,
+    typ: str,
+    kind: VertexKind,
+) -> list[Finding]:
+    """Check one provider's topic or service, and its consumers, against the live nodes.
+
+    ``live`` is what every answering node serves and publishes.
+    """
+    found: list[Finding] = []
+    served, published = live
+    name = interface_live_name(comps[provider], label)
+    node = answering.get(node_live_name(comps[provider]))
+    what = "service" if kind is VertexKind.SERVICE else "topic"
+    if node is not None and name not in (node.serves if what == "service" else node.publishes):
+        verb = "serve" if what == "service" else "publish"
+        msg = f"{provider} does not {verb} {what} {name} ({label})"
+        found.append(Finding(f"missing-{what}", msg, provider, name))
+    live_type = graph.topic_types.get(name)
+    if what == "topic" and live_type is not None and not same_type(live_type, typ):
+        msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
+        found.append(Finding("wrong-type", msg, provider, name))
+    for consumer in consumers:
+        user = answering.get(node_live_name(comps[consumer]))
+        own = interface_live_name(comps[consumer], label)
+        if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
+            msg = f"{consumer} does not subscribe to topic {name} ({label})"
+            found.append(Finding("missing-topic", msg, consumer, name))
+        if (
+            what == "service"
+            and graph.ros_version == 2
+            and user is not None
+            and not {name, own} & set(user.clients)
+        ):
+            msg = f"{consumer} does not call service {name} ({label})"
+            found.append(Finding("missing-client", msg, consumer, name))
+        if what == "topic" and node is not None and user is not None:
+            found += _qos(provider, node, consumer, user, name, own, label)
+        if user is not None and name not in (served if what == "service" else published):
+            how = "serves" if what == "service" else "publishes"
+            msg = (
+                f"{consumer} uses {what} {name} ({label}, {typ}) of {provider}, "
+                f"which nothing live {how} (Lemma 4)"
+            )
+            found.append(Finding("unmet-requirement", msg, consumer, name))
     return found
 
 

@@ -169,11 +169,14 @@ def _wiring(
     for vertex, (kind, consumer) in g.edges:
         if vertex[0] is K.NODE or kind is not K.NODE:
             continue
-        (provider_vertex,) = (v for v, _ in g.in_edges(vertex) if v[0] is K.NODE)
-        provider = library[provider_vertex[1]]
         label = str(g.nodes[vertex]["label"])
         own = _real_name(library[consumer], label)
-        wanted.setdefault((consumer, own), {})[provider.name] = _real_name(provider, label)
+        # a topic may have several publishers (Nav2's controller_server and behavior_server
+        # both publish cmd_vel_nav): each one's real name is wanted, one remapping if they agree
+        for provider_vertex, _ in g.in_edges(vertex):
+            if provider_vertex[0] is K.NODE:
+                provider = library[provider_vertex[1]]
+                wanted.setdefault((consumer, own), {})[provider.name] = _real_name(provider, label)
     remaps: dict[str, list[tuple[str, str]]] = {}
     notes: dict[str, list[str]] = {}
     for (consumer, own), targets in sorted(wanted.items()):

@@ -268,15 +268,15 @@ class Watcher:
             self._hopeless = failed
             return False
         old = self.current.mapping
-        changes = [(r, old[r], c) for r, c in new.assignment if old.get(r) != c]
-        text = "; ".join(f"{r}: {a} -> {b}" for r, a, b in changes)
+        changes = [(r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c]
+        text = "; ".join(f"{r}: {a or '(empty)'} -> {b or '(empty)'}" for r, a, b in changes)
         self._say(
             "replanned",
             f"replanned without {', '.join(sorted(failed))}: "
             f"{len(changes)} change(s), {fewest}: {text}",
             failed=sorted(failed),
-            configuration=new.mapping,
-            changes=[{"role": r, "from": a, "to": b} for r, a, b in changes],
+            configuration=new.shown,
+            changes=[{"role": r, "from": a or None, "to": b or None} for r, a, b in changes],
         )
         # best_configuration is the exact optimum of the change count, so it is the fewest by
         # proof; passing len(changes) as "fewest" would only compare a number with itself.
@@ -288,6 +288,8 @@ class Watcher:
         graph = self._read()
         for role, old_comp, new_comp in changes:
             self._lifecycle(old_comp, new_comp, role)
+            if not old_comp:  # an optional role that was empty: nothing to stop
+                continue
             name = node_live_name(self.library[old_comp])
             alive = any(n.name == name for n in graph.nodes)
             reason = f"rosreconf: {role} is now {new_comp}"
@@ -299,7 +301,7 @@ class Watcher:
                 )
         self.current = new
         self._seen -= {a for _, a, _ in changes}
-        return self._start([b for _, _, b in changes], "new in the configuration")
+        return self._start([b for _, _, b in changes if b], "new in the configuration")
 
     def _lifecycle(self, old_comp: str, new_comp: str, role: str) -> None:
         """List the lifecycle transitions swapping managed nodes (ROS 2 ``ros.lifecycle``)."""
@@ -307,6 +309,8 @@ class Watcher:
             return
         steps: list[str] = []
         for comp, stop in ((old_comp, True), (new_comp, False)):
+            if not comp:  # an optional role left empty
+                continue
             launch = self.library[comp].launch
             if launch is not None and launch.lifecycle:
                 steps += lifecycle_steps(node_live_name(self.library[comp]), stop=stop)

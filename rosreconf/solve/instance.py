@@ -23,6 +23,7 @@ from rosreconf.model import (
     InteroperabilitySchema,
     Role,
 )
+from rosreconf.solve.emptyroles import with_empty_choices
 
 
 @dataclass
@@ -31,11 +32,13 @@ class Instance:
 
     Attributes:
         schema: the interoperability schema.
-        library: the component library L.
+        library: the component library L, with each optional role's empty choice appended
+            (a component that provides and requires nothing), so every solver looks it up
+            like any other candidate.
         failed: names of components that are unavailable.
         roles: the schema's roles, in order (variable i is roles[i]).
         domains: per role, the candidate components (available, label and schema match),
-            in library order.
+            in library order; an optional role's empty choice (``empty_choice``) last.
         excluded: per role, candidate name -> why it was ruled out before solving.
         edges: the (consumer, provider) role indices of the schema's *required* edges, the
             ones every configuration must realise; optional edges are left out (rule
@@ -134,6 +137,7 @@ def compile_instance(
                 dom.append(c)
         domains.append(dom)
         excluded.append(why)
+    library = with_empty_choices(library, roles, domains)  # rule optional-role
     inst = Instance(schema, library, dead, roles, domains, excluded)
     ids: dict[Interface, int] = {}
     provides: dict[str, frozenset[int]] = {}
@@ -157,15 +161,21 @@ def compile_instance(
         inst.edges.append((u, v))
         partners: dict[str, set[str]] = {}
         offered = [(cv.name, provides[cv.name]) for cv in domains[v]]
+        # rule optional-role: an edge touching an empty role is realised whatever the other
+        # end holds (its requirements are still met elsewhere: ``meets``)
+        empty_v = {domains[v][-1].name} if roles[v].optional else set()
         # the mates depend only on the consumer's requirements: candidates with the same
         # ones share one (read-only) set
         by_opts: dict[tuple[tuple[int, ...], ...], set[str]] = {}
         for cu in domains[u]:
+            if roles[u].optional and cu is domains[u][-1]:
+                partners[cu.name] = {cv.name for cv in domains[v]}
+                continue
             reqs = options[cu.name]
             mates = by_opts.get(reqs)
             if mates is None:
                 wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
-                mates = by_opts[reqs] = (
+                mates = by_opts[reqs] = empty_v | (
                     {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
                 )
             if mates:
@@ -264,6 +274,10 @@ def interchangeable(inst: Instance, alive: list[list[str]]) -> list[list[list[st
     lib = inst.library.by_name
     roles_of: dict[str, int] = {}
     named: set[str] = set(inst.clashes)
+    # an empty choice is never interchangeable with a component that provides and requires
+    # nothing: it realises every edge, that component none
+    roles_domains = zip(inst.roles, inst.domains, strict=True)
+    named.update(dom[-1].name for r, dom in roles_domains if r.optional)
     for names in alive:
         for n in names:
             roles_of[n] = roles_of.get(n, 0) + 1

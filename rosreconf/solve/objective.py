@@ -11,7 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from rosreconf.model import Component, Configuration
+from rosreconf.model import EMPTY, Component, Configuration
+from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.instance import Instance
 
 METRIC_SCALE = 1000
@@ -38,6 +39,7 @@ class Objective:
         metric = sum(
             w * inst.library[c].metrics.get(m, 0.0)
             for _, c in config.assignment
+            if c != EMPTY  # an empty optional role costs nothing
             for m, w in self.weights.items()
         )
         return changes, metric
@@ -48,7 +50,7 @@ class Objective:
         index = inst.role_index
         changes = metric = 0
         for role, comp in config.assignment:
-            c, m = costs[index[role]][comp]
+            c, m = costs[index[role]][as_candidate(role, comp)]
             changes, metric = changes + c, metric + m
         return changes, metric
 
@@ -67,13 +69,15 @@ def unary_costs(inst: Instance, objective: Objective) -> list[dict[str, tuple[in
     """Return per role, candidate -> (change against current, scaled metric): the objective.
 
     A change counts when ``current`` names, for that role, another component of the
-    library; exactly the ``current``/``weight`` facts clingo receives.
+    library (or leaves that optional role empty, and the candidate fills it); exactly the
+    ``current``/``weight`` facts clingo receives.
     """
     known = inst.library.by_name
     weights = list(objective.weights.items())
     out = []
     for role, dom in zip(inst.roles, inst.domains, strict=True):
         now = objective.current.get(role.name)
+        now = None if now is None else as_candidate(role.name, now)
         watch = now is not None and now in known
         out.append({c.name: (int(watch and c.name != now), _scaled(weights, c)) for c in dom})
     return out

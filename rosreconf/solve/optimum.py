@@ -22,6 +22,7 @@ from collections.abc import Callable, Mapping, Sequence
 
 from rosreconf.model import Configuration
 from rosreconf.solve.dense import MinOut, TooWide, cap_for, run
+from rosreconf.solve.emptyroles import as_chosen
 from rosreconf.solve.factors import (
     MAX_FACTOR_ROWS,
     Factor,
@@ -161,7 +162,7 @@ def _minimise(
     where = [{c: j for j, c in enumerate(names)} for names in alive]
     for choices in reversed(trace):
         chosen[choices.var] = choices.pick(chosen, where)
-    mapping = {inst.roles[r].name: chosen[r] for r in range(len(inst.roles))}
+    mapping = {inst.roles[r].name: as_chosen(chosen[r]) for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
     return config, sum(scalars) + sum(offsets)
 
@@ -196,7 +197,7 @@ def _dense_minimise(
         chosen[var] = pick
         extra += costs[var][pick]
     step.traceback(chosen, sizes)
-    mapping = {inst.roles[r].name: alive[r][chosen[r]] for r in range(len(inst.roles))}
+    mapping = {inst.roles[r].name: as_chosen(alive[r][chosen[r]]) for r in range(len(inst.roles))}
     config = Configuration.of(inst.schema.name, mapping, inst.roles)
     return config, step.total() + extra
 

@@ -38,7 +38,8 @@ from rosreconf.solve.solver import best_configuration, configurations, why_not
 
 def declared_nominal(schema: InteroperabilitySchema) -> Configuration | None:
     """Return the schema's declared nominal configuration, or None when it declares none."""
-    if not schema.nominal or any(r.name not in schema.nominal for r in schema.graph.roles):
+    roles = schema.graph.roles  # an optional role the nominal leaves out is empty
+    if not schema.nominal or any(r.name not in schema.nominal for r in roles if not r.optional):
         return None
     return Configuration.of(schema.name, schema.nominal, schema.graph.roles)
 
@@ -199,7 +200,7 @@ def checked(
     Raises:
         RosreconfError: a role is empty or a rule of validity is broken (exit 1).
     """
-    roles = {r.name for r in s.graph.roles}
+    roles = {r.name for r in s.graph.roles if not r.optional}  # optional: may stay empty
     missing = sorted(roles - set(mapping))
     if missing:
         raise RosreconfError(f"{source}: {s.name}: roles not filled: {', '.join(missing)}")

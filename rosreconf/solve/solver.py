@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.solve.emptyroles import as_candidate, as_chosen
 from rosreconf.solve.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
 from rosreconf.solve.instance import Instance, compile_instance, explain
 from rosreconf.solve.objective import METRIC_SCALE, Objective, scaled_metric, unary_costs
@@ -95,6 +96,7 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
     if objective is not None:
         index = inst.role_index
         for role, comp in objective.current.items():
+            comp = as_candidate(role, comp)  # an empty optional role: its empty choice
             if role in index and comp in ids:
                 out.append(f"current({index[role]},{ids[comp]}).")
         for c in inst.library.components:
@@ -130,7 +132,10 @@ class _Reader:
         self.schema = inst.schema.name
         self.roles = [r.name for r in inst.roles]
         self.table = {
-            clingo.Function("x", [clingo.Number(r), clingo.Number(ids[c.name])]): (r, c.name)
+            clingo.Function("x", [clingo.Number(r), clingo.Number(ids[c.name])]): (
+                r,
+                as_chosen(c.name),
+            )
             for r, dom in enumerate(inst.domains)
             for c in dom
         }

@@ -74,8 +74,9 @@ def _text(a: SchemaAnalysis) -> str:
     lines.append("  redundancy per role (r = candidates; usable = in some valid configuration):")
     for r in a.redundancy:
         usable = "?" if r.usable is None else str(len(r.usable))
+        empty = "  (optional: may stay empty)" if r.may_stay_empty else ""
         lines.append(
-            f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {_few(r.candidates)}"
+            f"    {r.role:<18} r={len(r.candidates)} usable={usable}  {_few(r.candidates)}{empty}"
         )
     if a.valid == 0:
         lines.append("  single points of failure: not applicable (no configuration to lose)")

@@ -13,7 +13,7 @@ from typing import Protocol
 
 from rosreconf import jsonout
 from rosreconf.formats.selection import Selection
-from rosreconf.model import Configuration, InteroperabilitySchema
+from rosreconf.model import EMPTY, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.reports import Output
 
@@ -65,7 +65,7 @@ class TextReporter:
         self, sel: Selection, s: InteroperabilitySchema, config: Configuration, n: int
     ) -> None:
         """Write one numbered line of components."""
-        self.write(f"  {n:>3}. {', '.join(config.components)}\n")
+        self.write(f"  {n:>3}. {_row(config)}\n")
 
     def end_schema(
         self,
@@ -146,7 +146,7 @@ class JsonReporter:
         self.first_config = False
         doc = {
             "index": n,
-            "assignment": config.mapping,
+            "assignment": config.shown,
             "components": list(config.components),
             "ros_graph": graph_dict(ros_graph(config, sel.library, s)),
         }
@@ -173,6 +173,11 @@ class JsonReporter:
 
     def close(self) -> None:
         self._w("]}\n")
+
+
+def _row(config: Configuration) -> str:
+    """Return a configuration's components in role order, an empty optional role said so."""
+    return ", ".join(c if c != EMPTY else f"({r} empty)" for r, c in config.assignment)
 
 
 REPORTERS: dict[Output, Callable[[Selection, Callable[[str], None]], EnumerateReporter]] = {

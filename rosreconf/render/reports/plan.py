@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from rosreconf import jsonout
 from rosreconf.formats.selection import Selection
-from rosreconf.model import Configuration
+from rosreconf.model import Configuration, shown, shown_text
 from rosreconf.planning.planners import Planner, PlanStatus
 from rosreconf.planning.replan import ReplanResult
 from rosreconf.render.reports import Output
@@ -64,7 +64,7 @@ def _text(r: ReplanResult) -> str:
             out.append(f"  plan ({run.planner}, {run.elapsed:.2f} s, cost {run.cost}):")
         out += [f"  {n:>4}. {step}" for n, step in enumerate(r.steps, start=1)]
         out.append("  new configuration:")
-        out += [f"    {role:<20} {comp}" for role, comp in r.configuration.assignment]
+        out += [f"    {role:<20} {shown_text(comp)}" for role, comp in r.configuration.assignment]
         out.append("  change:")
         out += [f"    {c}" for c in r.changes]
     if r.explanation:
@@ -75,17 +75,22 @@ def _text(r: ReplanResult) -> str:
 
 def _schema_doc(r: ReplanResult) -> dict[str, Any]:
     run = r.planner
-    configs = [] if r.configuration is None else [{"assignment": r.configuration.mapping}]
+    configs = [] if r.configuration is None else [{"assignment": r.configuration.shown}]
     return {
         "name": r.schema.name,
         "title": r.schema.display_name,
         "status": str(r.status),
         "configurations": configs,
-        "current": dict(r.current),
+        "current": shown(r.current),
         "steps": list(r.steps),
         "actions": list(r.actions),
         "changes": [
-            {"role": c.role, "before": c.before, "after": c.after, "kind": c.kind}
+            {
+                "role": c.role,
+                "before": c.before or None,  # None: not running, or left empty
+                "after": c.after or None,
+                "kind": c.kind,
+            }
             for c in r.changes
         ],
         "fewest_changes": r.fewest_changes,
@@ -107,7 +112,7 @@ def pictures(results: Sequence[ReplanResult]) -> list[RosPicture]:
             r.schema,
             r.configuration,
             before=Configuration.of(r.schema.name, dict(r.current), r.schema.graph.roles)
-            if set(r.current) == {role.name for role in r.schema.graph.roles}
+            if {role.name for role in r.schema.graph.roles if not role.optional} <= set(r.current)
             else None,
         )
         for r in results

@@ -13,6 +13,7 @@ import math
 from rich.table import Table
 
 from rosreconf.analysis.simulate import SchemaSimulation, Sweep
+from rosreconf.model import shown_text
 
 
 def _number(value: float | None) -> float | None:
@@ -60,7 +61,7 @@ def table(report: SchemaSimulation, top: int = TOP) -> Table:
         mapping = p.configuration.mapping
         out.add_row(
             str(i + 1),
-            ", ".join(mapping[r] for r in dict.fromkeys(loop_roles)),
+            ", ".join(shown_text(mapping[r]) for r in dict.fromkeys(loop_roles)),
             "yes" if p.stable else "NO",
             _fmt(p.figures["settling_time"], " s"),
             _fmt(p.figures["steady_state_error"]),
