@@ -74,8 +74,8 @@ def _names(node: Node) -> frozenset[str]:
     return frozenset(text_of(n) for n in items) if items else _NO_NAMES
 
 
-Interfaces: TypeAlias = dict[tuple[bool, str, str], Interface]
-"""The interfaces built so far for one library, by (is a service, label, type): a large
+Interfaces: TypeAlias = dict[tuple[str, str, str], Interface]
+"""The interfaces built so far for one library, by (kind, label, type as written): a large
 library writes each of its few distinct interfaces many times, and one shared, equal
 (frozen) object per distinct interface saves building and hashing a new one each time."""
 
@@ -83,13 +83,12 @@ library writes each of its few distinct interfaces many times, and one shared, e
 def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
     items = node if type(node) is dict else map_of(node)  # map_of's first test, without a call
-    service = "service" in items
-    label = text_of(items["service" if service else "topic"])
-    key = (service, label, text_of(items["type"]))
+    kind = "service" if "service" in items else "action" if "action" in items else "topic"
+    label = text_of(items[kind])
+    key = (kind, label, text_of(items["type"]))
     interface = seen.get(key)
     if interface is None:
-        kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
-        interface = seen[key] = Interface(kind, label, key[2])
+        interface = seen[key] = Interface(InterfaceKind(kind), label, key[2])
     if "qos" in items:
         spec = items["qos"]
         found.qos[label] = QosProfile.from_dict(scalars_of(spec))

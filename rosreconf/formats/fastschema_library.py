@@ -5,7 +5,7 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = '7fe5490eac7c9f8a86b76bd69736c4e82258927dfeb3fa6c626f3c3de0422356'
+SOURCE = 'f7a003b8edabc8e0ec530f5add132b09092aac3a32197d9864c00a9627f8b7e3'
 import re
 
 _NUMBER = (int, float)
@@ -14,10 +14,10 @@ _C0 = frozenset({'components', 'description', 'format', 'name', 'version'})
 _C1 = re.compile('^[A-Za-z][A-Za-z0-9_]*$').search
 _C2 = set()  # texts _C1 matched
 _C3 = frozenset({'abstraction', 'description', 'dynamics', 'excludes', 'failure_probability', 'metrics', 'name', 'needs', 'provides', 'requires', 'ros', 'schemas'})
-_C4 = frozenset({'qos', 'service', 'topic', 'type'})
+_C4 = frozenset({'action', 'qos', 'service', 'topic', 'type'})
 _C5 = re.compile('^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$').search
 _C6 = set()  # texts _C5 matched
-_C7 = re.compile('^[A-Za-z][A-Za-z0-9_]*/[A-Za-z][A-Za-z0-9_]*$').search
+_C7 = re.compile('^[A-Za-z][A-Za-z0-9_]*/((msg|srv|action)/)?[A-Za-z][A-Za-z0-9_]*$').search
 _C8 = set()  # texts _C7 matched
 _C9 = frozenset({'deadline', 'depth', 'durability', 'lease_duration', 'liveliness', 'reliability'})
 _C10 = frozenset({'best_effort', 'reliable'})
@@ -36,73 +36,82 @@ _C20 = frozenset({'A', 'B', 'C', 'D'})
 def _branch0(data):
     if not type(data) is dict:
         return False
-    if ((not ('topic' not in data)) + (not ('service' not in data))) != 1:
+    if ((not ('topic' not in data)) + (not ('service' not in data)) + (not ('action' not in data))) != 1:
         return False
     if not data.keys() <= _C4:
         return False
-    v34 = data.get('topic', _MISSING)
-    if v34 is not _MISSING:
-        if not type(v34) is str:
+    v36 = data.get('topic', _MISSING)
+    if v36 is not _MISSING:
+        if not type(v36) is str:
             return False
-        if v34 not in _C6:
-            if _C5(v34) is None:
+        if v36 not in _C6:
+            if _C5(v36) is None:
                 return False
             if len(_C6) < 100000:
-                _C6.add(v34)
-    v35 = data.get('service', _MISSING)
-    if v35 is not _MISSING:
-        if not type(v35) is str:
+                _C6.add(v36)
+    v37 = data.get('service', _MISSING)
+    if v37 is not _MISSING:
+        if not type(v37) is str:
             return False
-        if v35 not in _C6:
-            if _C5(v35) is None:
+        if v37 not in _C6:
+            if _C5(v37) is None:
                 return False
             if len(_C6) < 100000:
-                _C6.add(v35)
-    v36 = data.get('type', _MISSING)
-    if v36 is _MISSING:
+                _C6.add(v37)
+    v38 = data.get('action', _MISSING)
+    if v38 is not _MISSING:
+        if not type(v38) is str:
+            return False
+        if v38 not in _C6:
+            if _C5(v38) is None:
+                return False
+            if len(_C6) < 100000:
+                _C6.add(v38)
+    v39 = data.get('type', _MISSING)
+    if v39 is _MISSING:
         return False
-    if not type(v36) is str:
+    if not type(v39) is str:
         return False
-    if v36 not in _C8:
-        if _C7(v36) is None:
+    if v39 not in _C8:
+        if _C7(v39) is None:
             return False
         if len(_C8) < 100000:
-            _C8.add(v36)
-    v37 = data.get('qos', _MISSING)
-    if v37 is not _MISSING:
-        if not type(v37) is dict:
+            _C8.add(v39)
+    v40 = data.get('qos', _MISSING)
+    if v40 is not _MISSING:
+        if not type(v40) is dict:
             return False
-        if not v37.keys() <= _C9:
+        if not v40.keys() <= _C9:
             return False
-        v38 = v37.get('reliability', _MISSING)
-        if v38 is not _MISSING:
-            if not (type(v38) is str and v38 in _C10):
-                return False
-        v39 = v37.get('durability', _MISSING)
-        if v39 is not _MISSING:
-            if not (type(v39) is str and v39 in _C11):
-                return False
-        v40 = v37.get('deadline', _MISSING)
-        if v40 is not _MISSING:
-            if not (type(v40) in _NUMBER or v40 is None):
-                return False
-            if type(v40) in _NUMBER and v40 <= 0:
-                return False
-        v41 = v37.get('liveliness', _MISSING)
+        v41 = v40.get('reliability', _MISSING)
         if v41 is not _MISSING:
-            if not (type(v41) is str and v41 in _C12):
+            if not (type(v41) is str and v41 in _C10):
                 return False
-        v42 = v37.get('lease_duration', _MISSING)
+        v42 = v40.get('durability', _MISSING)
         if v42 is not _MISSING:
-            if not (type(v42) in _NUMBER or v42 is None):
+            if not (type(v42) is str and v42 in _C11):
                 return False
-            if type(v42) in _NUMBER and v42 <= 0:
-                return False
-        v43 = v37.get('depth', _MISSING)
+        v43 = v40.get('deadline', _MISSING)
         if v43 is not _MISSING:
-            if not (type(v43) is int or (type(v43) is float and v43.is_integer())):
+            if not (type(v43) in _NUMBER or v43 is None):
                 return False
-            if v43 < 0:
+            if type(v43) in _NUMBER and v43 <= 0:
+                return False
+        v44 = v40.get('liveliness', _MISSING)
+        if v44 is not _MISSING:
+            if not (type(v44) is str and v44 in _C12):
+                return False
+        v45 = v40.get('lease_duration', _MISSING)
+        if v45 is not _MISSING:
+            if not (type(v45) in _NUMBER or v45 is None):
+                return False
+            if type(v45) in _NUMBER and v45 <= 0:
+                return False
+        v46 = v40.get('depth', _MISSING)
+        if v46 is not _MISSING:
+            if not (type(v46) is int or (type(v46) is float and v46.is_integer())):
+                return False
+            if v46 < 0:
                 return False
     return True
 
@@ -112,83 +121,92 @@ def _branch1(data):
         return False
     if not data.keys() <= _C13:
         return False
-    v56 = data.get('any_of', _MISSING)
-    if v56 is _MISSING:
+    v60 = data.get('any_of', _MISSING)
+    if v60 is _MISSING:
         return False
-    if not type(v56) is list:
+    if not type(v60) is list:
         return False
-    if len(v56) < 2:
+    if len(v60) < 2:
         return False
-    for v57 in v56:
-        if not type(v57) is dict:
+    for v61 in v60:
+        if not type(v61) is dict:
             return False
-        if ((not ('topic' not in v57)) + (not ('service' not in v57))) != 1:
+        if ((not ('topic' not in v61)) + (not ('service' not in v61)) + (not ('action' not in v61))) != 1:
             return False
-        if not v57.keys() <= _C4:
+        if not v61.keys() <= _C4:
             return False
-        v58 = v57.get('topic', _MISSING)
-        if v58 is not _MISSING:
-            if not type(v58) is str:
+        v62 = v61.get('topic', _MISSING)
+        if v62 is not _MISSING:
+            if not type(v62) is str:
                 return False
-            if v58 not in _C6:
-                if _C5(v58) is None:
+            if v62 not in _C6:
+                if _C5(v62) is None:
                     return False
                 if len(_C6) < 100000:
-                    _C6.add(v58)
-        v59 = v57.get('service', _MISSING)
-        if v59 is not _MISSING:
-            if not type(v59) is str:
+                    _C6.add(v62)
+        v63 = v61.get('service', _MISSING)
+        if v63 is not _MISSING:
+            if not type(v63) is str:
                 return False
-            if v59 not in _C6:
-                if _C5(v59) is None:
+            if v63 not in _C6:
+                if _C5(v63) is None:
                     return False
                 if len(_C6) < 100000:
-                    _C6.add(v59)
-        v60 = v57.get('type', _MISSING)
-        if v60 is _MISSING:
+                    _C6.add(v63)
+        v64 = v61.get('action', _MISSING)
+        if v64 is not _MISSING:
+            if not type(v64) is str:
+                return False
+            if v64 not in _C6:
+                if _C5(v64) is None:
+                    return False
+                if len(_C6) < 100000:
+                    _C6.add(v64)
+        v65 = v61.get('type', _MISSING)
+        if v65 is _MISSING:
             return False
-        if not type(v60) is str:
+        if not type(v65) is str:
             return False
-        if v60 not in _C8:
-            if _C7(v60) is None:
+        if v65 not in _C8:
+            if _C7(v65) is None:
                 return False
             if len(_C8) < 100000:
-                _C8.add(v60)
-        v61 = v57.get('qos', _MISSING)
-        if v61 is not _MISSING:
-            if not type(v61) is dict:
+                _C8.add(v65)
+        v66 = v61.get('qos', _MISSING)
+        if v66 is not _MISSING:
+            if not type(v66) is dict:
                 return False
-            if not v61.keys() <= _C9:
+            if not v66.keys() <= _C9:
                 return False
-            v62 = v61.get('reliability', _MISSING)
-            if v62 is not _MISSING:
-                if not (type(v62) is str and v62 in _C10):
-                    return False
-            v63 = v61.get('durability', _MISSING)
-            if v63 is not _MISSING:
-                if not (type(v63) is str and v63 in _C11):
-                    return False
-            v64 = v61.get('deadline', _MISSING)
-            if v64 is not _MISSING:
-                if not (type(v64) in _NUMBER or v64 is None):
-                    return False
-                if type(v64) in _NUMBER and v64 <= 0:
-                    return False
-            v65 = v61.get('liveliness', _MISSING)
-            if v65 is not _MISSING:
-                if not (type(v65) is str and v65 in _C12):
-                    return False
-            v66 = v61.get('lease_duration', _MISSING)
-            if v66 is not _MISSING:
-                if not (type(v66) in _NUMBER or v66 is None):
-                    return False
-                if type(v66) in _NUMBER and v66 <= 0:
-                    return False
-            v67 = v61.get('depth', _MISSING)
+            v67 = v66.get('reliability', _MISSING)
             if v67 is not _MISSING:
-                if not (type(v67) is int or (type(v67) is float and v67.is_integer())):
+                if not (type(v67) is str and v67 in _C10):
                     return False
-                if v67 < 0:
+            v68 = v66.get('durability', _MISSING)
+            if v68 is not _MISSING:
+                if not (type(v68) is str and v68 in _C11):
+                    return False
+            v69 = v66.get('deadline', _MISSING)
+            if v69 is not _MISSING:
+                if not (type(v69) in _NUMBER or v69 is None):
+                    return False
+                if type(v69) in _NUMBER and v69 <= 0:
+                    return False
+            v70 = v66.get('liveliness', _MISSING)
+            if v70 is not _MISSING:
+                if not (type(v70) is str and v70 in _C12):
+                    return False
+            v71 = v66.get('lease_duration', _MISSING)
+            if v71 is not _MISSING:
+                if not (type(v71) in _NUMBER or v71 is None):
+                    return False
+                if type(v71) in _NUMBER and v71 <= 0:
+                    return False
+            v72 = v66.get('depth', _MISSING)
+            if v72 is not _MISSING:
+                if not (type(v72) is int or (type(v72) is float and v72.is_integer())):
+                    return False
+                if v72 < 0:
                     return False
     return True
 
@@ -198,12 +216,12 @@ def _branch2(data):
         return False
     if not data.keys() <= _C17:
         return False
-    v84 = data.get('substitution', _MISSING)
-    if v84 is _MISSING:
+    v89 = data.get('substitution', _MISSING)
+    if v89 is _MISSING:
         return False
-    if not type(v84) is str:
+    if not type(v89) is str:
         return False
-    if len(v84) < 1:
+    if len(v89) < 1:
         return False
     return True
 
@@ -280,7 +298,7 @@ def validate(data):
             for v11 in v10:
                 if not type(v11) is dict:
                     return False
-                if ((not ('topic' not in v11)) + (not ('service' not in v11))) != 1:
+                if ((not ('topic' not in v11)) + (not ('service' not in v11)) + (not ('action' not in v11))) != 1:
                     return False
                 if not v11.keys() <= _C4:
                     return False
@@ -302,146 +320,109 @@ def validate(data):
                             return False
                         if len(_C6) < 100000:
                             _C6.add(v13)
-                v14 = v11.get('type', _MISSING)
-                if v14 is _MISSING:
+                v14 = v11.get('action', _MISSING)
+                if v14 is not _MISSING:
+                    if not type(v14) is str:
+                        return False
+                    if v14 not in _C6:
+                        if _C5(v14) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v14)
+                v15 = v11.get('type', _MISSING)
+                if v15 is _MISSING:
                     return False
-                if not type(v14) is str:
+                if not type(v15) is str:
                     return False
-                if v14 not in _C8:
-                    if _C7(v14) is None:
+                if v15 not in _C8:
+                    if _C7(v15) is None:
                         return False
                     if len(_C8) < 100000:
-                        _C8.add(v14)
-                v15 = v11.get('qos', _MISSING)
-                if v15 is not _MISSING:
-                    if not type(v15) is dict:
+                        _C8.add(v15)
+                v16 = v11.get('qos', _MISSING)
+                if v16 is not _MISSING:
+                    if not type(v16) is dict:
                         return False
-                    if not v15.keys() <= _C9:
+                    if not v16.keys() <= _C9:
                         return False
-                    v16 = v15.get('reliability', _MISSING)
-                    if v16 is not _MISSING:
-                        if not (type(v16) is str and v16 in _C10):
-                            return False
-                    v17 = v15.get('durability', _MISSING)
+                    v17 = v16.get('reliability', _MISSING)
                     if v17 is not _MISSING:
-                        if not (type(v17) is str and v17 in _C11):
+                        if not (type(v17) is str and v17 in _C10):
                             return False
-                    v18 = v15.get('deadline', _MISSING)
+                    v18 = v16.get('durability', _MISSING)
                     if v18 is not _MISSING:
-                        if not (type(v18) in _NUMBER or v18 is None):
+                        if not (type(v18) is str and v18 in _C11):
                             return False
-                        if type(v18) in _NUMBER and v18 <= 0:
-                            return False
-                    v19 = v15.get('liveliness', _MISSING)
+                    v19 = v16.get('deadline', _MISSING)
                     if v19 is not _MISSING:
-                        if not (type(v19) is str and v19 in _C12):
+                        if not (type(v19) in _NUMBER or v19 is None):
                             return False
-                    v20 = v15.get('lease_duration', _MISSING)
+                        if type(v19) in _NUMBER and v19 <= 0:
+                            return False
+                    v20 = v16.get('liveliness', _MISSING)
                     if v20 is not _MISSING:
-                        if not (type(v20) in _NUMBER or v20 is None):
+                        if not (type(v20) is str and v20 in _C12):
                             return False
-                        if type(v20) in _NUMBER and v20 <= 0:
-                            return False
-                    v21 = v15.get('depth', _MISSING)
+                    v21 = v16.get('lease_duration', _MISSING)
                     if v21 is not _MISSING:
-                        if not (type(v21) is int or (type(v21) is float and v21.is_integer())):
+                        if not (type(v21) in _NUMBER or v21 is None):
                             return False
-                        if v21 < 0:
+                        if type(v21) in _NUMBER and v21 <= 0:
                             return False
-        v22 = v6.get('requires', _MISSING)
-        if v22 is not _MISSING:
-            if not type(v22) is list:
+                    v22 = v16.get('depth', _MISSING)
+                    if v22 is not _MISSING:
+                        if not (type(v22) is int or (type(v22) is float and v22.is_integer())):
+                            return False
+                        if v22 < 0:
+                            return False
+        v23 = v6.get('requires', _MISSING)
+        if v23 is not _MISSING:
+            if not type(v23) is list:
                 return False
-            for v23 in v22:
-                if (_branch0(v23) + _branch1(v23)) != 1:
+            for v24 in v23:
+                if (_branch0(v24) + _branch1(v24)) != 1:
                     return False
-        v68 = v6.get('failure_probability', _MISSING)
-        if v68 is not _MISSING:
-            if not type(v68) in _NUMBER:
-                return False
-            if v68 < 0:
-                return False
-            if v68 > 1:
-                return False
-        v69 = v6.get('needs', _MISSING)
-        if v69 is not _MISSING:
-            if not type(v69) is list:
-                return False
-            for v70 in v69:
-                if not type(v70) is str:
-                    return False
-                if v70 not in _C2:
-                    if _C1(v70) is None:
-                        return False
-                    if len(_C2) < 100000:
-                        _C2.add(v70)
-            if len(set(v69)) != len(v69):
-                return False
-        v71 = v6.get('excludes', _MISSING)
-        if v71 is not _MISSING:
-            if not type(v71) is list:
-                return False
-            for v72 in v71:
-                if not type(v72) is str:
-                    return False
-                if v72 not in _C2:
-                    if _C1(v72) is None:
-                        return False
-                    if len(_C2) < 100000:
-                        _C2.add(v72)
-            if len(set(v71)) != len(v71):
-                return False
-        v73 = v6.get('schemas', _MISSING)
+        v73 = v6.get('failure_probability', _MISSING)
         if v73 is not _MISSING:
-            if not type(v73) is list:
+            if not type(v73) in _NUMBER:
                 return False
-            for v74 in v73:
-                if not type(v74) is str:
+            if v73 < 0:
+                return False
+            if v73 > 1:
+                return False
+        v74 = v6.get('needs', _MISSING)
+        if v74 is not _MISSING:
+            if not type(v74) is list:
+                return False
+            for v75 in v74:
+                if not type(v75) is str:
                     return False
-                if v74 not in _C2:
-                    if _C1(v74) is None:
+                if v75 not in _C2:
+                    if _C1(v75) is None:
                         return False
                     if len(_C2) < 100000:
-                        _C2.add(v74)
-            if len(set(v73)) != len(v73):
+                        _C2.add(v75)
+            if len(set(v74)) != len(v74):
                 return False
-        v75 = v6.get('ros', _MISSING)
-        if v75 is not _MISSING:
-            if not type(v75) is dict:
+        v76 = v6.get('excludes', _MISSING)
+        if v76 is not _MISSING:
+            if not type(v76) is list:
                 return False
-            if not v75.keys() <= _C14:
-                return False
-            v76 = v75.get('package', _MISSING)
-            if v76 is _MISSING:
-                return False
-            if not type(v76) is str:
-                return False
-            if v76 not in _C2:
-                if _C1(v76) is None:
+            for v77 in v76:
+                if not type(v77) is str:
                     return False
-                if len(_C2) < 100000:
-                    _C2.add(v76)
-            v77 = v75.get('executable', _MISSING)
-            if v77 is _MISSING:
-                return False
-            if not type(v77) is str:
-                return False
-            if v77 not in _C16:
-                if _C15(v77) is None:
-                    return False
-                if len(_C16) < 100000:
-                    _C16.add(v77)
-            v78 = v75.get('namespace', _MISSING)
-            if v78 is not _MISSING:
-                if not type(v78) is str:
-                    return False
-                if v78 not in _C6:
-                    if _C5(v78) is None:
+                if v77 not in _C2:
+                    if _C1(v77) is None:
                         return False
-                    if len(_C6) < 100000:
-                        _C6.add(v78)
-            v79 = v75.get('node', _MISSING)
-            if v79 is not _MISSING:
+                    if len(_C2) < 100000:
+                        _C2.add(v77)
+            if len(set(v76)) != len(v76):
+                return False
+        v78 = v6.get('schemas', _MISSING)
+        if v78 is not _MISSING:
+            if not type(v78) is list:
+                return False
+            for v79 in v78:
                 if not type(v79) is str:
                     return False
                 if v79 not in _C2:
@@ -449,108 +430,128 @@ def validate(data):
                         return False
                     if len(_C2) < 100000:
                         _C2.add(v79)
-            v80 = v75.get('parameters', _MISSING)
-            if v80 is not _MISSING:
-                if not type(v80) is dict:
-                    return False
-                for v82 in v80.values():
-                    if ((not (not (type(v82) is str or type(v82) in _NUMBER or type(v82) is bool))) + _branch2(v82)) != 1:
-                        return False
-                for v85 in v80:
-                    if not type(v85) is str:
-                        return False
-                    if v85 not in _C2:
-                        if _C1(v85) is None:
-                            return False
-                        if len(_C2) < 100000:
-                            _C2.add(v85)
-            v86 = v75.get('remappings', _MISSING)
-            if v86 is not _MISSING:
-                if not type(v86) is dict:
-                    return False
-                for v88 in v86.values():
-                    if not type(v88) is str:
-                        return False
-                    if v88 not in _C6:
-                        if _C5(v88) is None:
-                            return False
-                        if len(_C6) < 100000:
-                            _C6.add(v88)
-                for v89 in v86:
-                    if not type(v89) is str:
-                        return False
-                    if v89 not in _C6:
-                        if _C5(v89) is None:
-                            return False
-                        if len(_C6) < 100000:
-                            _C6.add(v89)
-            v90 = v75.get('lifecycle', _MISSING)
-            if v90 is not _MISSING:
-                if not type(v90) is bool:
-                    return False
-            v91 = v75.get('args', _MISSING)
-            if v91 is not _MISSING:
-                if not type(v91) is list:
-                    return False
-                for v92 in v91:
-                    if not type(v92) is str:
-                        return False
-        v93 = v6.get('metrics', _MISSING)
-        if v93 is not _MISSING:
-            if not type(v93) is dict:
+            if len(set(v78)) != len(v78):
                 return False
-            for v95 in v93.values():
-                if not type(v95) in _NUMBER:
+        v80 = v6.get('ros', _MISSING)
+        if v80 is not _MISSING:
+            if not type(v80) is dict:
+                return False
+            if not v80.keys() <= _C14:
+                return False
+            v81 = v80.get('package', _MISSING)
+            if v81 is _MISSING:
+                return False
+            if not type(v81) is str:
+                return False
+            if v81 not in _C2:
+                if _C1(v81) is None:
                     return False
-            for v96 in v93:
-                if not type(v96) is str:
+                if len(_C2) < 100000:
+                    _C2.add(v81)
+            v82 = v80.get('executable', _MISSING)
+            if v82 is _MISSING:
+                return False
+            if not type(v82) is str:
+                return False
+            if v82 not in _C16:
+                if _C15(v82) is None:
                     return False
-                if v96 not in _C2:
-                    if _C1(v96) is None:
+                if len(_C16) < 100000:
+                    _C16.add(v82)
+            v83 = v80.get('namespace', _MISSING)
+            if v83 is not _MISSING:
+                if not type(v83) is str:
+                    return False
+                if v83 not in _C6:
+                    if _C5(v83) is None:
+                        return False
+                    if len(_C6) < 100000:
+                        _C6.add(v83)
+            v84 = v80.get('node', _MISSING)
+            if v84 is not _MISSING:
+                if not type(v84) is str:
+                    return False
+                if v84 not in _C2:
+                    if _C1(v84) is None:
                         return False
                     if len(_C2) < 100000:
-                        _C2.add(v96)
-        v97 = v6.get('dynamics', _MISSING)
-        if v97 is not _MISSING:
-            if not type(v97) is dict:
-                return False
-            if ((not ('transfer_function' not in v97)) + (not ('state_space' not in v97))) != 1:
-                return False
-            if not v97.keys() <= _C18:
-                return False
-            v98 = v97.get('transfer_function', _MISSING)
-            if v98 is not _MISSING:
-                if not type(v98) is dict:
+                        _C2.add(v84)
+            v85 = v80.get('parameters', _MISSING)
+            if v85 is not _MISSING:
+                if not type(v85) is dict:
                     return False
-                if not v98.keys() <= _C19:
-                    return False
-                v99 = v98.get('num', _MISSING)
-                if v99 is _MISSING:
-                    return False
-                if not type(v99) is list:
-                    return False
-                if len(v99) < 1:
-                    return False
-                for v100 in v99:
-                    if not type(v100) in _NUMBER:
+                for v87 in v85.values():
+                    if ((not (not (type(v87) is str or type(v87) in _NUMBER or type(v87) is bool))) + _branch2(v87)) != 1:
                         return False
-                v101 = v98.get('den', _MISSING)
-                if v101 is _MISSING:
-                    return False
-                if not type(v101) is list:
-                    return False
-                if len(v101) < 1:
-                    return False
-                for v102 in v101:
-                    if not type(v102) in _NUMBER:
+                for v90 in v85:
+                    if not type(v90) is str:
                         return False
-            v103 = v97.get('state_space', _MISSING)
+                    if v90 not in _C2:
+                        if _C1(v90) is None:
+                            return False
+                        if len(_C2) < 100000:
+                            _C2.add(v90)
+            v91 = v80.get('remappings', _MISSING)
+            if v91 is not _MISSING:
+                if not type(v91) is dict:
+                    return False
+                for v93 in v91.values():
+                    if not type(v93) is str:
+                        return False
+                    if v93 not in _C6:
+                        if _C5(v93) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v93)
+                for v94 in v91:
+                    if not type(v94) is str:
+                        return False
+                    if v94 not in _C6:
+                        if _C5(v94) is None:
+                            return False
+                        if len(_C6) < 100000:
+                            _C6.add(v94)
+            v95 = v80.get('lifecycle', _MISSING)
+            if v95 is not _MISSING:
+                if not type(v95) is bool:
+                    return False
+            v96 = v80.get('args', _MISSING)
+            if v96 is not _MISSING:
+                if not type(v96) is list:
+                    return False
+                for v97 in v96:
+                    if not type(v97) is str:
+                        return False
+        v98 = v6.get('metrics', _MISSING)
+        if v98 is not _MISSING:
+            if not type(v98) is dict:
+                return False
+            for v100 in v98.values():
+                if not type(v100) in _NUMBER:
+                    return False
+            for v101 in v98:
+                if not type(v101) is str:
+                    return False
+                if v101 not in _C2:
+                    if _C1(v101) is None:
+                        return False
+                    if len(_C2) < 100000:
+                        _C2.add(v101)
+        v102 = v6.get('dynamics', _MISSING)
+        if v102 is not _MISSING:
+            if not type(v102) is dict:
+                return False
+            if ((not ('transfer_function' not in v102)) + (not ('state_space' not in v102))) != 1:
+                return False
+            if not v102.keys() <= _C18:
+                return False
+            v103 = v102.get('transfer_function', _MISSING)
             if v103 is not _MISSING:
                 if not type(v103) is dict:
                     return False
-                if not v103.keys() <= _C20:
+                if not v103.keys() <= _C19:
                     return False
-                v104 = v103.get('A', _MISSING)
+                v104 = v103.get('num', _MISSING)
                 if v104 is _MISSING:
                     return False
                 if not type(v104) is list:
@@ -558,63 +559,89 @@ def validate(data):
                 if len(v104) < 1:
                     return False
                 for v105 in v104:
-                    if not type(v105) is list:
+                    if not type(v105) in _NUMBER:
                         return False
-                    if len(v105) < 1:
+                v106 = v103.get('den', _MISSING)
+                if v106 is _MISSING:
+                    return False
+                if not type(v106) is list:
+                    return False
+                if len(v106) < 1:
+                    return False
+                for v107 in v106:
+                    if not type(v107) in _NUMBER:
                         return False
-                    for v106 in v105:
-                        if not type(v106) in _NUMBER:
+            v108 = v102.get('state_space', _MISSING)
+            if v108 is not _MISSING:
+                if not type(v108) is dict:
+                    return False
+                if not v108.keys() <= _C20:
+                    return False
+                v109 = v108.get('A', _MISSING)
+                if v109 is _MISSING:
+                    return False
+                if not type(v109) is list:
+                    return False
+                if len(v109) < 1:
+                    return False
+                for v110 in v109:
+                    if not type(v110) is list:
+                        return False
+                    if len(v110) < 1:
+                        return False
+                    for v111 in v110:
+                        if not type(v111) in _NUMBER:
                             return False
-                v107 = v103.get('B', _MISSING)
-                if v107 is _MISSING:
+                v112 = v108.get('B', _MISSING)
+                if v112 is _MISSING:
                     return False
-                if not type(v107) is list:
+                if not type(v112) is list:
                     return False
-                if len(v107) < 1:
+                if len(v112) < 1:
                     return False
-                for v108 in v107:
-                    if not type(v108) is list:
+                for v113 in v112:
+                    if not type(v113) is list:
                         return False
-                    if len(v108) < 1:
+                    if len(v113) < 1:
                         return False
-                    for v109 in v108:
-                        if not type(v109) in _NUMBER:
+                    for v114 in v113:
+                        if not type(v114) in _NUMBER:
                             return False
-                v110 = v103.get('C', _MISSING)
-                if v110 is _MISSING:
+                v115 = v108.get('C', _MISSING)
+                if v115 is _MISSING:
                     return False
-                if not type(v110) is list:
+                if not type(v115) is list:
                     return False
-                if len(v110) < 1:
+                if len(v115) < 1:
                     return False
-                for v111 in v110:
-                    if not type(v111) is list:
+                for v116 in v115:
+                    if not type(v116) is list:
                         return False
-                    if len(v111) < 1:
+                    if len(v116) < 1:
                         return False
-                    for v112 in v111:
-                        if not type(v112) in _NUMBER:
+                    for v117 in v116:
+                        if not type(v117) in _NUMBER:
                             return False
-                v113 = v103.get('D', _MISSING)
-                if v113 is _MISSING:
+                v118 = v108.get('D', _MISSING)
+                if v118 is _MISSING:
                     return False
-                if not type(v113) is list:
+                if not type(v118) is list:
                     return False
-                if len(v113) < 1:
+                if len(v118) < 1:
                     return False
-                for v114 in v113:
-                    if not type(v114) is list:
+                for v119 in v118:
+                    if not type(v119) is list:
                         return False
-                    if len(v114) < 1:
+                    if len(v119) < 1:
                         return False
-                    for v115 in v114:
-                        if not type(v115) in _NUMBER:
+                    for v120 in v119:
+                        if not type(v120) in _NUMBER:
                             return False
-            v116 = v97.get('delay', _MISSING)
-            if v116 is not _MISSING:
-                if not type(v116) in _NUMBER:
+            v121 = v102.get('delay', _MISSING)
+            if v121 is not _MISSING:
+                if not type(v121) in _NUMBER:
                     return False
-                if v116 < 0:
+                if v121 < 0:
                     return False
     return True
 
