@@ -61,7 +61,14 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-__all__ = ["Interfaces", "NeedsPositions", "Node", "build_library", "build_schema"]
+__all__ = [
+    "Interfaces",
+    "NeedsPositions",
+    "Node",
+    "build_library",
+    "build_schema",
+    "provision_key",
+]
 
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
@@ -95,6 +102,11 @@ def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
         if found.where is not None:
             found.where[f"qos.{label}"] = span_of(spec)
     return interface
+
+
+def provision_key(iface: Interface) -> str:
+    """Return the ``where`` key of a provision's position (``provides.<kind>:<label>:<type>``)."""
+    return f"provides.{iface.kind}:{iface.label}:{iface.written}"
 
 
 def _requirement(node: Node, seen: Interfaces, found: _Found) -> Requirement:
@@ -256,7 +268,11 @@ def _component(node: Node, seen: Interfaces) -> Component:
                 where[f"{key}.{text_of(n)}"] = span_of(n)
     found = _Found(where)
     _where_listed(where, "provides", provides)
-    provided = frozenset([_interface(n, seen, found) for n in provides])
+    listed = [_interface(n, seen, found) for n in provides]
+    provided = frozenset(listed)
+    if where is not None:  # a provision's own position: the set keeps no file order
+        for n, iface in zip(provides, listed, strict=True):
+            where.setdefault(provision_key(iface), span_of(n))
     _where_listed(where, "requires", requires)
     required = tuple([_requirement(n, seen, found) for n in requires])
     if where is not None:

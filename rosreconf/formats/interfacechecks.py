@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
+from rosreconf.formats.build import provision_key
 from rosreconf.model import Component, Interface, InterfaceKind, Requirement, Span, type_folder
 from rosreconf.model.library import TYPE_FOLDERS
 
@@ -95,10 +96,11 @@ def index_problems(components: Sequence[Component], index: InterfaceIndex) -> It
         yield from _unmet(components)
 
 
-def _where(c: Component, i: int, req: Requirement | None) -> Span:
+def _where(c: Component, i: int, req: Requirement | None, iface: Interface | None = None) -> Span:
     """Return where ``_all_interfaces`` found an interface (its provision or requirement)."""
     if req is None:
-        return c.at(f"provides.{i}")
+        at = c.where.get(provision_key(iface)) if iface is not None else None
+        return at or c.at(f"provides.{i}")
     return req.span if req.span.line else c.at(f"requires.{i}")
 
 
@@ -116,17 +118,17 @@ def _misspelled(components: Sequence[Component]) -> Iterator[Problem]:
             right = TYPE_FOLDERS[iface.kind]
             package, folder, name = iface.written.split("/")
             yield Problem(
-                _where(c, i, req),
+                _where(c, i, req, iface),
                 f"{iface.kind} '{iface.label}' of {c.name} has type {iface.written}: "
-                f"'{folder}' is for a {_KIND_OF_FOLDER[folder]}'s type, not "
+                f"'{folder}' is for {_KIND_OF_FOLDER[folder]}'s type, not "
                 f"{'an' if iface.kind is InterfaceKind.ACTION else 'a'} {iface.kind}'s",
-                f"write {package}/{right}/{name} (or {package}/{name}), or declare it as a "
+                f"write {package}/{right}/{name} (or {package}/{name}), or declare it as "
                 f"{_KIND_OF_FOLDER[folder]}",
                 code="type-kind-mismatch",
             )
 
 
-_KIND_OF_FOLDER = {folder: str(kind) for kind, folder in TYPE_FOLDERS.items()}
+_KIND_OF_FOLDER = {"msg": "a topic", "srv": "a service", "action": "an action"}
 
 
 def interface_problems(components: Sequence[Component]) -> Iterator[Problem]:
@@ -154,9 +156,9 @@ def _conflicts(components: Sequence[Component]) -> Iterator[Problem]:
             elif first[0].type != iface.type:  # canonical keys: pkg/msg/X equals pkg/X
                 same = first[1] == c.name
                 yield Problem(
-                    _where(c, i, req),
+                    _where(c, i, req, iface),
                     f"{iface.kind} '{iface.label}' has type {iface.written} in {c.name} but "
-                    f"{first[0].written} in {first[1]} ({_where(*first[2:])})",
+                    f"{first[0].written} in {first[1]} ({_where(*first[2:], first[0])})",
                     "one component cannot use one label with two message classes; rename one"
                     if same
                     else "allowed for alternatives (raw and compressed images): no "
@@ -169,7 +171,7 @@ def _conflicts(components: Sequence[Component]) -> Iterator[Problem]:
                 kinds[iface.label] = (iface.kind, c.name)
             elif other[0] != iface.kind:
                 yield Problem(
-                    _where(c, i, req),
+                    _where(c, i, req, iface),
                     f"'{iface.label}' is a {iface.kind} in {c.name} but a {other[0]} in {other[1]}",
                     "use different labels for topics, services and actions",
                     code="kind-conflict",
