@@ -35,6 +35,7 @@ from typer.testing import CliRunner
 from rosreconf.cli.app import app
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import (
+    Component,
     ComponentLibrary,
     Configuration,
     Interface,
@@ -43,7 +44,7 @@ from rosreconf.model import (
     VertexKind,
     type_key,
 )
-from rosreconf.model.validity import is_valid, ros_graph, violations
+from rosreconf.model.validity import is_valid, ros_graph, type_clash, violations
 from rosreconf.render.pictures import RosPicture, ros_dot
 from rosreconf.resources import Bundle, bundled
 from rosreconf.ros.conformance import compare
@@ -120,6 +121,18 @@ def test_ros2_type_names_compare_equal_to_ros1_names_and_keep_their_spelling() -
     assert str(ros2) == "topic 'scan' (sensor_msgs/msg/LaserScan)"
     action = Interface(InterfaceKind.ACTION, "scan", "sensor_msgs/LaserScan")
     assert action != ros1  # the kind is part of the match
+
+
+def test_two_spellings_of_one_type_do_not_clash_but_two_types_do() -> None:
+    """Rule one-type-per-label compares the key: two providers of scan may spell it apart."""
+
+    def scanner(name: str, typ: str) -> Component:
+        return Component(name, "lidar", frozenset({Interface(InterfaceKind.TOPIC, "scan", typ)}))
+
+    ros2 = scanner("A", "sensor_msgs/msg/LaserScan")
+    assert type_clash(ros2, scanner("B", "sensor_msgs/LaserScan")) is None
+    clash = type_clash(ros2, scanner("C", "sensor_msgs/msg/PointCloud2"))
+    assert clash is not None and clash[0].written == "sensor_msgs/msg/LaserScan"
 
 
 def test_a_library_with_ros2_names_has_the_configurations_of_its_ros1_spelling(
@@ -392,6 +405,30 @@ def test_ros1_actionlib_topics_of_stand_ins_make_a_conformant_graph() -> None:
     assert {(f.code, f.component) for f in result.findings} == {
         ("missing-action-client", "BT_NAVIGATOR")
     }
+
+
+@pytest.mark.ros
+def test_ros1_stand_ins_act_out_actions_on_a_real_master(
+    ros_master: Any, standin: Any, runner: CliRunner, tmp_path: Path
+) -> None:
+    """Real roscore and rospy stand-ins: the actionlib topics carry the nominal's actions."""
+    for c in ("PLANNER_NAVFN", "CONTROLLER_RPP", "BT_NAVIGATOR"):
+        library, _ = _load(CASE)
+        standin(standin_spec(library[c]))
+    files = ["--library", str(CASE / "lib.yaml"), "--schema", str(CASE / "task.yaml")]
+    result = runner.invoke(app, ["inspect", "--master", ros_master.uri, *files, "--json"])
+    doc = json.loads(result.stdout)
+    # the three action-wired nodes run; every action of the nominal is served and called
+    assert not [f for f in doc["findings"] if "action" in f["code"]], doc["findings"]
+    codes = {f["code"] for f in doc["findings"]}
+    assert codes <= {"missing-node", "unmet-requirement", "missing-topic"}, doc["findings"]
+    draft = tmp_path / "draft.yaml"
+    result = runner.invoke(app, ["import", "--master", ros_master.uri, "-o", str(draft)])
+    assert result.exit_code == 0, result.output
+    comps = {c["name"]: c for c in yaml.safe_load(draft.read_text("utf-8"))["components"]}
+    assert {"action": "/rpp/follow_path", "type": "nav2_msgs/action/FollowPath"} in comps[
+        "rpp_controller"
+    ]["provides"]
 
 
 # --- real rclpy nodes ----------------------------------------------------------------------

@@ -5,7 +5,7 @@ scripts/fast_validators.py, do not edit (see structure.fast_validator).
 # ruff: noqa
 # fmt: off
 # mypy: ignore-errors
-SOURCE = 'f7a003b8edabc8e0ec530f5add132b09092aac3a32197d9864c00a9627f8b7e3'
+SOURCE = '0dad6991a890718e842e08b35603016a4d5881691e110b571dd57feedea646e9'
 import re
 
 _NUMBER = (int, float)

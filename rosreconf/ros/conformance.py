@@ -91,7 +91,7 @@ class Finding:
             ``qos-incompatible``.
         message: the difference in plain words.
         component: the component concerned, if any (None for extra nodes).
-        live_name: the global ROS name concerned (node, topic or service).
+        live_name: the global ROS name concerned (node, topic, service or action).
     """
 
     code: str
