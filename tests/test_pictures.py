@@ -81,7 +81,7 @@ def test_ros_view_has_every_vertex_in_its_shape_and_every_edge() -> None:
         assert attrs["shape"] == SHAPES[kind]
         assert attrs["fillcolor"] == STYLES[Status.UNCHANGED]["fillcolor"]
         assert attrs["label"].startswith(name if kind is VertexKind.NODE else data["label"])
-    assert len({SHAPES[k] for k in VertexKind}) == 3
+    assert len({SHAPES[k] for k in VertexKind}) == len(VertexKind)  # no two kinds alike
     drawn = {k for k in edges if not k[0].startswith("legend")}
     expected = {
         (f"{SCHEMA}:{a[0].value}:{a[1]}", f"{SCHEMA}:{b[0].value}:{b[1]}") for a, b in g.edges

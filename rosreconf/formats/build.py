@@ -51,7 +51,7 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-__all__ = ["Interfaces", "Node", "build_library", "build_schema"]
+__all__ = ["Interfaces", "Node", "build_library", "build_schema", "provision_key"]
 
 Node: TypeAlias = "YNode | None"
 """What the builder reads: a node of the positioned tree, or None for an absent key."""
@@ -67,8 +67,8 @@ def _names(node: Node) -> frozenset[str]:
     return frozenset(text_of(n) for n in items) if items else _NO_NAMES
 
 
-Interfaces: TypeAlias = dict[tuple[bool, str, str], Interface]
-"""The interfaces built so far for one library, by (is a service, label, type): a large
+Interfaces: TypeAlias = dict[tuple[str, str, str], Interface]
+"""The interfaces built so far for one library, by (kind, label, type as written): a large
 library writes each of its few distinct interfaces many times, and one shared, equal
 (frozen) object per distinct interface saves building and hashing a new one each time."""
 
@@ -76,18 +76,22 @@ library writes each of its few distinct interfaces many times, and one shared, e
 def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
     """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
     items = map_of(node)
-    service = "service" in items
-    label = text_of(items["service" if service else "topic"])
-    key = (service, label, text_of(items["type"]))
+    kind = "service" if "service" in items else "action" if "action" in items else "topic"
+    label = text_of(items[kind])
+    key = (kind, label, text_of(items["type"]))
     interface = seen.get(key)
     if interface is None:
-        kind = InterfaceKind.SERVICE if service else InterfaceKind.TOPIC
-        interface = seen[key] = Interface(kind, label, key[2])
+        interface = seen[key] = Interface(InterfaceKind(kind), label, key[2])
     if "qos" in items:
         spec = items["qos"]
         found.qos[label] = QosProfile.from_dict(scalars_of(spec))
         found.where[f"qos.{label}"] = span_of(spec)
     return interface
+
+
+def provision_key(iface: Interface) -> str:
+    """Return the ``where`` key of a provision's position (``provides.<kind>:<label>:<type>``)."""
+    return f"provides.{iface.kind}:{iface.label}:{iface.written}"
 
 
 def _requirement(node: Node, seen: Interfaces, found: _Found) -> Requirement:
@@ -237,7 +241,10 @@ def _component(node: Node, seen: Interfaces) -> Component:
             where[f"{key}.{text_of(n)}"] = span_of(n)
     found = _Found(where)
     _where_listed(where, "provides", provides)
-    provided = frozenset([_interface(n, seen, found) for n in provides])
+    listed = [_interface(n, seen, found) for n in provides]
+    provided = frozenset(listed)
+    for n, iface in zip(provides, listed, strict=True):  # the set keeps no file order
+        where.setdefault(provision_key(iface), span_of(n))
     _where_listed(where, "requires", requires)
     required = tuple([_requirement(n, seen, found) for n in requires])
     for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):

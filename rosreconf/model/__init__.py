@@ -10,7 +10,7 @@ How the paper's names map onto this module::
     paper                                  here
     -------------------------------------  ------------------------------------------
     Omega (interface label)                Interface.label
-    Gamma (message class)                  Interface.type
+    Gamma (message class)                  Interface.type (canonical: type_key)
     S+ / T+ (Def. 2, provision)            Component.provides
     S- / T- (Def. 3, requirement)          Component.requires (each a Requirement)
     abstraction N -> Lambda (Def. 5 (1))   Component.abstraction
@@ -18,7 +18,8 @@ How the paper's names map onto this module::
     system graph (Def. 5 (2))              SystemGraph (roles labelled from Lambda)
     interoperability schema [G, x, e]      InteroperabilitySchema (graph, skill, environment)
     configuration library C (Def. 8)       ConfigurationLibrary (orthogonality: analysis)
-    ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph, three vertex kinds)
+    ROS-graph {N, T, S, E} (Def. 1)        RosGraph (a networkx DiGraph; nodes, topics,
+                                           services, actions)
     configuration                          Configuration (role -> component)
     M-solution: a component's model        Component.dynamics (TransferFunction | StateSpace)
     M-solution: environment, loops         InteroperabilitySchema.simulation (Simulation)
@@ -45,6 +46,8 @@ from rosreconf.model.library import (
     RosLaunch,
     Span,
     Substitution,
+    type_folder,
+    type_key,
 )
 from rosreconf.model.schema import (
     EMPTY,
@@ -103,4 +106,6 @@ __all__ = [
     "node_vertex",
     "shown",
     "shown_text",
+    "type_folder",
+    "type_key",
 ]

@@ -45,31 +45,79 @@ NOWHERE = Span("<model>", 0, 0)
 
 
 class InterfaceKind(enum.StrEnum):
-    """The two ways ROS nodes exchange messages (Section 3): topics and services."""
+    """The ways ROS nodes exchange messages (Section 3): topics, services, and ROS actions.
+
+    Actions are not in the paper (2014, ROS 1 actionlib was a library over five topics); ROS
+    2 made them a kind of interface of their own, and Nav2's servers talk through them, so a
+    library declares them like services: a server provides one, a client requires it.
+    """
 
     TOPIC = "topic"
     SERVICE = "service"
+    ACTION = "action"
+
+
+TYPE_FOLDERS: Mapping[InterfaceKind, str] = MappingProxyType(
+    {InterfaceKind.TOPIC: "msg", InterfaceKind.SERVICE: "srv", InterfaceKind.ACTION: "action"}
+)
+"""The folder ROS 2 writes in a type name of each kind (``sensor_msgs/msg/LaserScan``)."""
+
+
+def type_key(written: str) -> str:
+    """Return the canonical form of a ROS type name: ``pkg/msg/Name`` -> ``pkg/Name``.
+
+    ROS 1 writes ``sensor_msgs/LaserScan``, ROS 2 ``sensor_msgs/msg/LaserScan`` (``srv``,
+    ``action`` likewise); both name one message class (Gamma), so every comparison of types
+    in rosreconf compares this key: the library's interfaces (``Interface.type``) and a live
+    graph's types (``rosreconf.ros.conformance``). Other names are returned unchanged.
+    """
+    if written.count("/") != 2:
+        return written
+    package, folder, name = written.split("/")
+    return f"{package}/{name}" if folder in _FOLDERS else written
+
+
+_FOLDERS = frozenset(TYPE_FOLDERS.values())
+
+
+def type_folder(written: str) -> str | None:
+    """Return the ROS 2 folder (``msg``, ``srv``, ``action``) a type name is written with."""
+    parts = written.split("/")
+    return parts[1] if len(parts) == 3 and parts[1] in _FOLDERS else None
 
 
 @dataclass(frozen=True, order=True)
 class Interface:
-    """One topic or service: a kind, a label (Omega) and a message class (Gamma).
+    """One topic, service or action: a kind, a label (Omega) and a message class (Gamma).
 
-    Two interfaces match (a provision meets a requirement) exactly when all three are equal,
-    which is why this class is hashable and compared by value.
+    Two interfaces match (a provision meets a requirement) exactly when kind, label and type
+    are equal, which is why this class is hashable and compared by value. The type compared
+    is the canonical key (``type_key``: ``sensor_msgs/msg/LaserScan`` and
+    ``sensor_msgs/LaserScan`` are one type); what the user wrote is kept in ``written`` for
+    messages, pictures and JSON, and does not take part in comparisons.
 
     Attributes:
-        kind: topic or service.
+        kind: topic, service or action.
         label: the paper's Omega, a ROS graph resource name such as ``camera_image``.
-        type: the paper's Gamma, a ROS message or service type such as ``sensor_msgs/Image``.
+        type: the paper's Gamma as its canonical key, such as ``sensor_msgs/Image`` (given
+            ``sensor_msgs/msg/Image``, it is stored as ``sensor_msgs/Image``).
+        written: the type as written in the library (defaults to ``type`` as given).
     """
 
     kind: InterfaceKind
     label: str
     type: str
+    written: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        if not self.written:
+            object.__setattr__(self, "written", self.type)
+        key = type_key(self.type)
+        if key is not self.type:
+            object.__setattr__(self, "type", key)
 
     def __str__(self) -> str:
-        return f"{self.kind} '{self.label}' ({self.type})"
+        return f"{self.kind} '{self.label}' ({self.written})"
 
 
 @dataclass(frozen=True)

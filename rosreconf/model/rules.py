@@ -152,8 +152,8 @@ RULES: tuple[Rule, ...] = (
     Rule(
         "requirement-met",
         "Def. 3 and Lemma 4",
-        "every requirement of every chosen component is provided by the component of a role "
-        "the consumer's role has an edge to",
+        "every requirement of every chosen component (a topic, service or action it uses) is "
+        "provided by the component of a role the consumer's role has an edge to",
         ("requirement-unmet",),
         {Encoding.DEFINITION: (_V + "_violations", _V + "requirement_met"), **_REQUIREMENTS},
     ),
@@ -193,7 +193,8 @@ RULES: tuple[Rule, ...] = (
     Rule(
         "one-type-per-label",
         "Def. 1 (a topic or service vertex carries one message class, Gamma)",
-        "no two chosen components provide one topic or service label with different types "
+        "no two chosen components provide one topic, service or action label with different "
+        "types (compared by their key: pkg/msg/X is pkg/X) "
         "(raw and compressed images under one name are alternatives, never chosen together)",
         ("type-clash",),
         {

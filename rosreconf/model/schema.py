@@ -243,11 +243,12 @@ class Configuration:
 
 
 class VertexKind(enum.StrEnum):
-    """The three vertex kinds of a ROS-graph (Def. 1), never interchangeable."""
+    """The vertex kinds of a ROS-graph (Def. 1, and ROS 2's actions), never interchangeable."""
 
     NODE = "node"
     TOPIC = "topic"
     SERVICE = "service"
+    ACTION = "action"
 
 
 # RosGraph: a ROS-graph {N, T, S, E} (Def. 1) as a networkx DiGraph.
@@ -256,8 +257,9 @@ class VertexKind(enum.StrEnum):
 # never be confused; every vertex also carries ``kind`` and, for topics and services, ``label``
 # (Omega) attributes. Edges run in the direction of information flow: provider node ->
 # topic/service -> consumer node, and carry the message class as ``type`` (Gamma). A service
-# vertex's name is ``<server node>/<label>``, because in ROS each service has one server; a
-# topic vertex's name is its label, because topics are many-to-many.
+# vertex's name is ``<server node>/<label>``, because in ROS each service has one server (an
+# action vertex likewise: one action server); a topic vertex's name is its label, because
+# topics are many-to-many.
 #
 # networkx takes about 0.2 s to import, so it is imported when ``RosGraph`` is first looked up
 # (module ``__getattr__``): ``rosreconf --help`` and ``validate`` never need it.
@@ -283,4 +285,6 @@ def interface_vertex(interface: Interface, provider: str) -> tuple[VertexKind, s
     """Return the ROS-graph vertex id carrying ``interface`` as provided by ``provider``."""
     if interface.kind is InterfaceKind.SERVICE:
         return (VertexKind.SERVICE, f"{provider}/{interface.label}")
+    if interface.kind is InterfaceKind.ACTION:
+        return (VertexKind.ACTION, f"{provider}/{interface.label}")
     return (VertexKind.TOPIC, interface.label)

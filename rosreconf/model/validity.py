@@ -24,7 +24,6 @@ from rosreconf.model import (
     Configuration,
     Edge,
     Interface,
-    InterfaceKind,
     InteroperabilitySchema,
     Requirement,
     VertexKind,
@@ -84,6 +83,7 @@ def type_clash(a: Component, b: Component) -> tuple[Interface, Interface] | None
     for mine in sorted(a.provides):
         for other in theirs:
             if (other.kind, other.label) == (mine.kind, mine.label) and other.type != mine.type:
+                # ``type`` is the canonical key: pkg/msg/X and pkg/X do not clash
                 return mine, other
     return None
 
@@ -111,8 +111,10 @@ def requirement_met(
     """Tell whether some provider along ``consumer_role``'s edges meets ``req`` (Lemma 4).
 
     Lemma 4 says that within a ROS-graph every service and topic a node requires (S-, T-)
-    is provided (S+, T+); checking it here, one requirement at a time along the schema's
-    edges, is what makes every valid configuration a ROS-graph in the lemma's sense.
+    is provided (S+, T+); an action a client requires is met the same way, by an action
+    server of the same label and type along an edge, like a service. Checking it here, one
+    requirement at a time along the schema's edges, is what makes every valid configuration
+    a ROS-graph in the lemma's sense.
     """
     for edge in schema.graph.providers_of(consumer_role):
         provider = chosen.get(edge.provider)
@@ -252,8 +254,8 @@ def ros_graph(
 
     Nodes are the chosen components (an empty optional role has none); along every
     system-graph edge between two filled roles (optional edges too, where the pair shares
-    something), each interface that realises it becomes a topic or service vertex with edges
-    provider -> vertex -> consumer.
+    something), each interface that realises it becomes a topic, service or action vertex with
+    edges provider -> vertex -> consumer, carrying the type as written.
     Provisions nobody uses stay dormant (Section 3) and are not drawn.
     """
     import networkx as nx  # here, not at the top: validating files never builds a ROS-graph
@@ -272,16 +274,29 @@ def ros_graph(
         provider = library[mapping[edge.provider]]
         for iface in edge_interfaces(consumer, provider, edge):
             v = interface_vertex(iface, provider.name)
-            kind = VertexKind.SERVICE if iface.kind is InterfaceKind.SERVICE else VertexKind.TOPIC
-            g.add_node(v, kind=kind, label=iface.label, type=iface.type)
-            g.add_edge(node_vertex(provider.name), v, type=iface.type)
-            g.add_edge(v, node_vertex(consumer.name), type=iface.type)
+            # the type as its provider writes it (pkg/msg/X or pkg/X: one key, two spellings)
+            written = next(p.written for p in provider.provides if p == iface)
+            g.add_node(v, kind=v[0], label=iface.label, type=written)
+            g.add_edge(node_vertex(provider.name), v, type=written)
+            g.add_edge(v, node_vertex(consumer.name), type=iface.written)
     return g
 
 
 def graph_dict(g: RosGraph) -> dict[str, list[dict[str, str]]]:
-    """Return a ROS-graph as the JSON shape of docs/json.md (nodes, topics, services, edges)."""
-    out: dict[str, list[dict[str, str]]] = {"nodes": [], "topics": [], "services": [], "edges": []}
+    """Return a ROS-graph as the JSON shape of docs/json.md (nodes, topics, services, actions,
+    edges)."""
+    out: dict[str, list[dict[str, str]]] = {
+        "nodes": [],
+        "topics": [],
+        "services": [],
+        "actions": [],
+        "edges": [],
+    }
+    lists = {
+        VertexKind.TOPIC: "topics",
+        VertexKind.SERVICE: "services",
+        VertexKind.ACTION: "actions",
+    }
     for (kind, name), data in sorted(g.nodes(data=True)):
         entry = {"id": name}
         if kind is VertexKind.NODE:
@@ -289,7 +304,7 @@ def graph_dict(g: RosGraph) -> dict[str, list[dict[str, str]]]:
             out["nodes"].append(entry)
         else:
             entry.update(label=str(data["label"]), type=str(data["type"]))
-            out["topics" if kind is VertexKind.TOPIC else "services"].append(entry)
+            out[lists[kind]].append(entry)
     for (k1, n1), (k2, n2), data in sorted(g.edges(data=True)):
         out["edges"].append(
             {"from": n1, "from_kind": k1.value, "to": n2, "to_kind": k2.value, "type": data["type"]}

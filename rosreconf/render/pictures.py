@@ -9,7 +9,8 @@ view    what it shows
 system  a schema's system graph (Def. 5, Fig. 4/6): roles as boxes (role, abstraction),
         edges provider -> consumer
 ros     a configuration's ROS-graph (Def. 1): nodes as ellipses, topics as boxes, services as
-        hexagons, edges provider -> topic/service -> consumer, the message type written on
+        hexagons, ROS 2 actions as octagons (in the legend only when drawn), edges
+        provider -> topic/service/action -> consumer, the message type written on
         the provider's edge (and the tooltip of the consumers' edges);
         failed components red, started green, stopped grey and dashed; a legend
 library every role with all its candidate components; failed ones struck out and grey
@@ -58,8 +59,17 @@ class Status(enum.StrEnum):
     FAILED = "failed"
 
 
-SHAPES = {VertexKind.NODE: "ellipse", VertexKind.TOPIC: "box", VertexKind.SERVICE: "hexagon"}
-"""Def. 1's three vertex kinds, drawn in three shapes that cannot be mistaken for each other."""
+SHAPES = {
+    VertexKind.NODE: "ellipse",
+    VertexKind.TOPIC: "box",
+    VertexKind.SERVICE: "hexagon",
+    VertexKind.ACTION: "octagon",
+}
+"""Def. 1's three vertex kinds and ROS 2's actions, in shapes that cannot be mistaken for
+each other (an action's octagon has two more corners than a service's hexagon: it is a
+service with feedback)."""
+ALWAYS_IN_LEGEND = frozenset({VertexKind.NODE, VertexKind.TOPIC, VertexKind.SERVICE})
+"""The kinds the legend always explains; an action only when the picture has one."""
 
 STYLES: dict[Status, dict[str, str]] = {
     Status.UNCHANGED: {"style": "filled", "fillcolor": "white", "color": "black"},
@@ -137,6 +147,7 @@ def ros_dot(
     dead = frozenset(failed)
     g = _graph("ROS-graph", rankdir="LR")
     seen: set[Status] = set()
+    kinds: set[VertexKind] = set(ALWAYS_IN_LEGEND)
     for p in pictures:
         new = ros_graph(p.configuration, library, p.schema)
         old = ros_graph(p.before, library, p.schema) if p.before is not None else None
@@ -149,6 +160,7 @@ def ros_dot(
             if kind is VertexKind.NODE and name in dead:
                 status = Status.FAILED
             seen.add(status)
+            kinds.add(kind)
             if kind is VertexKind.NODE:
                 label = f"{name}\n({data['role']})"
                 if status is Status.FAILED:
@@ -187,7 +199,7 @@ def ros_dot(
             where = {"label": text} if head[0] is not VertexKind.NODE else {"tooltip": text}
             g.edge(_vid(p.schema, tail), _vid(p.schema, head), **where, **EDGE_COLOURS[status])
         g.end_cluster()
-    _ros_legend(g, seen)
+    _ros_legend(g, seen, kinds)
     return g.text()
 
 
@@ -324,9 +336,11 @@ def _cell(c: Component, s: InteroperabilitySchema, dead: frozenset[str], role: s
     return f">{name}"
 
 
-def _ros_legend(g: DotGraph, seen: set[Status]) -> None:
+def _ros_legend(g: DotGraph, seen: set[Status], kinds: set[VertexKind]) -> None:
     g.begin_cluster("legend", label="legend", **FONT, style="rounded", color="#999999")
     for kind, shape in SHAPES.items():
+        if kind not in kinds:
+            continue
         g.node(f"legend:{kind.value}", label=kind.value, shape=shape, **STYLES[Status.UNCHANGED])
     for status in (Status.FAILED, Status.STARTED, Status.STOPPED):
         if status in seen:

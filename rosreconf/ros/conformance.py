@@ -26,7 +26,10 @@ knows the services a node calls and every endpoint's QoS, which adds ``missing-c
 expected node does not call a service its edges say it calls) and ``qos-incompatible`` (the
 provider's publisher offers a QoS the consumer's subscription cannot accept, by
 ``rosreconf.model.qos.incompatibilities``; both sides are named). ROS 2 types
-(``pkg/msg/Name``) equal the library's ``pkg/Name``.
+(``pkg/msg/Name``) equal the library's ``pkg/Name`` (``rosreconf.model.type_key``).
+Actions (``rosreconf.ros.liveactions``, ROS 1 and 2) add ``missing-action`` (the provider
+does not serve it), ``missing-action-client`` (the consumer does not call it), and
+``wrong-type`` and ``unmet-requirement`` as for topics.
 """
 
 from __future__ import annotations
@@ -40,9 +43,11 @@ from rosreconf.model import (
     Configuration,
     InteroperabilitySchema,
     VertexKind,
+    type_key,
 )
 from rosreconf.model.qos import incompatibilities
 from rosreconf.model.validity import ros_graph
+from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 
 
@@ -81,11 +86,12 @@ class Finding:
 
     Attributes:
         code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
-            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, and from a ROS 2
-            graph ``missing-client`` and ``qos-incompatible``.
+            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, ``missing-action``,
+            ``missing-action-client``, and from a ROS 2 graph ``missing-client`` and
+            ``qos-incompatible``.
         message: the difference in plain words.
         component: the component concerned, if any (None for extra nodes).
-        live_name: the global ROS name concerned (node, topic or service).
+        live_name: the global ROS name concerned (node, topic, service or action).
     """
 
     code: str
@@ -187,6 +193,7 @@ def _edges(
     served = {s for n in answering.values() for s in n.serves}
     published = {t for n in answering.values() for t in n.publishes}
     expected = ros_graph(configuration, library, schema)
+    actions = live_actions(graph)
     for vertex, data in sorted(expected.nodes(data=True)):
         kind = vertex[0]
         if kind is VertexKind.NODE:
@@ -196,6 +203,15 @@ def _edges(
         # a topic may have several chosen publishers (Nav2's controller_server and
         # behavior_server both publish cmd_vel_nav): each is checked
         for provider in sorted(p for _, p in expected.predecessors(vertex)):
+            if kind is VertexKind.ACTION:
+                node = answering.get(node_live_name(comps[provider]))
+                name = interface_live_name(comps[provider], label)
+                users = {
+                    c: (answering.get(node_live_name(comps[c])), interface_live_name(comps[c], label))
+                    for c in consumers
+                }
+                found += _action(provider, node, users, actions, name, label, typ)
+                continue
             found += _interface(
                 graph, answering, comps, (served, published), provider, consumers, label, typ, kind
             )
@@ -258,12 +274,7 @@ def _interface(
 
 def same_type(live: str, library: str) -> bool:
     """Tell whether a live type names the library's (ROS 2 ``pkg/msg/Name`` = ``pkg/Name``)."""
-
-    def short(t: str) -> str:
-        parts = t.split("/")
-        return f"{parts[0]}/{parts[-1]}" if len(parts) == 3 else t
-
-    return live == library or short(live) == short(library)
+    return type_key(live) == type_key(library)
 
 
 def _qos(
@@ -288,3 +299,41 @@ def _qos(
         f"[{requested}]: {'; '.join(w.message for w in why)} (no messages will flow)"
     )
     return [Finding("qos-incompatible", msg, consumer, name)]
+
+
+def _action(
+    provider: str,
+    node: LiveNode | None,
+    users: dict[str, tuple[LiveNode | None, str]],
+    actions: dict[str, LiveAction],
+    name: str,
+    label: str,
+    typ: str,
+) -> list[Finding]:
+    """Check one action of the expected ROS-graph: its server, its type, its clients.
+
+    A consumer calls it by the provider's name (remapped) or by its own, as for topics.
+    """
+    found: list[Finding] = []
+    live = actions.get(name)
+    servers = live.servers if live is not None else ()
+    if node is not None and node.name not in servers:
+        msg = f"{provider} does not serve action {name} ({label})"
+        found.append(Finding("missing-action", msg, provider, name))
+    if live is not None and live.type is not None and not same_type(live.type, typ):
+        msg = f"action {name} ({label}) has type {live.type}, not {typ}"
+        found.append(Finding("wrong-type", msg, provider, name))
+    for consumer, (user, own) in users.items():
+        if user is None:
+            continue
+        clients = {c for a in {name, own} if a in actions for c in actions[a].clients}
+        if user.name not in clients:
+            msg = f"{consumer} does not call action {name} ({label})"
+            found.append(Finding("missing-action-client", msg, consumer, name))
+        if not servers:
+            msg = (
+                f"{consumer} uses action {name} ({label}, {typ}) of {provider}, "
+                "which nothing live serves (Lemma 4)"
+            )
+            found.append(Finding("unmet-requirement", msg, consumer, name))
+    return found

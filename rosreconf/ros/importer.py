@@ -14,6 +14,11 @@ placeholder that still validates, marked with a ``# TODO`` comment::
     subscribed topic /t                  requires {topic: /t, type: T} when something live
                                          publishes /t, else a commented-out TODO
     called services                      invisible at the master: TODO comment
+    action /a served (ROS 2: its _action/   provides {action: /a, type: pkg/action/T}; its
+      services and topics; ROS 1: the five  services and topics are not drafted
+      actionlib topics)
+    action /a called                     requires {action: /a, type: pkg/action/T} when a
+                                         live node serves it, else a commented-out TODO
     -                                    abstraction: TODO_<name>, ros.package: TODO_package,
                                          ros.executable: TODO_executable
 
@@ -28,7 +33,9 @@ import json
 import re
 from pathlib import Path
 
+from rosreconf.model import type_key
 from rosreconf.resources import Bundle, bundled
+from rosreconf.ros.liveactions import LiveAction, live_actions, without_action_parts
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 
 ANONYMOUS = re.compile(r"_\d+_\d{10,}$")
@@ -86,18 +93,24 @@ def _service_type(service: str) -> str:
 
 def _library_type(live: LiveGraph, service: str) -> str:
     """Return a ROS 2 service's type in the library's ``pkg/Name`` form."""
-    return _short(live.service_types.get(service, _service_type(service)))
+    return type_key(live.service_types.get(service, _service_type(service)))
 
 
 def _topic_type(live: LiveGraph, topic: str) -> str:
     """Return a topic's type in the library's ``pkg/Name`` form (ROS 2 says ``pkg/msg/Name``)."""
-    return _short(live.topic_types.get(topic, UNKNOWN_TOPIC_TYPE))
+    return type_key(live.topic_types.get(topic, UNKNOWN_TOPIC_TYPE))
 
 
-def _short(ros_type: str) -> str:
-    """Drop the ``msg``/``srv`` part of a ROS 2 type: the library writes ``pkg/Name``."""
-    parts = ros_type.split("/")
-    return f"{parts[0]}/{parts[-1]}" if len(parts) == 3 else ros_type
+UNKNOWN_ACTION_TYPE = "TODO_msgs/action/Unknown"
+"""The type written for an action none of whose parts announced a type."""
+
+
+def _action_type(action: LiveAction) -> str:
+    """Return an action's type as ROS 2 writes it (``pkg/action/T``; ROS 1's ``pkg/T`` too)."""
+    if action.type is None:
+        return UNKNOWN_ACTION_TYPE
+    package, _, name = type_key(action.type).partition("/")
+    return f"{package}/action/{name}"
 
 
 def _q(text: str) -> str:
@@ -114,7 +127,9 @@ def _where(live: LiveGraph) -> str:
 
 def draft_library(graph: LiveGraph, name: str = "imported") -> str:
     """Return the YAML text of a component library with one component per live node."""
-    live = without_plumbing(graph)
+    plain = without_plumbing(graph)
+    actions = live_actions(plain)
+    live = without_action_parts(plain, actions)
     published = {t for n in live.nodes for t in n.publishes}
     lines = [
         header(),
@@ -135,13 +150,19 @@ def draft_library(graph: LiveGraph, name: str = "imported") -> str:
     ]
     taken: set[str] = set()
     for node in live.nodes:
-        lines += _component(node, component_name(node.name, taken), live, published)
+        lines += _component(node, component_name(node.name, taken), live, published, actions)
     if not live.nodes:
         lines[-1] = "components: []  # TODO: no node was running (this draft will not load)"
     return "\n".join(lines) + "\n"
 
 
-def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) -> list[str]:
+def _component(
+    node: LiveNode,
+    comp: str,
+    live: LiveGraph,
+    published: set[str],
+    actions: dict[str, LiveAction],
+) -> list[str]:
     """Return the YAML lines of one component drafted from ``node``."""
     namespace, _, base = node.name.rpartition("/")
     lines = [
@@ -167,6 +188,9 @@ def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) 
             provides.append(
                 f"      - {{service: {_q(s)}, type: {_q(_service_type(s))}}}  # TODO: type"
             )
+    for a in actions.values():
+        if node.name in a.servers:
+            provides.append(f"      - {{action: {_q(a.name)}, type: {_q(_action_type(a))}}}")
     lines += ["    provides:", *provides] if provides else ["    provides: []"]
     requires: list[str] = []
     unmet: list[str] = []
@@ -178,6 +202,10 @@ def _component(node: LiveNode, comp: str, live: LiveGraph, published: set[str]) 
     for c in node.clients:  # ROS 2 only: a ROS 1 master does not know callers
         entry = f"{{service: {_q(c)}, type: {_q(_library_type(live, c))}}}"
         (requires if c in served else uncalled).append(entry)
+    for a in actions.values():
+        if node.name in a.clients:
+            entry = f"{{action: {_q(a.name)}, type: {_q(_action_type(a))}}}"
+            (requires if a.servers else uncalled).append(entry)
     lines += ["    requires:", *(f"      - {r}" for r in requires)] if requires else []
     lines += [f"    # TODO: subscribes {r}, which nothing live publishes" for r in unmet]
     lines += [f"    # TODO: calls {r}, which nothing live serves" for r in uncalled]

@@ -15,9 +15,12 @@ for the label to the name the *provider* really uses, when the two differ::
 A library ``remappings`` entry says which ROS name a component's executable really uses for
 a label; the provider is therefore started as it is and its consumers are remapped to that
 name (``rosreconf.ros.conformance`` reads the same entry the same way when it checks a live
-system). One remapping can point a name at one place only: when a consumer uses the same
-label from several providers that use different names, no remapping is written; a comment
-in the node and an entry in ``LaunchFile.notes`` say so. The XML is built with
+system). An action is remapped by its name in ROS 2, like a topic (rcl_action remaps action
+names with the topic rules); ROS 1 actionlib is five topics under the action's namespace
+(``ACTIONLIB_TOPICS``), and remapping a name does not move the names under it, so a ROS 1
+file remaps each of the five. One remapping can point a name at one place only: when a
+consumer uses the same label from several providers that use different names, no remapping
+is written; a comment in the node and an entry in ``LaunchFile.notes`` say so. The XML is built with
 ``xml.etree``; no user value is ever pasted into markup.
 
 ``only`` writes just some of the configuration's nodes, still wired against the whole
@@ -49,6 +52,9 @@ from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
 from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
+
+ACTIONLIB_TOPICS = ("goal", "cancel", "status", "feedback", "result")
+"""The topics ROS 1 actionlib puts under an action's name (``<action>/goal`` ...)."""
 
 
 class RosVersion(enum.StrEnum):
@@ -160,12 +166,17 @@ def _stand_in_file(
     return LaunchFile(text + "\n", tuple(c.name for c in chosen), ())
 
 
+Remap = tuple[str, str, bool]
+"""One remapping of a consumer: (from, to, whether the name is an action's)."""
+
+
 def _wiring(
     library: ComponentLibrary, schema: InteroperabilitySchema, configuration: Configuration
-) -> tuple[dict[str, list[tuple[str, str]]], dict[str, list[str]]]:
-    """Return per consumer its (from, to) remappings and the notes about what cannot be."""
+) -> tuple[dict[str, list[Remap]], dict[str, list[str]]]:
+    """Return per consumer its remappings and the notes about what cannot be."""
     g = ros_graph(configuration, library, schema)
     wanted: dict[tuple[str, str], dict[str, str]] = {}  # (consumer, own name) -> provider: real
+    actions: set[tuple[str, str]] = set()
     for vertex, (kind, consumer) in g.edges:
         if vertex[0] is K.NODE or kind is not K.NODE:
             continue
@@ -177,13 +188,15 @@ def _wiring(
             if provider_vertex[0] is K.NODE:
                 provider = library[provider_vertex[1]]
                 wanted.setdefault((consumer, own), {})[provider.name] = _real_name(provider, label)
-    remaps: dict[str, list[tuple[str, str]]] = {}
+        if vertex[0] is K.ACTION:
+            actions.add((consumer, own))
+    remaps: dict[str, list[Remap]] = {}
     notes: dict[str, list[str]] = {}
     for (consumer, own), targets in sorted(wanted.items()):
         names = sorted(set(targets.values()))
         if len(names) == 1:
             if names[0] != own:
-                remaps.setdefault(consumer, []).append((own, names[0]))
+                remaps.setdefault(consumer, []).append((own, names[0], (consumer, own) in actions))
             continue
         listed = ", ".join(f"{p} ({n})" for p, n in sorted(targets.items()))
         notes.setdefault(consumer, []).append(
@@ -198,9 +211,7 @@ def _real_name(component: Component, label: str) -> str:
     return launch.remappings.get(label, label) if launch is not None else label
 
 
-def _node(
-    c: Component, remaps: list[tuple[str, str]], notes: list[str], version: RosVersion
-) -> ET.Element:
+def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersion) -> ET.Element:
     launch = c.launch
     assert launch is not None  # checked by launch_file
     ros1 = version is RosVersion.ROS1
@@ -218,8 +229,12 @@ def _node(
         node.append(ET.Comment(_comment(f" {note} ")))
     for name, value in sorted(launch.parameters.items()):
         node.append(ET.Element("param", _param(name, value, version)))
-    for old, new in remaps:
-        node.append(ET.Element("remap", {"from": old, "to": new}))
+    for old, new, action in remaps:
+        if action and ros1:  # actionlib: five topics under the name, each remapped
+            for part in ACTIONLIB_TOPICS:
+                node.append(ET.Element("remap", {"from": f"{old}/{part}", "to": f"{new}/{part}"}))
+        else:
+            node.append(ET.Element("remap", {"from": old, "to": new}))
     return node
 
 

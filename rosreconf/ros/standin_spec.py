@@ -2,14 +2,20 @@
 
 Pure data, apart from the module that starts roslaunch (``rosreconf.ros.standins``), so that
 writing a launch file (``rosreconf.ros.launchfiles``) needs no process machinery.
+
+Actions are listed under ``actions`` (name, type, server or client) for a ROS 2 stand-in to
+act out. The ROS 1 stand-in ignores that list; it acts an action out as actionlib does, as
+five topics (``action_topics``), which the spec lists with the other topics, so the master
+shows the action as ``rosreconf.ros.liveactions`` reads it.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from rosreconf.model import Component, InterfaceKind
+from rosreconf.model import Component, Interface, InterfaceKind
 from rosreconf.ros.conformance import interface_live_name
+from rosreconf.ros.liveactions import ROS1_SERVER_PUBLISHES
 
 STANDIN_PACKAGE = "rosreconf_standin"
 """The package a stand-in ``<node pkg=...>`` names (it exists only in a temp dir)."""
@@ -17,18 +23,52 @@ STANDIN_EXECUTABLE = "standin_node"
 """The stand-in node's executable in that package (a copy of ``standin_node.py``)."""
 
 
+def action_topics(name: str, iface: Interface) -> dict[str, dict[str, str]]:
+    """Return the five actionlib topics of action ``name`` (ROS 1), keyed by their part."""
+    package, _, base = iface.type.partition("/")  # the canonical pkg/T
+    types = {
+        "goal": f"{package}/{base}ActionGoal",
+        "cancel": "actionlib_msgs/GoalID",
+        "status": "actionlib_msgs/GoalStatusArray",
+        "feedback": f"{package}/{base}ActionFeedback",
+        "result": f"{package}/{base}ActionResult",
+    }
+    return {part: {"topic": f"{name}/{part}", "type": t} for part, t in types.items()}
+
+
 def standin_spec(component: Component) -> dict[str, Any]:
     """Return the stand-in JSON spec acting out ``component``'s provisions and requirements."""
-    publish, serve, subscribe = [], [], []
+    publish: list[dict[str, str]] = []
+    serve: list[dict[str, str]] = []
+    subscribe: list[dict[str, str]] = []
+    actions: list[dict[str, str]] = []
     for iface in sorted(component.provides):
         name = interface_live_name(component, iface.label)
         if iface.kind is InterfaceKind.SERVICE:
             serve.append({"service": name, "type": iface.type})
+        elif iface.kind is InterfaceKind.ACTION:
+            actions.append({"action": name, "type": iface.written, "role": "server"})
+            for part, entry in action_topics(name, iface).items():
+                (publish if part in ROS1_SERVER_PUBLISHES else subscribe).append(entry)
         else:
             publish.append({"topic": name, "type": iface.type})
     for req in component.requires:
         for option in req.options:  # services called are invisible at the master
             if option.kind is InterfaceKind.TOPIC:
-                topic = interface_live_name(component, option.label)
-                subscribe.append({"topic": topic, "type": option.type})
-    return {"name": component.node_name, "publish": publish, "serve": serve, "subscribe": subscribe}
+                subscribe.append(
+                    {"topic": interface_live_name(component, option.label), "type": option.type}
+                )
+            elif option.kind is InterfaceKind.ACTION:
+                name = interface_live_name(component, option.label)
+                actions.append({"action": name, "type": option.written, "role": "client"})
+                for part, entry in action_topics(name, option).items():
+                    (subscribe if part in ROS1_SERVER_PUBLISHES else publish).append(entry)
+    spec: dict[str, Any] = {
+        "name": component.node_name,
+        "publish": publish,
+        "serve": serve,
+        "subscribe": subscribe,
+    }
+    if actions:
+        spec["actions"] = actions
+    return spec

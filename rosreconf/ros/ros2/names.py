@@ -12,6 +12,12 @@ same names). The inverse, as rmw_cyclonedds_cpp ``demangle.cpp`` does it::
     topic  rr/add_two_intsReply   (writer: server)   service /add_two_ints
     type   std_msgs::msg::dds_::String_              std_msgs/msg/String
     type   example_interfaces::srv::dds_::AddTwoInts_Request_  example_interfaces/srv/AddTwoInts
+    type   nav2_msgs::action::dds_::NavigateToPose_SendGoal_Request_
+                                                     nav2_msgs/action/NavigateToPose_SendGoal
+
+An action's services and topics (``<a>/_action/send_goal`` ...) are ordinary ones here;
+``rosreconf.ros.liveactions`` reads the actions back from them. The library's ``pkg/Name``
+equals ``pkg/msg/Name`` by ``rosreconf.model.type_key``, the one place types are compared.
 
 A DDS name without these prefixes is not a ROS one (plain DDS applications, or ROS endpoints
 created with ``avoid_ros_namespace_conventions``) and is left out of the ROS graph.
@@ -55,13 +61,16 @@ def ros_name(dds_topic: str) -> tuple[Channel, str] | None:
 
 
 def ros_type(dds_type: str) -> str | None:
-    """Return the ROS type ``pkg/msg/Name`` or ``pkg/srv/Name`` of a DDS type name, else None."""
+    """Return the ROS type ``pkg/msg/Name`` or ``pkg/srv/Name`` of a DDS type name, else None.
+
+    An action's services are typed like services: ``pkg/action/Name_SendGoal``.
+    """
     head, sep, tail = dds_type.rpartition("::dds_::")
     if not sep or not head or not tail.endswith("_"):
         return None
     name = tail[:-1]
     for suffix in ("_Request", "_Response"):
-        if name.endswith(suffix) and head.endswith("::srv"):
+        if name.endswith(suffix) and head.endswith(("::srv", "::action")):
             name = name[: -len(suffix)]
             break
     if not name:

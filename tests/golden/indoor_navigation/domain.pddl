@@ -217,7 +217,7 @@
     )
   )
 
-  ;; base meets odometry's need for topic 'joint_states' (sensor_msgs/JointState)
+  ;; base meets odometry's need for topic 'joint_states' (sensor_msgs/msg/JointState)
   (:action connect-odometry-joint_states-base
     :parameters ()
     :precondition (and
@@ -231,7 +231,7 @@
     )
   )
 
-  ;; range_sensor meets localisation's need for topic 'scan' (sensor_msgs/LaserScan)
+  ;; range_sensor meets localisation's need for topic 'scan' (sensor_msgs/msg/LaserScan)
   (:action connect-localisation-scan-range_sensor
     :parameters ()
     :precondition (and
@@ -245,7 +245,7 @@
     )
   )
 
-  ;; odometry meets localisation's need for topic 'odom' (nav_msgs/Odometry)
+  ;; odometry meets localisation's need for topic 'odom' (nav_msgs/msg/Odometry)
   (:action connect-localisation-odom-odometry
     :parameters ()
     :precondition (and
@@ -259,7 +259,7 @@
     )
   )
 
-  ;; localisation meets local_planner's need for topic 'pose' (geometry_msgs/PoseWithCovarianceStamped)
+  ;; localisation meets local_planner's need for topic 'pose' (geometry_msgs/msg/PoseWithCovarianceStamped)
   (:action connect-local_planner-pose-localisation
     :parameters ()
     :precondition (and
@@ -273,7 +273,7 @@
     )
   )
 
-  ;; range_sensor meets local_planner's need for any one of topic 'scan' (sensor_msgs/LaserScan), topic 'sonar' (sensor_msgs/Range)
+  ;; range_sensor meets local_planner's need for any one of topic 'scan' (sensor_msgs/msg/LaserScan), topic 'sonar' (sensor_msgs/msg/Range)
   (:action connect-local_planner-scan-or-sonar-range_sensor
     :parameters ()
     :precondition (and
@@ -287,7 +287,7 @@
     )
   )
 
-  ;; range_sensor meets local_planner's need for topic 'scan' (sensor_msgs/LaserScan)
+  ;; range_sensor meets local_planner's need for topic 'scan' (sensor_msgs/msg/LaserScan)
   (:action connect-local_planner-scan-range_sensor
     :parameters ()
     :precondition (and
@@ -301,7 +301,7 @@
     )
   )
 
-  ;; local_planner meets base's need for topic 'cmd_vel' (geometry_msgs/Twist)
+  ;; local_planner meets base's need for topic 'cmd_vel' (geometry_msgs/msg/Twist)
   (:action connect-base-cmd_vel-local_planner
     :parameters ()
     :precondition (and
