@@ -207,7 +207,10 @@ def _edges(
                 node = answering.get(node_live_name(comps[provider]))
                 name = interface_live_name(comps[provider], label)
                 users = {
-                    c: (answering.get(node_live_name(comps[c])), interface_live_name(comps[c], label))
+                    c: (
+                        answering.get(node_live_name(comps[c])),
+                        interface_live_name(comps[c], label),
+                    )
                     for c in consumers
                 }
                 found += _action(provider, node, users, actions, name, label, typ)
