@@ -27,11 +27,19 @@ expected node does not call a service its edges say it calls) and ``qos-incompat
 provider's publisher offers a QoS the consumer's subscription cannot accept, by
 ``rosreconf.model.qos.incompatibilities``; both sides are named). ROS 2 types
 (``pkg/msg/Name``) equal the library's ``pkg/Name``.
+
+A ROS 2 graph keeps every endpoint's own type, so ``wrong-type`` names each node whose
+publisher, subscription, server or client of an expected topic or service has another type,
+whichever started first. It also adds ``unserved-client`` (a live node calls a service no
+live node serves), ``duplicate-node`` (two nodes announce one name; ROS 2 allows it, but
+calls and parameters reach either; they are judged together) and ``not-active`` (a
+component marked ``ros.lifecycle`` whose managed node is not in the active state; the
+state is said).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from rosreconf.model import (
@@ -82,7 +90,8 @@ class Finding:
     Attributes:
         code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
             ``missing-topic``, ``wrong-type``, ``unmet-requirement``, and from a ROS 2
-            graph ``missing-client`` and ``qos-incompatible``.
+            graph ``missing-client``, ``qos-incompatible``, ``unserved-client``,
+            ``duplicate-node`` and ``not-active``.
         message: the difference in plain words.
         component: the component concerned, if any (None for extra nodes).
         live_name: the global ROS name concerned (node, topic or service).
@@ -152,11 +161,32 @@ def compare(
 ) -> Conformance:
     """Compare ``live`` with the ROS-graph of ``configuration`` (which must be valid)."""
     graph = without_plumbing(live)
-    answering = {n.name: n for n in graph.nodes if n.answered}
+    answering: dict[str, LiveNode] = {}
+    for n in graph.nodes:
+        if n.answered:
+            answering[n.name] = _merge(answering[n.name], n) if n.name in answering else n
     registered = {n.name for n in graph.nodes}
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
     found: list[Finding] = []
+    owner = {name: c for c, name in names.items()}
+    for name in graph.duplicates:
+        count = sum(1 for n in graph.nodes if n.name == name)
+        why = (
+            f"{count} nodes are named {name} (ROS 2 allows it, but service calls and "
+            "parameters reach either one; give each its own name)"
+        )
+        found.append(Finding("duplicate-node", why, owner.get(name), name))
+    for c, name in names.items():
+        launch, node = comps[c].launch, answering.get(name)
+        if launch is None or not launch.lifecycle or node is None:
+            continue
+        if node.lifecycle_state not in (None, "active"):
+            why = (
+                f"{c}: managed node {name} is {node.lifecycle_state}, not active: it does "
+                f"nothing until activated (ros2 lifecycle set {name} activate)"
+            )
+            found.append(Finding("not-active", why, c, name))
     for c, name in names.items():
         role = next(r for r, x in configuration.assignment if x == c)
         if name in answering:
@@ -171,7 +201,73 @@ def compare(
             Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
         )
     found += _edges(configuration, library, schema, graph, answering, comps)
+    found += _unserved(answering, owner, found)
     return Conformance(schema.name, configuration, live, names, tuple(found))
+
+
+def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
+    """Judge two nodes of one name together: what either has, the node has."""
+    return replace(
+        a,
+        publishes=tuple(sorted({*a.publishes, *b.publishes})),
+        subscribes=tuple(sorted({*a.subscribes, *b.subscribes})),
+        serves=tuple(sorted({*a.serves, *b.serves})),
+        clients=tuple(sorted({*a.clients, *b.clients})),
+        publish_qos={**b.publish_qos, **a.publish_qos},
+        subscribe_qos={**b.subscribe_qos, **a.subscribe_qos},
+        topic_types={**b.topic_types, **a.topic_types},
+        service_types={**b.service_types, **a.service_types},
+        lifecycle_state=a.lifecycle_state if a.lifecycle_state != "active" else b.lifecycle_state,
+    )
+
+
+def _unserved(
+    answering: dict[str, LiveNode], owner: dict[str, str], found: list[Finding]
+) -> list[Finding]:
+    """Report every live call of a service that no live node serves (a ROS 2 graph only)."""
+    served = {s for n in answering.values() for s in n.serves}
+    said = {(f.component, f.live_name) for f in found if f.code == "unmet-requirement"}
+    out = []
+    for node in answering.values():
+        for service in node.clients:
+            comp = owner.get(node.name)
+            if service in served or (comp, service) in said:
+                continue
+            msg = f"{node.name} calls service {service}, which no live node serves"
+            out.append(Finding("unserved-client", msg, comp, service))
+    return out
+
+
+def _wrong_types(
+    what: str, name: str, label: str, typ: str, provider: str, graph: LiveGraph, nodes: list[str]
+) -> list[Finding]:
+    """Report each live endpoint of ``name`` whose type is not ``typ``.
+
+    A ROS 2 graph knows every node's own type (``nodes`` are the ones using ``name``); a
+    ROS 1 master knows one type per topic.
+    """
+    if graph.ros_version != 2:
+        live_type = graph.topic_types.get(name)
+        if what == "topic" and live_type is not None and not same_type(live_type, typ):
+            msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
+            return [Finding("wrong-type", msg, provider, name)]
+        return []
+    bad: dict[str, list[str]] = {}
+    for n in graph.nodes:
+        if n.name not in nodes:
+            continue
+        own = (n.topic_types if what == "topic" else n.service_types).get(name)
+        if own is not None and not same_type(own, typ):
+            bad.setdefault(own, []).append(n.name)
+    return [
+        Finding(
+            "wrong-type",
+            f"{what} {name} ({label}) is {live} at {', '.join(sorted(set(who)))}, not {typ}",
+            provider,
+            name,
+        )
+        for live, who in sorted(bad.items())
+    ]
 
 
 def _edges(
@@ -201,10 +297,12 @@ def _edges(
             verb = "serve" if what == "service" else "publish"
             msg = f"{provider} does not {verb} {what} {name} ({label})"
             found.append(Finding(f"missing-{what}", msg, provider, name))
-        live_type = graph.topic_types.get(name)
-        if what == "topic" and live_type is not None and not same_type(live_type, typ):
-            msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
-            found.append(Finding("wrong-type", msg, provider, name))
+        using = [
+            n.name
+            for n in graph.nodes
+            if name in (*n.publishes, *n.subscribes, *n.serves, *n.clients)
+        ]
+        found += _wrong_types(what, name, label, typ, provider, graph, using)
         for consumer in consumers:
             user = answering.get(node_live_name(comps[consumer]))
             own = interface_live_name(comps[consumer], label)

@@ -17,7 +17,16 @@ A GID is the endpoint's 16-byte DDS GUID, zero-padded to the Gid message's size:
 to Humble, 16 from Iron on (rmw_dds_common #68, same type name). ``distro`` picks the layout;
 without it both are read, and each participant's sample is taken in the layout its own
 endpoints announce: Iron and later put ``typehash=RIHS01_...;`` in every endpoint's USER_DATA,
-Humble does not. A sample is accepted only if its GID is the writing participant's GUID.
+Humble does not. A sample is accepted only if its GID is the writing participant's GUID
+(the writer's participant, as DDS matched it): another participant cannot speak for a third.
+
+rosreconf's participant joins with the user's ``CYCLONEDDS_URI`` plus one fragment of its own
+(``dds.CYCLONE_COMPATIBILITY``): Fast DDS 3 (Kilted) sends XTypes type information for
+``ros_discovery_info`` that Cyclone 11 rejects, and without ignoring it the reader never
+matches (endpoints are seen, node names never). A ``ros_discovery_info`` writer whose
+samples never decode (another Gid layout, a broken writer) is counted as undecodable after
+``UNDECODABLE_AFTER`` s and not waited for; the C library's own message about it is said
+once (``cstderr``).
 
 ``ros_discovery_info`` is not keyed: each participant rewrites its whole state on every change,
 all into one instance, so it is read with KEEP_ALL and the newest sample per participant is
@@ -29,6 +38,7 @@ samples into a ``LiveGraph`` is ``graph`` (pure data, testable without DDS).
 
 from __future__ import annotations
 
+import os
 import time
 from contextlib import suppress
 from dataclasses import dataclass, field
@@ -37,9 +47,23 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.dds import ALIVE, info_type, load_dds, qos_from_dds, user_data
+from rosreconf.ros.ros2 import cstderr
+from rosreconf.ros.ros2.dds import (
+    ALIVE,
+    cyclone_config,
+    info_type,
+    load_dds,
+    qos_from_dds,
+    user_data,
+)
+from rosreconf.ros.ros2.dds import (
+    read_all as _read_all,
+)
+from rosreconf.ros.ros2.dds import (
+    take_all as _take_all,
+)
 from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
-from rosreconf.ros.ros2.names import DISCOVERY_TOPIC
+from rosreconf.ros.ros2.names import DISCOVERY_TOPIC, ros_name
 
 __all__ = [
     "DISTROS",
@@ -54,6 +78,10 @@ __all__ = [
 GID_SIZES = {"humble": 24, "iron": 16, "jazzy": 16, "kilted": 16, "rolling": 16}
 """The Gid message's size in each ROS 2 distribution (Humble's is 24 bytes)."""
 DISTROS = tuple(GID_SIZES)
+UNDECODABLE_AFTER = 4.5
+"""Seconds a ``ros_discovery_info`` writer may be known without one decodable sample: more
+than Fast DDS's 3 s heartbeat, after which a sample Cyclone failed to take is sent again
+(measured: a Jazzy participant's info arrived 0.03 to 3.03 s after its writer)."""
 
 
 def check_domain(domain: int) -> None:
@@ -97,13 +125,28 @@ class Ros2Discovery:
     _conditions: dict[str, tuple[Any, Any]] = field(default_factory=dict, repr=False)
     _last_endpoints: dict[bytes, Endpoint] = field(default_factory=dict, repr=False)
     _settled: bool = False
+    _domain: Any = field(default=None, repr=False)
+    _writer_of: dict[int, bytes] = field(default_factory=dict, repr=False)
+    _info_writer_since: dict[bytes, float] = field(default_factory=dict, repr=False)
+    forged: int = 0
+    """How many ``ros_discovery_info`` samples named a participant other than their writer's."""
+    undecodable: frozenset[bytes] = frozenset()
+    """ROS participants whose ``ros_discovery_info`` never decoded (their nodes are unseen)."""
+    participants: int = 0
+    """How many DDS participants (ROS or not) the last read saw."""
+    endpoints: int = 0
+    """How many ROS endpoints (rt/, rq/, rr/ topics) the last read saw."""
+    ros_participants: int = 0
+    """How many ROS participants (``enclave=`` user data) the last read saw."""
 
     def __post_init__(self) -> None:
         check_domain(self.domain)
         sizes = gid_sizes(self.distro)
         self._dds = dds = load_dds()
         policy = dds.qos.Policy
+        cstderr.hold()
         try:
+            self._domain = self._join(dds)
             self._dp = dds.domain.DomainParticipant(self.domain)
             b = dds.builtin
             self._readers = {
@@ -138,10 +181,32 @@ class Ros2Discovery:
                 topic = dds.topic.Topic(dp, DISCOVERY_TOPIC, info_type(dds, size))
                 self._info_readers[size] = dds.sub.DataReader(dp, topic, qos=info_qos)
         except dds.core.DDSException as exc:
+            self.close()
             raise ExternalToolError(
                 f"cannot join DDS domain {self.domain}: {exc} "
                 "(check CYCLONEDDS_URI and the network interface)"
             ) from None
+
+    def _join(self, dds: Any) -> Any:
+        """Create the domain with the user's configuration and ours (None: it exists here)."""
+        try:
+            return dds.domain.Domain(self.domain, cyclone_config(os.environ.get("CYCLONEDDS_URI")))
+        except dds.core.DDSException as exc:
+            if "PRECONDITION" in str(exc).upper() or "-4" in str(exc):
+                return None  # this process already has the domain (configured here before)
+            raise
+
+    @property
+    def last_endpoints(self) -> dict[bytes, Endpoint]:
+        """Return the endpoints the last read saw, keyed by GUID."""
+        return dict(self._last_endpoints)
+
+    @property
+    def participant(self) -> Any:
+        """Return this session's DDS participant (for request/reply on the same domain)."""
+        if self._dp is None:
+            raise UsageError("this ROS 2 discovery session is closed")
+        return self._dp
 
     def __enter__(self) -> Ros2Discovery:
         return self
@@ -150,10 +215,16 @@ class Ros2Discovery:
         self.close()
 
     def close(self) -> None:
-        """Leave the domain (other participants see us go at once)."""
+        """Leave the domain (other participants see us go at once); give fd 2 back."""
+        if self._dds is None:
+            return
         self._readers.clear()
         self._info_readers.clear()
+        self._conditions.clear()
         self._dp = None
+        self._domain = None
+        self._dds = None
+        cstderr.release()
 
     def _alive(self, name: str) -> list[Any]:
         """Return the samples of alive instances of a built-in topic; drop the others."""
@@ -163,9 +234,9 @@ class Ros2Discovery:
             # The binding raises a bare Exception on a sample without data; an instance may
             # die between the take and the read, so try again.
             with suppress(Exception):
-                reader.take(N=1_000_000, condition=gone)
+                _take_all(reader, condition=gone)
             try:
-                samples: list[Any] = reader.read(N=1_000_000, condition=alive)
+                samples = _read_all(reader, condition=alive)
             except Exception as exc:
                 if attempt == 4:
                     raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
@@ -199,12 +270,18 @@ class Ros2Discovery:
     def _take_infos(self) -> None:
         """Take new ``ros_discovery_info`` samples; keep each participant's newest."""
         for size, reader in self._info_readers.items():
-            for sample in reader.take(N=100_000):
+            for sample in _take_all(reader):
                 if not hasattr(sample, "gid"):
                     continue  # an InvalidSample: a writer left, no data
                 gid = bytes(sample.gid.data)
                 if len(gid) != size or any(gid[16:]):
                     continue  # another layout misread: not a GID
+                writer = self._writer(reader, sample.sample_info.publication_handle)
+                if writer is None:
+                    continue  # its writer is gone already
+                if writer != gid[:16]:
+                    self.forged += 1  # only a participant's own GID counts (rmw does the same)
+                    continue
                 nodes = tuple(
                     NodeInfo(
                         n.node_namespace,
@@ -218,6 +295,18 @@ class Ros2Discovery:
                 old = self._infos.get(key)
                 if old is None or old[0] == size or size in self._layout_hint(key):
                     self._infos[key] = (size, nodes)
+
+    def _writer(self, reader: Any, handle: int) -> bytes | None:
+        """Return the participant GUID of the writer behind ``handle`` (cached; None: gone)."""
+        if handle not in self._writer_of:
+            try:
+                found = reader.get_matched_publication_data(handle)
+            except Exception:
+                return None
+            if found is None:
+                return None
+            self._writer_of[handle] = found.participant_key.bytes
+        return self._writer_of[handle]
 
     def _layout_hint(self, participant: bytes) -> tuple[int, ...]:
         """Return the Gid size the participant's endpoints say it uses (typehash: Iron+)."""
@@ -244,7 +333,8 @@ class Ros2Discovery:
             self._last_endpoints = endpoints = self._endpoints()
             self._take_infos()
             ros = {k for k, ud in participants.items() if b"enclave=" in ud}
-            complete = all(k in self._infos for k in ros) and all(
+            silent = self._silent(ros, endpoints)
+            complete = all(k in self._infos or k in silent for k in ros) and all(
                 g in endpoints
                 for k in ros
                 if k in self._infos
@@ -263,7 +353,32 @@ class Ros2Discovery:
                 break
             time.sleep(0.05)
         self._settled = True
+        self.undecodable = frozenset(self._silent(ros, endpoints))
+        self.participants = len(participants)
+        self.ros_participants = len(ros)
+        self.endpoints = sum(1 for e in endpoints.values() if ros_name(e.topic) is not None)
         return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
+
+    def _silent(self, ros: set[bytes], endpoints: dict[bytes, Endpoint]) -> set[bytes]:
+        """Return ROS participants whose discovery writer has sent nothing decodable for a while.
+
+        A real participant's ``ros_discovery_info`` (transient local) arrives as soon as its
+        writer is matched; one that never decodes (another Gid layout: a wrong ``--distro``;
+        a broken writer) would otherwise hold every read for the full timeout.
+        """
+        now = time.monotonic()
+        writing = {
+            e.participant for e in endpoints.values() if e.writer and e.topic == DISCOVERY_TOPIC
+        }
+        for k in writing:
+            self._info_writer_since.setdefault(k, now)
+        return {
+            k
+            for k in ros
+            if k not in self._infos
+            and k in writing
+            and now - self._info_writer_since[k] >= UNDECODABLE_AFTER
+        }
 
 
 def read_ros2_graph(
