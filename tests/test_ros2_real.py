@@ -262,3 +262,21 @@ def test_qos_depth_is_unknown_not_made_up(broken: ros2_real.Ros2System, runner: 
         q["depth"] for n in snap["nodes"] for side in n["qos"].values() for q in side.values()
     }
     assert depths == {None}
+
+
+def test_forged_gid_of_another_participant_is_ignored(
+    nominal: ros2_real.Ros2System, tmp_path: Path, runner: CliRunner
+) -> None:
+    """Imitation (real nodes cannot forge): a DDS participant writes ros_discovery_info
+    carrying a real node's participant GID and no nodes, over and over."""
+    attacker = ros2_harness.start(
+        tmp_path, nominal.domain, [], forge="other", ros_participant=False
+    )
+    try:
+        result = runner.invoke(app, ["snapshot", "--ros2", "--domain", str(nominal.domain)])
+    finally:
+        ros2_harness.stop([attacker])
+    assert result.exit_code == 0, result.stderr
+    names = {n["name"] for n in json.loads(result.stdout)["nodes"]}
+    assert names == {"/lidar", "/planner", "/controller", "/robot/base"}
+    assert "named another participant's GID and were ignored" in result.stderr
