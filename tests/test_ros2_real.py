@@ -109,6 +109,14 @@ def broken(
         system.stop()
 
 
+@pytest.fixture(scope="module")
+def broken_report(broken: ros2_real.Ros2System) -> dict[str, Any]:
+    """Return ``inspect --ros2 --json`` of the broken system (read once, asserted by many)."""
+    code, doc = _inspect(CliRunner(), broken.domain)
+    assert code == 1
+    return doc
+
+
 def _inspect(runner: CliRunner, domain: int, *extra: str) -> tuple[int, dict[str, Any]]:
     result = runner.invoke(
         app, ["inspect", "--ros2", "--domain", str(domain), *FILES, "--json", *extra]
@@ -210,46 +218,39 @@ def test_user_cyclone_config_is_merged_not_replaced(
 
 
 def test_wrong_topic_type_is_found_when_the_subscriber_started_first(
-    broken: ros2_real.Ros2System, runner: CliRunner
+    broken_report: dict[str, Any],
 ) -> None:
-    code, doc = _inspect(runner, broken.domain)
-    assert code == 1
+    doc = broken_report
     wrong = [f for f in _codes(doc, "wrong-type") if f["live_name"] == "/drive"]
     assert len(wrong) == 1, doc["findings"]
     assert "std_msgs/msg/String at /controller" in wrong[0]["message"]
 
 
-def test_service_types_are_compared(broken: ros2_real.Ros2System, runner: CliRunner) -> None:
-    _, doc = _inspect(runner, broken.domain)
+def test_service_types_are_compared(broken_report: dict[str, Any]) -> None:
+    doc = broken_report
     wrong = [f for f in _codes(doc, "wrong-type") if f["live_name"] == "/plan"]
     assert len(wrong) == 1, doc["findings"]
     assert "std_srvs/srv/SetBool at /planner" in wrong[0]["message"]
     assert "not std_srvs/Trigger" in wrong[0]["message"]
 
 
-def test_client_without_server_is_a_finding(
-    broken: ros2_real.Ros2System, runner: CliRunner
-) -> None:
-    _, doc = _inspect(runner, broken.domain)
+def test_client_without_server_is_a_finding(broken_report: dict[str, Any]) -> None:
+    doc = broken_report
     (unserved,) = _codes(doc, "unserved-client")
     assert (unserved["component"], unserved["live_name"]) == ("BASE", "/nobody")
 
 
 def test_duplicate_node_names_are_reported_not_merged(
-    broken: ros2_real.Ros2System, runner: CliRunner
+    broken: ros2_real.Ros2System, broken_report: dict[str, Any], runner: CliRunner
 ) -> None:
-    _, doc = _inspect(runner, broken.domain)
-    (dup,) = _codes(doc, "duplicate-node")
+    (dup,) = _codes(broken_report, "duplicate-node")
     assert (dup["component"], dup["live_name"]) == ("LIDAR", "/lidar")
     snap = _snapshot(runner, broken.domain)
     assert [n["name"] for n in snap["nodes"]].count("/lidar") == 2
 
 
-def test_inactive_managed_node_is_not_conformant(
-    broken: ros2_real.Ros2System, runner: CliRunner
-) -> None:
-    _, doc = _inspect(runner, broken.domain)
-    (state,) = _codes(doc, "not-active")
+def test_inactive_managed_node_is_not_conformant(broken_report: dict[str, Any]) -> None:
+    (state,) = _codes(broken_report, "not-active")
     assert state["component"] == "CONTROLLER"
     assert "/controller is inactive" in state["message"]
 

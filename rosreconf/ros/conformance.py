@@ -46,6 +46,7 @@ from rosreconf.model import (
     Component,
     ComponentLibrary,
     Configuration,
+    InterfaceKind,
     InteroperabilitySchema,
     VertexKind,
 )
@@ -200,8 +201,17 @@ def compare(
         found.append(
             Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
         )
-    found += _edges(configuration, library, schema, graph, answering, comps)
-    found += _unserved(answering, owner, found)
+    # Calls the library declares (every option of a service requirement, under the component's
+    # own name for it) are judged along the edges, not as unserved calls.
+    wired = {
+        (names[c], interface_live_name(comp, option.label))
+        for c, comp in comps.items()
+        for req in comp.requires
+        for option in req.options
+        if option.kind is InterfaceKind.SERVICE
+    }
+    found += _edges(configuration, library, schema, graph, answering, comps, wired)
+    found += _unserved(answering, owner, wired)
     return Conformance(schema.name, configuration, live, names, tuple(found))
 
 
@@ -222,16 +232,20 @@ def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
 
 
 def _unserved(
-    answering: dict[str, LiveNode], owner: dict[str, str], found: list[Finding]
+    answering: dict[str, LiveNode], owner: dict[str, str], wired: set[tuple[str, str]]
 ) -> list[Finding]:
-    """Report every live call of a service that no live node serves (a ROS 2 graph only)."""
+    """Report every live call of a service that no live node serves (a ROS 2 graph only).
+
+    Calls along the configuration's own service edges (``wired``: consumer node, the name it
+    calls) are judged there (``unmet-requirement``, with the consumer's own name accepted as
+    a launch remapping would set it), not again here.
+    """
     served = {s for n in answering.values() for s in n.serves}
-    said = {(f.component, f.live_name) for f in found if f.code == "unmet-requirement"}
     out = []
     for node in answering.values():
         for service in node.clients:
             comp = owner.get(node.name)
-            if service in served or (comp, service) in said:
+            if service in served or (node.name, service) in wired:
                 continue
             msg = f"{node.name} calls service {service}, which no live node serves"
             out.append(Finding("unserved-client", msg, comp, service))
@@ -277,8 +291,12 @@ def _edges(
     graph: LiveGraph,
     answering: dict[str, LiveNode],
     comps: dict[str, Component],
+    wired: set[tuple[str, str]],
 ) -> list[Finding]:
-    """Check every topic/service vertex of the expected ROS-graph against the live nodes."""
+    """Check every topic/service vertex of the expected ROS-graph against the live nodes.
+
+    Adds to ``wired`` each (consumer node, service name) an expected service edge explains.
+    """
     found: list[Finding] = []
     served = {s for n in answering.values() for s in n.serves}
     published = {t for n in answering.values() for t in n.publishes}
@@ -306,6 +324,11 @@ def _edges(
         for consumer in consumers:
             user = answering.get(node_live_name(comps[consumer]))
             own = interface_live_name(comps[consumer], label)
+            if what == "service":
+                wired |= {
+                    (node_live_name(comps[consumer]), name),
+                    (node_live_name(comps[consumer]), own),
+                }
             if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
                 msg = f"{consumer} does not subscribe to topic {name} ({label})"
                 found.append(Finding("missing-topic", msg, consumer, name))

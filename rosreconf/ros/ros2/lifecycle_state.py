@@ -36,6 +36,8 @@ EPROSIMA = b"\x01\x0f"
 """The vendor id Fast DDS puts at the start of every GUID prefix."""
 STATES = {1: "unconfigured", 2: "inactive", 3: "active", 4: "finalized"}
 """lifecycle_msgs/msg/State's primary state ids."""
+RESEND = 0.25
+"""Seconds before an unanswered request is written again (get_state changes nothing)."""
 UNKNOWN = "unknown"
 """The state of a managed node that was not asked or did not answer."""
 
@@ -85,24 +87,27 @@ def read_states(
             dp, dds.topic.Topic(dp, f"rr{node}/get_stateReply", response), qos=qos
         )
         pending[node] = (writer, reader)
-    sent: set[str] = set()
+    sent: dict[str, float] = {}
     deadline = time.monotonic() + timeout
     while pending and time.monotonic() < deadline:
+        now = time.monotonic()
         for node, (writer, reader) in list(pending.items()):
-            if node not in sent:
-                if not (
-                    writer.get_publication_matched_status().current_count
-                    and reader.get_subscription_matched_status().current_count
-                ):
-                    continue  # the server's endpoints are not matched yet
-                writer.write(request(structure_needs_at_least_one_member=0))
-                sent.add(node)
             for sample in reader.take(N=16):
                 if hasattr(sample, "current_state"):
                     state = sample.current_state
                     states[node] = STATES.get(int(state.id), str(state.label) or UNKNOWN)
                     del pending[node]
                     break
+            else:
+                if now - sent.get(node, -RESEND) < RESEND or not (
+                    writer.get_publication_matched_status().current_count
+                    and reader.get_subscription_matched_status().current_count
+                ):
+                    continue  # asked just now, or the server's endpoints are not matched yet
+                # Ask (again): the server may not have matched our reply reader yet when we
+                # matched its endpoints, and then its answer reaches no one.
+                writer.write(request(structure_needs_at_least_one_member=0))
+                sent[node] = now
         time.sleep(0.01)
     return states
 
