@@ -32,6 +32,13 @@ discovery sample is written, then waits for SIGTERM/SIGINT. The spec::
                 "subscriptions": [], "servers": [], "clients": []}]}
 
 The network configuration comes from CYCLONEDDS_URI (the tests give a loopback-only one).
+
+Faults real nodes cannot be made to show (imitation, named as such in the tests):
+``"unbounded_names": true`` writes node names as unbounded strings, so a name longer than the
+Gid message's 256 characters makes every reader fail to decode the sample; ``"repeat": N``
+writes the sample N times; ``"forge": "other"`` waits for another ROS participant and keeps
+writing ros_discovery_info carrying THAT participant's GID (with this spec's nodes), every
+0.2 s, as an attacker would.
 """
 
 from __future__ import annotations
@@ -62,15 +69,16 @@ PARAMETER_SERVICES = (
 )
 
 
-def gid_types(size: int) -> type[IdlStruct]:
+def gid_types(size: int, bounded: bool = True) -> type[IdlStruct]:
     """Build rmw_dds_common's ParticipantEntitiesInfo for a ``size``-byte Gid (16 or 24)."""
+    name_type: Any = bounded_str[256] if bounded else str
     gid = make_idl_struct("Gid_", "rmw_dds_common::msg::dds_::Gid_", {"data": array[uint8, size]})
     node = make_idl_struct(
         "NodeEntitiesInfo_",
         "rmw_dds_common::msg::dds_::NodeEntitiesInfo_",
         {
-            "node_namespace": bounded_str[256],
-            "node_name": bounded_str[256],
+            "node_namespace": name_type,
+            "node_name": name_type,
             "reader_gid_seq": sequence[gid],
             "writer_gid_seq": sequence[gid],
         },
@@ -165,7 +173,7 @@ class Announcer:
         self.sub = Subscriber(self.dp)
         self.keep: list[Any] = []
         self.topics: dict[tuple[str, str], Topic[Any]] = {}
-        self.info_type = gid_types(self.gid_size)
+        self.info_type = gid_types(self.gid_size, not spec.get("unbounded_names", False))
         nodes = []
         for node in spec["nodes"]:
             readers: list[bytes] = []
@@ -241,7 +249,29 @@ class Announcer:
 
     def announce(self) -> None:
         """Write the participant's whole state to ros_discovery_info (rmw does on each change)."""
-        self.info_writer.write(self.info)
+        for _ in range(int(self.spec.get("repeat", 1))):
+            self.info_writer.write(self.info)
+
+    def forge(self, done: threading.Event) -> None:
+        """Keep writing this spec's nodes under another ROS participant's GID (an attack)."""
+        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsParticipant
+
+        reader = BuiltinDataReader(self.dp, BuiltinTopicDcpsParticipant)
+        own = self.dp.get_guid().bytes
+        victim = None
+        while victim is None and not done.is_set():
+            for p in reader.read(N=64):
+                data = p.qos[Policy.Userdata]
+                if p.key.bytes != own and data is not None and b"enclave=" in bytes(data.data):
+                    victim = p.key.bytes
+            done.wait(0.1)
+        forged = self.info_type(
+            gid=self._gid(victim), node_entities_info_seq=self.info.node_entities_info_seq
+        )
+        print("ready", flush=True)
+        while not done.is_set():
+            self.info_writer.write(forged)
+            done.wait(0.2)
 
 
 def main() -> None:
@@ -249,10 +279,13 @@ def main() -> None:
     with open(sys.argv[1], encoding="utf-8") as f:
         spec = json.load(f)
     announcer = Announcer(spec)
-    announcer.announce()
     done = threading.Event()
     signal.signal(signal.SIGTERM, lambda *_: done.set())
     signal.signal(signal.SIGINT, lambda *_: done.set())
+    if spec.get("forge") == "other":
+        announcer.forge(done)
+        return
+    announcer.announce()
     print("ready", flush=True)
     done.wait()
 

@@ -8,11 +8,19 @@ both Gid layouts, and ignores what is not ROS.
 
 from __future__ import annotations
 
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
 from typing import Any
 
 import pytest
+import ros2_harness
 from conftest import Announce
+from typer.testing import CliRunner
 
+from rosreconf.cli.app import app
 from rosreconf.model.qos import Durability, Liveliness, QosProfile, Reliability
 from rosreconf.ros.livegraph import from_json, to_json, without_plumbing
 from rosreconf.ros.ros2.discovery import read_ros2_graph
@@ -70,8 +78,8 @@ def test_reads_nodes_endpoints_types_and_qos(
         assert graph.topic_types["/chatter"] == "std_msgs/msg/String"
         assert graph.service_types["/add_two_ints"] == "example_interfaces/srv/AddTwoInts"
         assert talker.publish_qos["/chatter"] == QosProfile(
-            reliability=Reliability.BEST_EFFORT, deadline=0.5, depth=5
-        )
+            reliability=Reliability.BEST_EFFORT, deadline=0.5, depth=None
+        )  # announced with depth 5: DDS discovery does not carry it (unknown, not made up)
         assert talker.publish_qos["/demo/map"].durability is Durability.TRANSIENT_LOCAL
         cmd = talker.subscribe_qos["/cmd"]
         assert (cmd.liveliness, cmd.lease_duration) == (Liveliness.MANUAL_BY_TOPIC, 3.0)
@@ -106,3 +114,47 @@ def test_killed_participant_leaves_the_graph(announce: Announce, ros2_domain: in
             assert time.monotonic() < deadline, "the killed participant never left"
             time.sleep(0.1)
         assert session.read().names == ("/listener",)
+
+
+PATROL = Path(__file__).with_name("data") / "ros2"
+
+
+def test_node_names_from_the_network_are_escaped(
+    announce: Announce, ros2_domain: int, runner: CliRunner
+) -> None:
+    """Imitation (rclpy refuses such names): a node named with terminal escape sequences
+    that would retitle and clear the terminal and forge a verdict line."""
+    evil = "x\x1b]0;pwned\x07\x1b[2J\rrosreconf: conformant (0 problems)\x9b31m"
+    announce([{**LISTENER, "name": evil, "plumbing": False}])
+    files = ["-l", str(PATROL / "patrol_library.yaml"), "-s", str(PATROL / "patrol_schema.yaml")]
+    result = runner.invoke(app, ["inspect", "--ros2", "--domain", str(ros2_domain), *files])
+    assert result.exit_code == 1
+    assert "extra-node: /x\\x1b]0;pwned\\x07" in result.stdout
+    assert not any(c in result.stdout for c in "\x1b\x07\r\x9b")
+    snap = runner.invoke(app, ["snapshot", "--ros2", "--domain", str(ros2_domain)])
+    assert not any(c in snap.stdout for c in "\x1b\x07\r\x9b")
+
+
+def test_undecodable_discovery_is_counted_and_said_once(
+    announce: Announce, ros2_domain: int
+) -> None:
+    """Imitation: a participant writes, five times, a ros_discovery_info sample no reader
+    can decode (a node name longer than the message's bound); another is fine. (Cyclone
+    drops these without a message; real Fast DDS samples that fail do make one, which
+    test_ros2_real's test_cyclone_messages_are_said_once_per_cause covers.)"""
+    announce([{**LISTENER, "name": "n" * 300, "plumbing": False}], unbounded_names=True, repeat=5)
+    announce([LISTENER])
+    out = subprocess.run(
+        [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain", str(ros2_domain)],
+        capture_output=True,
+        text=True,
+        env={**ros2_harness.dds_env(), "COLUMNS": "200"},
+        timeout=60,
+    )
+    assert out.returncode == 0, out.stderr
+    assert [n["name"] for n in json.loads(out.stdout)["nodes"]] == ["/listener"]
+    lines = out.stderr.splitlines()
+    assert [line for line in lines if re.match(r"^\d+\.\d+ +\[", line)] == []
+    said = [line for line in lines if "could not be decoded" in line]
+    assert len(said) == 1, out.stderr
+    assert "1 ROS 2 participant(s)" in said[0]

@@ -34,6 +34,11 @@ from rosreconf.ros.sources import read_any
 from rosreconf.solve.running import one_target
 
 
+def _note(text: str) -> None:
+    """Say what a ROS 2 read had to leave out (on stderr; the output stays clean)."""
+    stderr.print(text, markup=False)
+
+
 def snapshot_command(
     master: OptionalMasterOption = None,
     output: Annotated[
@@ -57,6 +62,7 @@ def snapshot_command(
             distro,
             timeout=master_timeout,
             max_bytes=max_answer_mb << 20,
+            on_note=_note,
         )
     )
     write_output(target, text)
@@ -90,6 +96,7 @@ def import_command(
         distro,
         timeout=master_timeout,
         max_bytes=max_answer_mb << 20,
+        on_note=_note,
     )
     text = draft_library(graph, name)
     where = write_output(target, text)
@@ -139,6 +146,7 @@ def inspect_command(
         distro,
         timeout=master_timeout,
         max_bytes=max_answer_mb << 20,
+        on_note=_note,
     )
     result = compare(target.configuration, sel.library, target.schema, graph)
     write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))

@@ -79,7 +79,8 @@ class QosProfile:
         liveliness: automatic or manual by topic.
         lease_duration: seconds within which liveliness must be asserted; None for none.
         history: keep last or keep all.
-        depth: the keep-last depth (0 with keep all).
+        depth: the keep-last depth (0 with keep all); None when unknown: DDS discovery does
+            not carry the history, so a profile read from a live graph has None.
     """
 
     reliability: Reliability = Reliability.RELIABLE
@@ -88,17 +89,17 @@ class QosProfile:
     liveliness: Liveliness = Liveliness.AUTOMATIC
     lease_duration: float | None = None
     history: History = History.KEEP_LAST
-    depth: int = 10
+    depth: int | None = 10
 
     def to_dict(self) -> dict[str, Any]:
-        """Return the JSON/YAML shape (``QOS_KEYS``; ``depth: 0`` for keep all)."""
+        """Return the JSON/YAML shape (``QOS_KEYS``; ``depth: 0`` for keep all, null unknown)."""
         return {
             "reliability": str(self.reliability),
             "durability": str(self.durability),
             "deadline": self.deadline,
             "liveliness": str(self.liveliness),
             "lease_duration": self.lease_duration,
-            "depth": 0 if self.history is History.KEEP_ALL else self.depth,
+            "depth": self.depth if self.depth is None or self.history is History.KEEP_LAST else 0,
         }
 
     @staticmethod
@@ -111,7 +112,8 @@ class QosProfile:
         unknown = sorted(set(doc) - set(QOS_KEYS))
         if unknown:
             raise ValueError(f"unknown QoS key(s) {', '.join(unknown)} (allowed: {QOS_KEYS})")
-        depth = int(doc.get("depth", 10))
+        raw = doc.get("depth", 10)
+        depth = None if raw is None else int(raw)
         return QosProfile(
             reliability=Reliability(doc.get("reliability", Reliability.RELIABLE)),
             durability=Durability(doc.get("durability", Durability.VOLATILE)),

@@ -30,74 +30,39 @@ provider's publisher offers a QoS the consumer's subscription cannot accept, by
 Actions (``rosreconf.ros.liveactions``, ROS 1 and 2) add ``missing-action`` (the provider
 does not serve it), ``missing-action-client`` (the consumer does not call it), and
 ``wrong-type`` and ``unmet-requirement`` as for topics.
+
+A ROS 2 graph keeps every endpoint's own type, so ``wrong-type`` names each node whose
+publisher, subscription, server or client of an expected topic or service has another type,
+whichever started first. It also adds ``unserved-client`` (a live node calls a service no
+live node serves), ``duplicate-node`` (two nodes announce one name; ROS 2 allows it, but
+calls and parameters reach either; they are judged together) and ``not-active`` (a
+component marked ``ros.lifecycle`` whose managed node is not in the active state; the
+state is said).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from rosreconf.model import (
-    Component,
     ComponentLibrary,
     Configuration,
+    InterfaceKind,
     InteroperabilitySchema,
-    VertexKind,
-    type_key,
 )
-from rosreconf.model.qos import incompatibilities
-from rosreconf.model.validity import ros_graph
-from rosreconf.ros.liveactions import LiveAction, live_actions
+from rosreconf.ros.edgechecks import edge_findings, unserved_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
+from rosreconf.ros.livenames import Finding, interface_live_name, node_live_name, same_type
 
-
-def _join(namespace: str, name: str) -> str:
-    """Return the global name of ``name`` in ``namespace`` (``/arm`` + ``x`` -> ``/arm/x``)."""
-    parts = [p for p in (*namespace.split("/"), *name.split("/")) if p]
-    return "/" + "/".join(parts)
-
-
-def node_live_name(component: Component) -> str:
-    """Return the global name the node of ``component`` has on the master.
-
-    The node's own name (``ros.node``) in its namespace, never the library name: ``import``
-    names two live ``scan_listener`` nodes ``scan_listener`` and ``robot_scan_listener``, and
-    only the second has a namespace to tell them apart.
-    """
-    return _join(component.namespace or "/", component.node_name)
-
-
-def interface_live_name(component: Component, label: str) -> str:
-    """Return the global ROS name ``component`` uses for its interface ``label``.
-
-    The remapping (``ros.remappings``, label -> real name) wins; a relative name is resolved
-    in the component's namespace, as ROS resolves it for a node started there.
-    """
-    launch = component.launch
-    target = launch.remappings.get(label, label) if launch else label
-    if target.startswith("/"):
-        return _join("/", target)
-    return _join((launch.namespace if launch else None) or "/", target)
-
-
-@dataclass(frozen=True)
-class Finding:
-    """One way the live graph differs from the expected ROS-graph.
-
-    Attributes:
-        code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
-            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, ``missing-action``,
-            ``missing-action-client``, and from a ROS 2 graph ``missing-client`` and
-            ``qos-incompatible``.
-        message: the difference in plain words.
-        component: the component concerned, if any (None for extra nodes).
-        live_name: the global ROS name concerned (node, topic, service or action).
-    """
-
-    code: str
-    message: str
-    component: str | None
-    live_name: str
+__all__ = [
+    "Conformance",
+    "Finding",
+    "compare",
+    "interface_live_name",
+    "node_live_name",
+    "same_type",
+]
 
 
 @dataclass(frozen=True)
@@ -158,11 +123,32 @@ def compare(
 ) -> Conformance:
     """Compare ``live`` with the ROS-graph of ``configuration`` (which must be valid)."""
     graph = without_plumbing(live)
-    answering = {n.name: n for n in graph.nodes if n.answered}
+    answering: dict[str, LiveNode] = {}
+    for n in graph.nodes:
+        if n.answered:
+            answering[n.name] = _merge(answering[n.name], n) if n.name in answering else n
     registered = {n.name for n in graph.nodes}
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
     found: list[Finding] = []
+    owner = {name: c for c, name in names.items()}
+    for name in graph.duplicates:
+        count = sum(1 for n in graph.nodes if n.name == name)
+        why = (
+            f"{count} nodes are named {name} (ROS 2 allows it, but service calls and "
+            "parameters reach either one; give each its own name)"
+        )
+        found.append(Finding("duplicate-node", why, owner.get(name), name))
+    for c, name in names.items():
+        launch, node = comps[c].launch, answering.get(name)
+        if launch is None or not launch.lifecycle or node is None:
+            continue
+        if node.lifecycle_state not in (None, "active"):
+            why = (
+                f"{c}: managed node {name} is {node.lifecycle_state}, not active: it does "
+                f"nothing until activated (ros2 lifecycle set {name} activate)"
+            )
+            found.append(Finding("not-active", why, c, name))
     for c, name in names.items():
         role = next(r for r, x in configuration.assignment if x == c)
         if name in answering:
@@ -176,167 +162,31 @@ def compare(
         found.append(
             Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
         )
-    found += _edges(configuration, library, schema, graph, answering, comps)
+    # Calls the library declares (every option of a service requirement, under the component's
+    # own name for it) are judged along the edges, not as unserved calls.
+    wired = {
+        (names[c], interface_live_name(comp, option.label))
+        for c, comp in comps.items()
+        for req in comp.requires
+        for option in req.options
+        if option.kind is InterfaceKind.SERVICE
+    }
+    found += edge_findings(configuration, library, schema, graph, answering, comps, wired)
+    found += unserved_findings(answering, owner, wired)
     return Conformance(schema.name, configuration, live, names, tuple(found))
 
 
-def _edges(
-    configuration: Configuration,
-    library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    graph: LiveGraph,
-    answering: dict[str, LiveNode],
-    comps: dict[str, Component],
-) -> list[Finding]:
-    """Check every topic/service vertex of the expected ROS-graph against the live nodes."""
-    found: list[Finding] = []
-    served = {s for n in answering.values() for s in n.serves}
-    published = {t for n in answering.values() for t in n.publishes}
-    expected = ros_graph(configuration, library, schema)
-    actions = live_actions(graph)
-    for vertex, data in sorted(expected.nodes(data=True)):
-        kind = vertex[0]
-        if kind is VertexKind.NODE:
-            continue
-        label, typ = str(data["label"]), str(data["type"])
-        consumers = sorted(c for _, c in expected.successors(vertex))
-        # a topic may have several chosen publishers (Nav2's controller_server and
-        # behavior_server both publish cmd_vel_nav): each is checked
-        for provider in sorted(p for _, p in expected.predecessors(vertex)):
-            if kind is VertexKind.ACTION:
-                node = answering.get(node_live_name(comps[provider]))
-                name = interface_live_name(comps[provider], label)
-                users = {
-                    c: (
-                        answering.get(node_live_name(comps[c])),
-                        interface_live_name(comps[c], label),
-                    )
-                    for c in consumers
-                }
-                found += _action(provider, node, users, actions, name, label, typ)
-                continue
-            found += _interface(
-                graph, answering, comps, (served, published), provider, consumers, label, typ, kind
-            )
-    return list(dict.fromkeys(found))  # two publishers under one name: one finding each
-
-
-def _interface(
-    graph: LiveGraph,
-    answering: dict[str, LiveNode],
-    comps: dict[str, Component],
-    live: tuple[set[str], set[str]],
-    provider: str,
-    consumers: list[str],
-    label: str,
-    typ: str,
-    kind: VertexKind,
-) -> list[Finding]:
-    """Check one provider's topic or service, and its consumers, against the live nodes.
-
-    ``live`` is what every answering node serves and publishes.
-    """
-    found: list[Finding] = []
-    served, published = live
-    name = interface_live_name(comps[provider], label)
-    node = answering.get(node_live_name(comps[provider]))
-    what = "service" if kind is VertexKind.SERVICE else "topic"
-    if node is not None and name not in (node.serves if what == "service" else node.publishes):
-        verb = "serve" if what == "service" else "publish"
-        msg = f"{provider} does not {verb} {what} {name} ({label})"
-        found.append(Finding(f"missing-{what}", msg, provider, name))
-    live_type = graph.topic_types.get(name)
-    if what == "topic" and live_type is not None and not same_type(live_type, typ):
-        msg = f"topic {name} ({label}) carries {live_type}, not {typ}"
-        found.append(Finding("wrong-type", msg, provider, name))
-    for consumer in consumers:
-        user = answering.get(node_live_name(comps[consumer]))
-        own = interface_live_name(comps[consumer], label)
-        if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
-            msg = f"{consumer} does not subscribe to topic {name} ({label})"
-            found.append(Finding("missing-topic", msg, consumer, name))
-        if (
-            what == "service"
-            and graph.ros_version == 2
-            and user is not None
-            and not {name, own} & set(user.clients)
-        ):
-            msg = f"{consumer} does not call service {name} ({label})"
-            found.append(Finding("missing-client", msg, consumer, name))
-        if what == "topic" and node is not None and user is not None:
-            found += _qos(provider, node, consumer, user, name, own, label)
-        if user is not None and name not in (served if what == "service" else published):
-            how = "serves" if what == "service" else "publishes"
-            msg = (
-                f"{consumer} uses {what} {name} ({label}, {typ}) of {provider}, "
-                f"which nothing live {how} (Lemma 4)"
-            )
-            found.append(Finding("unmet-requirement", msg, consumer, name))
-    return found
-
-
-def same_type(live: str, library: str) -> bool:
-    """Tell whether a live type names the library's (ROS 2 ``pkg/msg/Name`` = ``pkg/Name``)."""
-    return type_key(live) == type_key(library)
-
-
-def _qos(
-    provider: str,
-    node: LiveNode,
-    consumer: str,
-    user: LiveNode,
-    name: str,
-    own: str,
-    label: str,
-) -> list[Finding]:
-    """Report a publisher's offered QoS that the consumer's subscription cannot accept."""
-    offered = node.publish_qos.get(name)
-    requested = user.subscribe_qos.get(name, user.subscribe_qos.get(own))
-    if offered is None or requested is None:
-        return []  # ROS 1, or an endpoint missing (reported as such)
-    why = incompatibilities(offered, requested)
-    if not why:
-        return []
-    msg = (
-        f"topic {name} ({label}): {provider} offers [{offered}] but {consumer} requests "
-        f"[{requested}]: {'; '.join(w.message for w in why)} (no messages will flow)"
+def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
+    """Judge two nodes of one name together: what either has, the node has."""
+    return replace(
+        a,
+        publishes=tuple(sorted({*a.publishes, *b.publishes})),
+        subscribes=tuple(sorted({*a.subscribes, *b.subscribes})),
+        serves=tuple(sorted({*a.serves, *b.serves})),
+        clients=tuple(sorted({*a.clients, *b.clients})),
+        publish_qos={**b.publish_qos, **a.publish_qos},
+        subscribe_qos={**b.subscribe_qos, **a.subscribe_qos},
+        topic_types={**b.topic_types, **a.topic_types},
+        service_types={**b.service_types, **a.service_types},
+        lifecycle_state=a.lifecycle_state if a.lifecycle_state != "active" else b.lifecycle_state,
     )
-    return [Finding("qos-incompatible", msg, consumer, name)]
-
-
-def _action(
-    provider: str,
-    node: LiveNode | None,
-    users: dict[str, tuple[LiveNode | None, str]],
-    actions: dict[str, LiveAction],
-    name: str,
-    label: str,
-    typ: str,
-) -> list[Finding]:
-    """Check one action of the expected ROS-graph: its server, its type, its clients.
-
-    A consumer calls it by the provider's name (remapped) or by its own, as for topics.
-    """
-    found: list[Finding] = []
-    live = actions.get(name)
-    servers = live.servers if live is not None else ()
-    if node is not None and node.name not in servers:
-        msg = f"{provider} does not serve action {name} ({label})"
-        found.append(Finding("missing-action", msg, provider, name))
-    if live is not None and live.type is not None and not same_type(live.type, typ):
-        msg = f"action {name} ({label}) has type {live.type}, not {typ}"
-        found.append(Finding("wrong-type", msg, provider, name))
-    for consumer, (user, own) in users.items():
-        if user is None:
-            continue
-        clients = {c for a in {name, own} if a in actions for c in actions[a].clients}
-        if user.name not in clients:
-            msg = f"{consumer} does not call action {name} ({label})"
-            found.append(Finding("missing-action-client", msg, consumer, name))
-        if not servers:
-            msg = (
-                f"{consumer} uses action {name} ({label}, {typ}) of {provider}, "
-                "which nothing live serves (Lemma 4)"
-            )
-            found.append(Finding("unmet-requirement", msg, consumer, name))
-    return found

@@ -100,6 +100,12 @@ class LiveNode:
             tells).
         publish_qos: ROS 2: topic -> the QoS its publisher offers.
         subscribe_qos: ROS 2: topic -> the QoS its subscription requests.
+        topic_types: ROS 2: topic -> the type of this node's own endpoint on it (nodes may
+            disagree; the graph's ``topic_types`` keeps one per topic).
+        service_types: ROS 2: service -> the type of this node's server or client.
+        lifecycle_state: ROS 2: a managed node's state (``unconfigured``, ``inactive``,
+            ``active``, ``finalized``, or ``unknown`` when it did not answer); None for a
+            node that is not managed, or when states were not read.
     """
 
     name: str
@@ -112,6 +118,9 @@ class LiveNode:
     alive: bool | None = None
     publish_qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
     subscribe_qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
+    topic_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    service_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    lifecycle_state: str | None = None
 
     @property
     def answered(self) -> bool:
@@ -155,8 +164,14 @@ class LiveGraph:
         """Return the node names, sorted."""
         return tuple(n.name for n in self.nodes)
 
+    @property
+    def duplicates(self) -> tuple[str, ...]:
+        """Return the names more than one node has (ROS 2 allows it; calls reach either)."""
+        names = [n.name for n in self.nodes]
+        return tuple(sorted({n for n in names if names.count(n) > 1}))
+
     def node(self, name: str) -> LiveNode:
-        """Return the node called ``name`` (KeyError if there is none)."""
+        """Return the node called ``name`` (the first, if several; KeyError if none)."""
         for n in self.nodes:
             if n.name == name:
                 return n
@@ -224,6 +239,10 @@ def without_plumbing(graph: LiveGraph) -> LiveGraph:
             clients=tuple(s for s in n.clients if not plumbing_service(n.name, s)),
             publish_qos={t: q for t, q in n.publish_qos.items() if keep_topic(n.name, t)},
             subscribe_qos={t: q for t, q in n.subscribe_qos.items() if keep_topic(n.name, t)},
+            topic_types={t: y for t, y in n.topic_types.items() if keep_topic(n.name, t)},
+            service_types={
+                s: y for s, y in n.service_types.items() if not plumbing_service(n.name, s)
+            },
         )
         for n in graph.nodes
         if n.name not in PLUMBING_NODES and not is_hidden_node(n.name)
@@ -254,6 +273,11 @@ def _node_json(n: LiveNode, ros_version: int) -> dict[str, Any]:
         doc["qos"] = {
             "publishes": {t: q.to_dict() for t, q in sorted(n.publish_qos.items())},
             "subscribes": {t: q.to_dict() for t, q in sorted(n.subscribe_qos.items())},
+        }
+        doc["lifecycle_state"] = n.lifecycle_state
+        doc["types"] = {
+            "topics": dict(sorted(n.topic_types.items())),
+            "services": dict(sorted(n.service_types.items())),
         }
     return doc
 
@@ -295,7 +319,7 @@ def from_json(text: str, source: str = "<snapshot>") -> LiveGraph:
         raise InvalidInputError([bad]) from None
     names = [n["name"] for n in doc["nodes"]]
     dups = sorted({n for n in names if names.count(n) > 1})
-    if dups:
+    if dups and doc.get("ros_version", 1) == 1:  # ROS 2 allows two nodes of one name
         msg = f"node(s) listed twice: {', '.join(dups)}"
         raise InvalidInputError([Problem(start, msg, code="duplicate-node")])
     nodes = tuple(_node_from_json(n) for n in doc["nodes"])
@@ -312,6 +336,7 @@ def from_json(text: str, source: str = "<snapshot>") -> LiveGraph:
 def _node_from_json(n: dict[str, Any]) -> LiveNode:
     """Build one node from its (schema-checked) snapshot entry."""
     qos = n.get("qos", {})
+    types = n.get("types", {})
     return LiveNode(
         name=n["name"],
         uri=n["uri"],
@@ -323,6 +348,9 @@ def _node_from_json(n: dict[str, Any]) -> LiveNode:
         alive=n.get("alive"),
         publish_qos={t: QosProfile.from_dict(q) for t, q in qos.get("publishes", {}).items()},
         subscribe_qos={t: QosProfile.from_dict(q) for t, q in qos.get("subscribes", {}).items()},
+        topic_types=dict(types.get("topics", {})),
+        service_types=dict(types.get("services", {})),
+        lifecycle_state=n.get("lifecycle_state"),
     )
 
 

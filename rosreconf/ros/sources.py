@@ -19,17 +19,18 @@ comparing, importing, and re-planning are shared. What differs is here::
 from __future__ import annotations
 
 import shutil
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
-from rosreconf.errors import UsageError
+from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.procs import Background, start_program
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes
 from rosreconf.ros.ros2.graph import graph_uri
+from rosreconf.ros.ros2.lifecycle_state import with_states
 from rosreconf.ros.rosmaster import (
     DEFAULT_MAX_BYTES,
     DEFAULT_TIMEOUT,
@@ -153,6 +154,50 @@ class Ros2Source:
             self._session = Ros2Discovery(self.domain, self.distro)
         return self._session.read()
 
+    def read_checked(self, on_note: Callable[[str], None] | None = None) -> LiveGraph:
+        """Return the graph with managed nodes' states; refuse to call nothing a graph.
+
+        Raises:
+            ExternalToolError: no ROS 2 participant answered on the domain, or some did but
+                no node name could be read (a wrong ``--distro``, a broken writer).
+        """
+        graph = self.read()
+        session = self._session
+        assert session is not None
+        where = f"ROS 2 domain {self.domain}"
+        if not graph.nodes:
+            layout = "" if self.distro is None else f" (--distro {self.distro} reads that "
+            if layout:
+                sizes = "/".join(str(s) for s in gid_sizes(self.distro))
+                layout += f"distribution's {sizes}-byte Gid layout: try without --distro)"
+            if session.ros_participants == 0 and session.endpoints == 0:
+                others = session.participants - (1 if self.distro else 2)
+                raise ExternalToolError(
+                    f"nothing seen on {where}: no ROS 2 participant answered"
+                    + (f" ({others} other DDS participant(s) did)" if others > 0 else "")
+                    + " (check ROS_DOMAIN_ID, the network interface and CYCLONEDDS_URI, and that "
+                    "the nodes run; ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST hides other hosts)"
+                )
+            raise ExternalToolError(
+                f"{where}: {session.ros_participants} ROS 2 participant(s) with "
+                f"{session.endpoints} endpoint(s), but no node names could be read: their "
+                "ros_discovery_info was not received or did not decode"
+                + (layout or " (see docs/ros2.md)")
+            )
+        if on_note is not None and session.undecodable:
+            on_note(
+                f"rosreconf: warning: {len(session.undecodable)} ROS 2 participant(s) on {where} "
+                "sent ros_discovery_info that could not be decoded: their nodes are not shown"
+                + ("" if self.distro is None else f" (is --distro {self.distro} right?)")
+            )
+        if on_note is not None and session.forged:
+            on_note(
+                f"rosreconf: warning: {session.forged} ros_discovery_info sample(s) on {where} "
+                "named another participant's GID and were ignored (a participant announces only "
+                "its own nodes)"
+            )
+        return with_states(session, graph)
+
     def identity(self) -> tuple[int | None, str | None] | None:
         """Return None: a ROS 2 graph has no master to restart."""
         return None
@@ -230,12 +275,17 @@ def read_any(
     *,
     timeout: float = DEFAULT_TIMEOUT,
     max_bytes: int = DEFAULT_MAX_BYTES,
+    on_note: Callable[[str], None] | None = None,
 ) -> LiveGraph:
     """Read the live graph from exactly one of a master, ROS 2 discovery and a snapshot.
 
+    A ROS 2 read also asks every managed node its lifecycle state, and says through
+    ``on_note`` what it had to leave out (undecodable or forged discovery samples).
+
     Raises:
         UsageError: not exactly one is given, or the snapshot cannot be read.
-        ExternalToolError: the master does not answer, or DDS cannot be used.
+        ExternalToolError: the master does not answer, DDS cannot be used, or nothing ROS 2
+            was seen on the domain.
     """
     if sum((master is not None, snapshot is not None, ros2)) != 1:
         raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
@@ -243,6 +293,8 @@ def read_any(
         return read_live(None, snapshot)
     source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
     try:
+        if isinstance(source, Ros2Source):
+            return source.read_checked(on_note)
         return source.read()
     finally:
         source.close()

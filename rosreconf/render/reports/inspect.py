@@ -8,6 +8,7 @@ from rosreconf import jsonout
 from rosreconf.model import InteroperabilitySchema
 from rosreconf.render.reports import Output
 from rosreconf.ros.conformance import Conformance
+from rosreconf.ros.rpc import printable
 
 
 class InspectReporter(Protocol):
@@ -24,9 +25,10 @@ class TextReporter:
     def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
         """Return the verdict and the findings."""
         head = "conforms to" if result.ok else "does NOT conform to"
-        where = result.live.master_uri
+        where = printable(result.live.master_uri)
         lines = [f"{where}: the live system {head} the {schema.display_name} configuration\n"]
-        lines += [f"  {f.code}: {f.message}\n" for f in result.findings]
+        # Names come from the network: nothing in them may drive the terminal.
+        lines += [f"  {f.code}: {printable(f.message, 10_000)}\n" for f in result.findings]
         return "".join(lines)
 
 

@@ -21,6 +21,51 @@ ALIVE = 16
 """DDS_ALIVE_INSTANCE_STATE."""
 
 
+CYCLONE_COMPATIBILITY = (
+    '<CycloneDDS><Domain Id="any"><Compatibility>'
+    "<IgnoreTypeInformation>1.15</IgnoreTypeInformation>"
+    "</Compatibility></Domain></CycloneDDS>"
+)
+"""What rosreconf adds to the user's Cyclone configuration: ignore the XTypes type information
+of eProsima's participants (vendor id 1.15), which Cyclone 11 rejects for Fast DDS 3's
+``ros_discovery_info`` (eclipse-cyclonedds/cyclonedds#2333)."""
+
+
+def cyclone_config(user: str | None) -> str:
+    """Return the Cyclone configuration: the user's ``CYCLONEDDS_URI`` first, then ours.
+
+    Cyclone takes a comma-separated list of files and XML fragments and merges them in
+    order, so everything the user set stays (network interfaces, peers, leases, tracing).
+    """
+    user = (user or "").strip().strip(",")
+    return f"{user},{CYCLONE_COMPATIBILITY}" if user else CYCLONE_COMPATIBILITY
+
+
+_BATCH = 1024
+"""Samples asked for per call: the binding allocates buffers for N, whatever arrives
+(N = 10^6 cost 0.27 s per call here, which made every read take over a second)."""
+
+
+def take_all(reader: Any, **kw: Any) -> list[Any]:
+    """Take every sample, in batches."""
+    out: list[Any] = []
+    while True:
+        batch = reader.take(N=_BATCH, **kw)
+        out += batch
+        if len(batch) < _BATCH:
+            return out
+
+
+def read_all(reader: Any, **kw: Any) -> list[Any]:
+    """Read every sample (reading keeps them: ask again for more when a batch is full)."""
+    n = _BATCH
+    while True:
+        batch: list[Any] = reader.read(N=n, **kw)
+        if len(batch) < n:
+            return batch
+        n *= 8
+
+
 def load_dds() -> Modules:
     """Import the cyclonedds modules used here, or say how to install them."""
     try:
@@ -29,6 +74,7 @@ def load_dds() -> Modules:
         import cyclonedds.domain as domain
         import cyclonedds.idl as idl
         import cyclonedds.idl.types as types
+        import cyclonedds.pub as pub
         import cyclonedds.qos as qos
         import cyclonedds.sub as sub
         import cyclonedds.topic as topic
@@ -38,7 +84,7 @@ def load_dds() -> Modules:
             f"reading a ROS 2 graph needs the cyclonedds package ({exc}): "
             "pip install 'rosreconf[ros2]'"
         ) from None
-    return Modules(builtin, core, domain, idl, types, qos, sub, topic, util)
+    return Modules(builtin, core, domain, idl, types, qos, sub, topic, util, pub)
 
 
 @dataclass(frozen=True)
@@ -54,6 +100,7 @@ class Modules:
     sub: Any
     topic: Any
     util: Any
+    pub: Any
 
 
 def info_type(dds: Modules, size: int) -> Any:
@@ -88,7 +135,9 @@ def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
 
     (``dds_qos_to_rmw_qos``: DDS infinity becomes "none"; TRANSIENT and PERSISTENT durability,
     which ROS never sets, count as transient local; manual-by-participant liveliness, which
-    ROS never sets either, counts as automatic.)
+    ROS never sets either, counts as automatic.) History and depth are not part of what
+    DDS discovery announces (the RTPS publication and subscription data have no HISTORY), so
+    the depth is None, "unknown", never a made-up value.
     """
 
     def seconds(ns: int) -> float | None:
@@ -98,8 +147,6 @@ def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
     dur = qos[policy.Durability]
     deadline = qos[policy.Deadline]
     live = qos[policy.Liveliness]
-    hist = qos[policy.History]
-    keep_all = hist is not None and hist == policy.History.KeepAll
     return QosProfile(
         reliability=(
             Reliability.BEST_EFFORT
@@ -118,8 +165,8 @@ def qos_from_dds(qos: Any, policy: Any) -> QosProfile:
             else Liveliness.AUTOMATIC
         ),
         lease_duration=None if live is None else seconds(live.lease_duration),
-        history=History.KEEP_ALL if keep_all else History.KEEP_LAST,
-        depth=0 if keep_all or hist is None else int(hist.depth),
+        history=History.KEEP_LAST,
+        depth=None,
     )
 
 

@@ -17,18 +17,24 @@ A GID is the endpoint's 16-byte DDS GUID, zero-padded to the Gid message's size:
 to Humble, 16 from Iron on (rmw_dds_common #68, same type name). ``distro`` picks the layout;
 without it both are read, and each participant's sample is taken in the layout its own
 endpoints announce: Iron and later put ``typehash=RIHS01_...;`` in every endpoint's USER_DATA,
-Humble does not. A sample is accepted only if its GID is the writing participant's GUID.
+Humble does not. A sample is accepted only if its GID is the writing participant's GUID
+(the writer's participant, as DDS matched it): another participant cannot speak for a third.
+
+rosreconf's participant joins with the user's ``CYCLONEDDS_URI`` plus one fragment of its own
+(``dds.CYCLONE_COMPATIBILITY``): Fast DDS 3 (Kilted) sends XTypes type information for
+``ros_discovery_info`` that Cyclone 11 rejects, and without ignoring it the reader never
+matches (endpoints are seen, node names never). A ``ros_discovery_info`` writer whose
+samples never decode (another Gid layout, a broken writer) is counted as undecodable after
+``UNDECODABLE_AFTER`` s and not waited for; the C library's own message about it is said
+once (``cstderr``).
 
 ``ros_discovery_info`` is not keyed: each participant rewrites its whole state on every change,
-all into one instance, so it is read with KEEP_ALL and the newest sample per participant is
-kept here (this object is a session: ``watch`` keeps one open). Nothing here prints.
-
-The cyclonedds binding, rmw's discovery type and QoS conversion are in ``dds``; joining the
-samples into a ``LiveGraph`` is ``graph`` (pure data, testable without DDS).
-"""
+so it is read KEEP_ALL, the newest sample per participant kept (a session: ``watch`` keeps one
+open). Nothing here prints. DDS details: ``dds``; joining into a ``LiveGraph``: ``graph``."""
 
 from __future__ import annotations
 
+import os
 import time
 from contextlib import suppress
 from dataclasses import dataclass, field
@@ -37,9 +43,30 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.dds import ALIVE, info_type, load_dds, qos_from_dds, user_data
+from rosreconf.ros.ros2 import cstderr
+from rosreconf.ros.ros2.dds import (
+    ALIVE,
+    cyclone_config,
+    info_type,
+    load_dds,
+    qos_from_dds,
+    user_data,
+)
+from rosreconf.ros.ros2.dds import (
+    read_all as _read_all,
+)
+from rosreconf.ros.ros2.dds import (
+    take_all as _take_all,
+)
 from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
-from rosreconf.ros.ros2.names import DISCOVERY_TOPIC
+from rosreconf.ros.ros2.names import (
+    DISCOVERY_TOPIC,
+    DISTROS,
+    GID_SIZES,
+    check_domain,
+    gid_sizes,
+    ros_name,
+)
 
 __all__ = [
     "DISTROS",
@@ -51,28 +78,10 @@ __all__ = [
     "read_ros2_graph",
 ]
 
-GID_SIZES = {"humble": 24, "iron": 16, "jazzy": 16, "kilted": 16, "rolling": 16}
-"""The Gid message's size in each ROS 2 distribution (Humble's is 24 bytes)."""
-DISTROS = tuple(GID_SIZES)
-
-
-def check_domain(domain: int) -> None:
-    """Refuse a domain id DDS cannot use (0-232 with the default port mapping)."""
-    if not 0 <= domain <= 232:
-        raise UsageError(f"--domain {domain}: a ROS 2 domain id is 0 to 232 (ROS_DOMAIN_ID)")
-
-
-def gid_sizes(distro: str | None) -> tuple[int, ...]:
-    """Return the Gid layouts to read for ``distro`` (both when it is not given)."""
-    if distro is None:
-        return (16, 24)
-    try:
-        return (GID_SIZES[distro.lower()],)
-    except KeyError:
-        raise UsageError(
-            f"--distro {distro}: not a ROS 2 distribution rosreconf knows "
-            f"(one of {', '.join(DISTROS)})"
-        ) from None
+UNDECODABLE_AFTER = 4.5
+"""Seconds a ``ros_discovery_info`` writer may be known without one decodable sample: more
+than Fast DDS's 3 s heartbeat, after which a sample Cyclone failed to take is sent again
+(measured: a Jazzy participant's info arrived 0.03 to 3.03 s after its writer)."""
 
 
 @dataclass
@@ -94,16 +103,33 @@ class Ros2Discovery:
     _readers: dict[str, Any] = field(default_factory=dict, repr=False)
     _info_readers: dict[int, Any] = field(default_factory=dict, repr=False)
     _infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]] = field(default_factory=dict)
-    _conditions: dict[str, tuple[Any, Any]] = field(default_factory=dict, repr=False)
+    _conditions: dict[str, tuple[Any, Any, Any]] = field(default_factory=dict, repr=False)
+    _seen: dict[str, dict[bytes, Any]] = field(default_factory=dict, repr=False)
+    _converted: dict[bytes, tuple[Any, Endpoint]] = field(default_factory=dict, repr=False)
     _last_endpoints: dict[bytes, Endpoint] = field(default_factory=dict, repr=False)
     _settled: bool = False
+    _domain: Any = field(default=None, repr=False)
+    _writer_of: dict[int, bytes] = field(default_factory=dict, repr=False)
+    _info_writer_since: dict[bytes, float] = field(default_factory=dict, repr=False)
+    forged: int = 0
+    """How many ``ros_discovery_info`` samples named a participant other than their writer's."""
+    undecodable: frozenset[bytes] = frozenset()
+    """ROS participants whose ``ros_discovery_info`` never decoded (their nodes are unseen)."""
+    participants: int = 0
+    """How many DDS participants (ROS or not) the last read saw."""
+    endpoints: int = 0
+    """How many ROS endpoints (rt/, rq/, rr/ topics) the last read saw."""
+    ros_participants: int = 0
+    """How many ROS participants (``enclave=`` user data) the last read saw."""
 
     def __post_init__(self) -> None:
         check_domain(self.domain)
         sizes = gid_sizes(self.distro)
         self._dds = dds = load_dds()
         policy = dds.qos.Policy
+        cstderr.hold()
         try:
+            self._domain = self._join(dds)
             self._dp = dds.domain.DomainParticipant(self.domain)
             b = dds.builtin
             self._readers = {
@@ -117,7 +143,9 @@ class Ros2Discovery:
                 # sample carries no valid data, and the binding fails on it ("Sampleinfo
                 # errored"); those are taken out separately and dropped.
                 any_sample = core.ViewState.Any | core.SampleState.Any
+                fresh = core.ViewState.Any | core.SampleState.NotRead | core.InstanceState.Alive
                 self._conditions[name] = (
+                    core.ReadCondition(reader, fresh),
                     core.ReadCondition(reader, any_sample | core.InstanceState.Alive),
                     core.ReadCondition(
                         reader,
@@ -138,10 +166,32 @@ class Ros2Discovery:
                 topic = dds.topic.Topic(dp, DISCOVERY_TOPIC, info_type(dds, size))
                 self._info_readers[size] = dds.sub.DataReader(dp, topic, qos=info_qos)
         except dds.core.DDSException as exc:
+            self.close()
             raise ExternalToolError(
                 f"cannot join DDS domain {self.domain}: {exc} "
                 "(check CYCLONEDDS_URI and the network interface)"
             ) from None
+
+    def _join(self, dds: Any) -> Any:
+        """Create the domain with the user's configuration and ours (None: it exists here)."""
+        try:
+            return dds.domain.Domain(self.domain, cyclone_config(os.environ.get("CYCLONEDDS_URI")))
+        except dds.core.DDSException as exc:
+            if "PRECONDITION" in str(exc).upper() or "-4" in str(exc):
+                return None  # this process already has the domain (configured here before)
+            raise
+
+    @property
+    def last_endpoints(self) -> dict[bytes, Endpoint]:
+        """Return the endpoints the last read saw, keyed by GUID."""
+        return dict(self._last_endpoints)
+
+    @property
+    def participant(self) -> Any:
+        """Return this session's DDS participant (for request/reply on the same domain)."""
+        if self._dp is None:
+            raise UsageError("this ROS 2 discovery session is closed")
+        return self._dp
 
     def __enter__(self) -> Ros2Discovery:
         return self
@@ -150,28 +200,52 @@ class Ros2Discovery:
         self.close()
 
     def close(self) -> None:
-        """Leave the domain (other participants see us go at once)."""
+        """Leave the domain (other participants see us go at once); give fd 2 back."""
+        if self._dds is None:
+            return
         self._readers.clear()
         self._info_readers.clear()
+        self._conditions.clear()
         self._dp = None
+        self._domain = None
+        self._dds = None
+        cstderr.release()
 
     def _alive(self, name: str) -> list[Any]:
-        """Return the samples of alive instances of a built-in topic; drop the others."""
+        """Return the samples of alive instances of a built-in topic; drop the others.
+
+        Incremental: only unread samples are converted (the binding converts each QoS in
+        Python, 2-7 ms here: re-reading 800 endpoints per poll took 1.3-5 s). A dying
+        instance's last sample is taken by ``gone``; if one has no data, all is re-read.
+        """
         reader = self._readers[name]
-        alive, gone = self._conditions[name]
+        fresh, alive, gone = self._conditions[name]
+        seen = self._seen.setdefault(name, {})
+        resync = False
+        try:
+            for s in _take_all(reader, condition=gone):
+                seen.pop(s.key.bytes, None)
+        except Exception:
+            resync = True  # a sample without data: which instance died is unknown
         for attempt in range(5):
-            # The binding raises a bare Exception on a sample without data; an instance may
-            # die between the take and the read, so try again.
-            with suppress(Exception):
-                reader.take(N=1_000_000, condition=gone)
             try:
-                samples: list[Any] = reader.read(N=1_000_000, condition=alive)
+                samples = _read_all(reader, condition=alive if resync else fresh)
             except Exception as exc:
+                # The binding raises a bare Exception on a sample without data; an instance
+                # may die between the take and the read, so try again.
                 if attempt == 4:
                     raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
+                with suppress(Exception):
+                    _take_all(reader, condition=gone)
+                resync = True
                 time.sleep(0.01)
                 continue
-            return [s for s in samples if s.sample_info.instance_state == ALIVE]
+            if resync:
+                seen.clear()
+            for s in samples:
+                if s.sample_info.instance_state == ALIVE:
+                    seen[s.key.bytes] = s
+            return list(seen.values())
         return []
 
     def _participants(self) -> dict[bytes, bytes]:
@@ -185,7 +259,12 @@ class Ros2Discovery:
         found: dict[bytes, Endpoint] = {}
         for kind in ("publication", "subscription"):
             for s in self._alive(kind):
-                found[s.key.bytes] = Endpoint(
+                key = s.key.bytes
+                known = self._converted.get(key)
+                if known is not None and known[0] is s:  # converted once already
+                    found[key] = known[1]
+                    continue
+                found[key] = Endpoint(
                     guid=s.key.bytes,
                     participant=s.participant_key.bytes,
                     topic=s.topic_name,
@@ -194,17 +273,25 @@ class Ros2Discovery:
                     qos=qos_from_dds(s.qos, policy),
                     user_data=user_data(s.qos, policy),
                 )
+                self._converted[key] = (s, found[key])
+        self._converted = {k: v for k, v in self._converted.items() if k in found}
         return found
 
     def _take_infos(self) -> None:
         """Take new ``ros_discovery_info`` samples; keep each participant's newest."""
         for size, reader in self._info_readers.items():
-            for sample in reader.take(N=100_000):
+            for sample in _take_all(reader):
                 if not hasattr(sample, "gid"):
                     continue  # an InvalidSample: a writer left, no data
                 gid = bytes(sample.gid.data)
                 if len(gid) != size or any(gid[16:]):
                     continue  # another layout misread: not a GID
+                writer = self._writer(reader, sample.sample_info.publication_handle)
+                if writer is None:
+                    continue  # its writer is gone already
+                if writer != gid[:16]:
+                    self.forged += 1  # only a participant's own GID counts (rmw does the same)
+                    continue
                 nodes = tuple(
                     NodeInfo(
                         n.node_namespace,
@@ -218,6 +305,18 @@ class Ros2Discovery:
                 old = self._infos.get(key)
                 if old is None or old[0] == size or size in self._layout_hint(key):
                     self._infos[key] = (size, nodes)
+
+    def _writer(self, reader: Any, handle: int) -> bytes | None:
+        """Return the participant GUID of the writer behind ``handle`` (cached; None: gone)."""
+        if handle not in self._writer_of:
+            try:
+                found = reader.get_matched_publication_data(handle)
+            except Exception:
+                return None
+            if found is None:
+                return None
+            self._writer_of[handle] = found.participant_key.bytes
+        return self._writer_of[handle]
 
     def _layout_hint(self, participant: bytes) -> tuple[int, ...]:
         """Return the Gid size the participant's endpoints say it uses (typehash: Iron+)."""
@@ -244,7 +343,8 @@ class Ros2Discovery:
             self._last_endpoints = endpoints = self._endpoints()
             self._take_infos()
             ros = {k for k, ud in participants.items() if b"enclave=" in ud}
-            complete = all(k in self._infos for k in ros) and all(
+            silent = self._silent(ros, endpoints)
+            complete = all(k in self._infos or k in silent for k in ros) and all(
                 g in endpoints
                 for k in ros
                 if k in self._infos
@@ -263,7 +363,32 @@ class Ros2Discovery:
                 break
             time.sleep(0.05)
         self._settled = True
+        self.undecodable = frozenset(self._silent(ros, endpoints))
+        self.participants = len(participants)
+        self.ros_participants = len(ros)
+        self.endpoints = sum(1 for e in endpoints.values() if ros_name(e.topic) is not None)
         return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
+
+    def _silent(self, ros: set[bytes], endpoints: dict[bytes, Endpoint]) -> set[bytes]:
+        """Return ROS participants whose discovery writer has sent nothing decodable for a while.
+
+        A real participant's ``ros_discovery_info`` (transient local) arrives as soon as its
+        writer is matched; one that never decodes (another Gid layout: a wrong ``--distro``;
+        a broken writer) would otherwise hold every read for the full timeout.
+        """
+        now = time.monotonic()
+        writing = {
+            e.participant for e in endpoints.values() if e.writer and e.topic == DISCOVERY_TOPIC
+        }
+        for k in writing:
+            self._info_writer_since.setdefault(k, now)
+        return {
+            k
+            for k in ros
+            if k not in self._infos
+            and k in writing
+            and now - self._info_writer_since[k] >= UNDECODABLE_AFTER
+        }
 
 
 def read_ros2_graph(

@@ -15,6 +15,10 @@ from datetime import datetime
 from rosreconf.model.qos import QosProfile
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
 from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
+from rosreconf.ros.rpc import printable
+
+_NAME_CHARS = 2048
+"""Longest name kept whole (a Gid's namespace and name are 256 bytes each; DDS topics more)."""
 
 
 def graph_uri(domain: int) -> str:
@@ -68,39 +72,44 @@ def build_graph(
     infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]],
     endpoints: dict[bytes, Endpoint],
 ) -> LiveGraph:
-    """Join the nodes of alive ROS participants with their endpoints into a live graph."""
+    """Join the nodes of alive ROS participants with their endpoints into a live graph.
+
+    Every node keeps the types of its own endpoints, so two nodes that disagree on a topic's
+    type are both seen, in whatever order they started; the graph-wide ``topic_types`` keeps
+    the first type by sorted node name (a summary). Two nodes announcing one name (ROS 2 does
+    not forbid it) stay two entries. Names and types come from the network: anything
+    unprintable in them is escaped (``printable``), as no ROS name can hold it.
+    """
     topic_types: dict[str, str] = {}
     service_types: dict[str, str] = {}
-    nodes: dict[str, LiveNode] = {}
+    nodes: list[LiveNode] = []
     for participant in sorted(ros_participants):
         if participant not in infos:
             continue
-        for info in infos[participant][1]:
-            node = _node(info, endpoints, topic_types, service_types)
-            if node.name in nodes:  # two contexts announce one name: ROS 2 allows it; merge
-                node = _merge(nodes[node.name], node)
-            nodes[node.name] = node
+        nodes += (_node(info, endpoints) for info in infos[participant][1])
+    for node in sorted(nodes, key=lambda n: n.name):
+        for name, typ in node.topic_types.items():
+            topic_types.setdefault(name, typ)
+        for name, typ in node.service_types.items():
+            service_types.setdefault(name, typ)
     return LiveGraph(
         graph_uri(domain),
         taken_at,
-        tuple(nodes.values()),
+        tuple(nodes),
         topic_types,
         ros_version=2,
         service_types=service_types,
     )
 
 
-def _node(
-    info: NodeInfo,
-    endpoints: dict[bytes, Endpoint],
-    topic_types: dict[str, str],
-    service_types: dict[str, str],
-) -> LiveNode:
+def _node(info: NodeInfo, endpoints: dict[bytes, Endpoint]) -> LiveNode:
     """Build one live node from its discovery entry and the endpoints its GIDs name."""
     pubs: dict[str, QosProfile] = {}
     subs: dict[str, QosProfile] = {}
     serves: set[str] = set()
     clients: set[str] = set()
+    topic_types: dict[str, str] = {}
+    service_types: dict[str, str] = {}
     for gid in (*info.readers, *info.writers):
         e = endpoints.get(gid)
         if e is None:
@@ -110,6 +119,7 @@ def _node(
         if named is None or typ is None:
             continue
         channel, name = named
+        name, typ = printable(name, _NAME_CHARS), printable(typ, _NAME_CHARS)
         if channel is Channel.TOPIC:
             (pubs if e.writer else subs).setdefault(name, e.qos)
             topic_types.setdefault(name, typ)
@@ -118,7 +128,7 @@ def _node(
             server = (channel is Channel.REQUEST) != e.writer
             (serves if server else clients).add(name)
     return LiveNode(
-        name=info.full_name,
+        name=printable(info.full_name, _NAME_CHARS),
         publishes=tuple(sorted(pubs)),
         subscribes=tuple(sorted(subs)),
         serves=tuple(sorted(serves)),
@@ -126,18 +136,6 @@ def _node(
         alive=True,
         publish_qos=pubs,
         subscribe_qos=subs,
-    )
-
-
-def _merge(a: LiveNode, b: LiveNode) -> LiveNode:
-    """Join two announcements of one node name (ROS 2 does not forbid duplicates)."""
-    return LiveNode(
-        name=a.name,
-        publishes=tuple(sorted({*a.publishes, *b.publishes})),
-        subscribes=tuple(sorted({*a.subscribes, *b.subscribes})),
-        serves=tuple(sorted({*a.serves, *b.serves})),
-        clients=tuple(sorted({*a.clients, *b.clients})),
-        alive=True,
-        publish_qos={**b.publish_qos, **a.publish_qos},
-        subscribe_qos={**b.subscribe_qos, **a.subscribe_qos},
+        topic_types=topic_types,
+        service_types=service_types,
     )

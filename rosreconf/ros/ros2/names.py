@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import enum
 
+from rosreconf.errors import UsageError
+
 TOPIC_PREFIX = "rt"
 REQUEST_PREFIX = "rq"
 REPLY_PREFIX = "rr"
@@ -76,3 +78,27 @@ def ros_type(dds_type: str) -> str | None:
     if not name:
         return None
     return head.replace("::", "/") + "/" + name
+
+
+GID_SIZES = {"humble": 24, "iron": 16, "jazzy": 16, "kilted": 16, "rolling": 16}
+"""The Gid message's size in each ROS 2 distribution (Humble's is 24 bytes)."""
+DISTROS = tuple(GID_SIZES)
+
+
+def check_domain(domain: int) -> None:
+    """Refuse a domain id DDS cannot use (0-232 with the default port mapping)."""
+    if not 0 <= domain <= 232:
+        raise UsageError(f"--domain {domain}: a ROS 2 domain id is 0 to 232 (ROS_DOMAIN_ID)")
+
+
+def gid_sizes(distro: str | None) -> tuple[int, ...]:
+    """Return the Gid layouts to read for ``distro`` (both when it is not given)."""
+    if distro is None:
+        return (16, 24)
+    try:
+        return (GID_SIZES[distro.lower()],)
+    except KeyError:
+        raise UsageError(
+            f"--distro {distro}: not a ROS 2 distribution rosreconf knows "
+            f"(one of {', '.join(DISTROS)})"
+        ) from None

@@ -1,0 +1,67 @@
+"""Name the model's nodes and interfaces as a live ROS system does, and what differs between them.
+
+The model names nodes after components and interfaces after labels (Omega); a live system
+uses global ROS names. ``node_live_name`` and ``interface_live_name`` are the one mapping
+(the table is in ``rosreconf.ros.conformance``); ``Finding`` is one difference found, and
+``same_type`` the one comparison of a live type with the library's.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rosreconf.model import Component, type_key
+
+
+def _join(namespace: str, name: str) -> str:
+    """Return the global name of ``name`` in ``namespace`` (``/arm`` + ``x`` -> ``/arm/x``)."""
+    parts = [p for p in (*namespace.split("/"), *name.split("/")) if p]
+    return "/" + "/".join(parts)
+
+
+def node_live_name(component: Component) -> str:
+    """Return the global name the node of ``component`` has on the master.
+
+    The node's own name (``ros.node``) in its namespace, never the library name: ``import``
+    names two live ``scan_listener`` nodes ``scan_listener`` and ``robot_scan_listener``, and
+    only the second has a namespace to tell them apart.
+    """
+    return _join(component.namespace or "/", component.node_name)
+
+
+def interface_live_name(component: Component, label: str) -> str:
+    """Return the global ROS name ``component`` uses for its interface ``label``.
+
+    The remapping (``ros.remappings``, label -> real name) wins; a relative name is resolved
+    in the component's namespace, as ROS resolves it for a node started there.
+    """
+    launch = component.launch
+    target = launch.remappings.get(label, label) if launch else label
+    if target.startswith("/"):
+        return _join("/", target)
+    return _join((launch.namespace if launch else None) or "/", target)
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One way the live graph differs from the expected ROS-graph.
+
+    Attributes:
+        code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
+            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, ``missing-action``,
+            ``missing-action-client``, and from a ROS 2 graph ``missing-client``,
+            ``qos-incompatible``, ``unserved-client``, ``duplicate-node`` and ``not-active``.
+        message: the difference in plain words.
+        component: the component concerned, if any (None for extra nodes).
+        live_name: the global ROS name concerned (node, topic, service or action).
+    """
+
+    code: str
+    message: str
+    component: str | None
+    live_name: str
+
+
+def same_type(live: str, library: str) -> bool:
+    """Tell whether a live type names the library's (ROS 2 ``pkg/msg/Name`` = ``pkg/Name``)."""
+    return type_key(live) == type_key(library)
