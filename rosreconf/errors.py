@@ -24,6 +24,10 @@ class ExitCode(enum.IntEnum):
     """The command line was wrong: unknown option, missing file, bad value."""
     PLANNER = 3
     """An external program (planner, graphviz, roslaunch) is missing, failed or timed out."""
+    INTERRUPTED = 130
+    """Stopped by Ctrl-C or SIGINT (128 + SIGINT, as the shell reports it)."""
+    TERMINATED = 143
+    """Stopped by SIGTERM (128 + SIGTERM); the programs and workers it ran are stopped too."""
 
 
 class Severity(enum.StrEnum):
