@@ -66,10 +66,16 @@ class Watched(Executor):
     """
 
     def __init__(
-        self, inner: Executor, where: str, health: Health | None = None, patience: float = 0.0
+        self,
+        inner: Executor,
+        where: str,
+        health: Health | None = None,
+        patience: float = 0.0,
+        cancelled: Callable[[], str] = lambda: "the work was cancelled",
     ) -> None:
         self.inner = inner
         self.where = where
+        self._cancelled = cancelled
         self._health = health
         self._patience = patience
         self._pending: dict[Future[Any], Future[Any]] = {}
@@ -98,7 +104,7 @@ class Watched(Executor):
         with self._lock:
             self._pending.pop(outer, None)
         if inner.cancelled():
-            _finish(outer, error=ExternalToolError(f"{self.where}: the work was cancelled"))
+            _finish(outer, error=ExternalToolError(f"{self.where}: {self._cancelled()}"))
             return
         exc = inner.exception()
         if exc is None:
@@ -238,9 +244,15 @@ def _dask(address: str) -> Iterator[Executor]:
             "--cluster needs Dask's distributed package (pip install 'rosreconf[dask]')"
         ) from None
     _check_address(distributed, address, where)
-    quiet = logging.getLogger("distributed")
-    level = quiet.level
-    quiet.setLevel(logging.CRITICAL)  # its reconnect errors would repeat ours, with tracebacks
+    # Its reconnect errors would repeat ours, with tracebacks: only ours is said.
+    quiet = {
+        name: logging.getLogger(name)
+        for name in ["distributed", *logging.root.manager.loggerDict]
+        if name.split(".")[0] == "distributed"
+    }
+    levels = {name: logger.level for name, logger in quiet.items()}
+    for logger in quiet.values():
+        logger.setLevel(logging.CRITICAL)
     try:
         with sigterm_raises():
             client = _connect(distributed, address, where)
@@ -250,12 +262,14 @@ def _dask(address: str) -> Iterator[Executor]:
                     where,
                     functools.partial(_cluster_health, client),
                     LOST_TIMEOUT,
+                    functools.partial(_why_cancelled, client),
                 )
             finally:
                 with contextlib.suppress(Exception):
                     client.close(timeout=CLOSE_TIMEOUT)
     finally:
-        quiet.setLevel(level)
+        for name, logger in quiet.items():
+            logger.setLevel(levels[name])
 
 
 def _check_address(distributed: Any, address: str, where: str) -> None:
@@ -307,6 +321,13 @@ def _connect(distributed: Any, address: str, where: str) -> Any:
     except Exception as exc:  # a scheme without its security or its package (tls, ucx)
         shown = str(exc).strip() or type(exc).__name__
         raise ExternalToolError(f"{where}: cannot connect ({shown})") from None
+
+
+def _why_cancelled(client: Any) -> str:
+    """Say why Dask cancelled our work; cheap, for it runs on the client's event loop."""
+    if client.status != "running":
+        return "lost the connection to the scheduler (was it stopped?); the sweep was abandoned"
+    return "the scheduler cancelled the work (were its workers stopped?); the sweep was abandoned"
 
 
 def _cluster_health(client: Any) -> str | None:
