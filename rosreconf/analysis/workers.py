@@ -28,8 +28,7 @@ import os
 import threading
 import time
 from collections.abc import Callable, Iterator
-from concurrent.futures import CancelledError, Executor, Future, InvalidStateError
-from concurrent.futures.process import BrokenProcessPool
+from concurrent.futures import BrokenExecutor, CancelledError, Executor, Future, InvalidStateError
 from typing import Any, ParamSpec, TypeVar
 
 from rosreconf.errors import ExternalToolError, UsageError
@@ -88,7 +87,7 @@ class Watched(Executor):
         outer: Future[T] = Future()
         try:
             inner = self.inner.submit(fn, *args, **kwargs)
-        except (BrokenProcessPool, RuntimeError) as exc:
+        except (BrokenExecutor, RuntimeError) as exc:
             raise ExternalToolError(f"{self.where}: cannot take more work ({exc})") from None
         with self._lock:
             self._pending[outer] = inner
@@ -109,7 +108,7 @@ class Watched(Executor):
         exc = inner.exception()
         if exc is None:
             _finish(outer, result=inner.result())
-        elif isinstance(exc, BrokenProcessPool):
+        elif isinstance(exc, BrokenExecutor):  # a process pool's worker died
             _finish(
                 outer,
                 error=ExternalToolError(
