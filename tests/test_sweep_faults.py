@@ -63,13 +63,19 @@ def busy_simulate(tmp_path_factory: pytest.TempPathFactory) -> Path:
                     "--dynamics")  # fmt: skip
 
 
+def _sigint_default() -> None:
+    """Give rosreconf SIGINT's default action, as in a terminal (a test run in the background
+    of a shell inherits "ignore", and then Ctrl-C means nothing by design)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class Run:
     """A rosreconf process in its own session, and every descendant it was seen with."""
 
     def __init__(self, where: Path, *args: str) -> None:
         self.process = subprocess.Popen(
             [*ROSRECONF, *args], cwd=where, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-            start_new_session=True,
+            start_new_session=True, preexec_fn=_sigint_default,
         )  # fmt: skip
         self.seen: list[psutil.Process] = []
 
@@ -165,10 +171,12 @@ def test_signal_to_a_sweep_with_workers_leaves_no_worker_running(
     assert r.stderr() == message
 
 
-def test_ctrl_c_to_the_terminal_group_stops_whatif_with_one_message_and_no_worker_traceback(
-    busy_whatif: Path, run: list[Run]
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_ctrl_c_to_the_terminal_group_stops_the_sweep_with_one_message_and_no_worker_traceback(
+    command: str, run: list[Run], request: pytest.FixtureRequest
 ) -> None:
-    r = start(run, busy_whatif, "whatif", "-k", "3")
+    fixture, args = COMMANDS[command]
+    r = start(run, request.getfixturevalue(fixture), *args)
     os.killpg(r.process.pid, signal.SIGINT)  # what a terminal's Ctrl-C does
     assert r.process.wait(LOADED_MACHINE_SLACK) == 130
     assert r.survivors() == []
