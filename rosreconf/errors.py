@@ -8,6 +8,7 @@ and raised together, because a user fixing a library wants the whole list in one
 from __future__ import annotations
 
 import enum
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -24,6 +25,10 @@ class ExitCode(enum.IntEnum):
     """The command line was wrong: unknown option, missing file, bad value."""
     PLANNER = 3
     """An external program (planner, graphviz, roslaunch) is missing, failed or timed out."""
+    INTERRUPTED = 130
+    """Stopped by Ctrl-C or SIGINT (128 + SIGINT, as the shell reports it)."""
+    TERMINATED = 143
+    """Stopped by SIGTERM (128 + SIGTERM); the programs and workers it ran are stopped too."""
 
 
 class Severity(enum.StrEnum):
@@ -31,6 +36,37 @@ class Severity(enum.StrEnum):
 
     ERROR = "error"
     WARNING = "warning"
+
+
+SHOWN_CHARACTERS = 120
+"""The most characters of one user text (a name, a value) a message quotes; the rest is cut
+and its length said, so that a 1 MB name gives a one-line message, not a megabyte."""
+MESSAGE_CHARACTERS = 2000
+"""The most characters of a whole message; a longer one keeps its start and its end."""
+_QUOTED = re.compile(r"'([^'\n]*)'")
+"""A quoted text; matched pair after pair from the left, so a gap between two quotes is never
+taken for one."""
+
+
+def clip(text: str, limit: int = SHOWN_CHARACTERS) -> str:
+    """Shorten one user text for a message: its first ``limit`` characters and its length."""
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}... ({len(text):,} characters)"
+
+
+def clip_message(message: str) -> str:
+    """Shorten the user texts a message quotes ('...'), then the message itself if still long.
+
+    The one place every message passes through (``Problem`` and ``RosreconfError``), so no
+    reporter can echo a megabyte of a user's file.
+    """
+    message = _QUOTED.sub(lambda m: f"'{clip(m.group(1))}'", message)
+    if len(message) <= MESSAGE_CHARACTERS:
+        return message
+    keep = MESSAGE_CHARACTERS // 2
+    cut = len(message) - 2 * keep
+    return f"{message[:keep]} ... [{cut:,} characters cut] ... {message[-keep:]}"
 
 
 @dataclass(frozen=True, order=True)
@@ -51,6 +87,10 @@ class Problem:
     code: str = "invalid"
     severity: Severity = Severity.ERROR
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "message", clip_message(self.message))
+        object.__setattr__(self, "hint", clip_message(self.hint))
+
     def __str__(self) -> str:
         text = f"{self.span}: {self.severity}: {self.message}"
         return f"{text} ({self.hint})" if self.hint else text
@@ -60,6 +100,9 @@ class RosreconfError(Exception):
     """The base of every error rosreconf raises on purpose; carries its exit code."""
 
     exit_code: ExitCode = ExitCode.FAILED
+
+    def __str__(self) -> str:
+        return clip_message(super().__str__())
 
 
 class InvalidInputError(RosreconfError):

@@ -9,6 +9,11 @@ A rename replaces whatever has the target's name, so one function, ``output_targ
 decides what a path given with ``-o`` is, for every command:
 
 - ``-`` is standard output (the CLI writes there itself);
+- a path that is this process's own stdout or stderr (``/dev/stdout``, ``/dev/fd/2``,
+  ``/proc/self/fd/1``, or any name of the same file as descriptor 1 or 2) is written to that
+  descriptor, after what is already there: ``-o /dev/stdout >> log`` appends to the log. A
+  rename would put a new file in the place of the log (the name resolves to it) and lose
+  its content;
 - a symlink is followed to the real path, so the link stays a link and its target is written;
 - a regular file is replaced atomically and keeps its permission bits (a 0600 secret stays 0600);
 - a new path is created with the usual permissions (0666 minus umask);
@@ -47,6 +52,7 @@ class TargetKind(enum.Enum):
     """What an output path is, and so how it may be written."""
 
     STDOUT = "stdout"
+    STREAM = "stream"
     NEW = "new"
     FILE = "file"
 
@@ -57,15 +63,18 @@ class OutputTarget:
 
     Attributes:
         shown: the path as the user gave it (for messages).
-        kind: standard output, a new file, or an existing regular file.
+        kind: standard output, this process's own stdout/stderr by a path, a new file, or an
+            existing regular file.
         path: the real path to write (symlinks followed); ``-`` for standard output.
         mode: the permission bits to give the file (the old file's, else 0666 minus umask).
+        fd: for ``TargetKind.STREAM``, the descriptor (1 or 2) the bytes are written to.
     """
 
     shown: str
     kind: TargetKind
     path: Path
     mode: int
+    fd: int | None = None
 
     @property
     def is_stdout(self) -> bool:
@@ -87,6 +96,9 @@ def output_target(given: str | Path, *, stdout_ok: bool = True) -> OutputTarget:
         if not stdout_ok:
             raise UsageError("-o -: this output cannot go to stdout (give a file name)")
         return OutputTarget(shown, TargetKind.STDOUT, Path(STDOUT), 0)
+    fd = own_stream(shown)
+    if fd is not None:
+        return OutputTarget(shown, TargetKind.STREAM, Path(shown), 0, fd)
     real = Path(os.path.realpath(shown))
     try:
         info = os.stat(real)
@@ -114,6 +126,56 @@ def output_target(given: str | Path, *, stdout_ok: bool = True) -> OutputTarget:
     )
 
 
+STREAM_NAMES = {
+    "/dev/stdout": 1, "/dev/fd/1": 1, "/proc/self/fd/1": 1,
+    "/dev/stderr": 2, "/dev/fd/2": 2, "/proc/self/fd/2": 2,
+}  # fmt: skip
+"""The usual names of the process's own streams; a name decides between 1 and 2 when both
+descriptors are one file (a terminal)."""
+
+
+def own_stream(given: str) -> int | None:
+    """Return 1 or 2 when ``given`` names this process's own stdout or stderr, else None.
+
+    Decided by the file itself, not only by the name: any path to the same file (device and
+    inode) as descriptor 1 or 2 counts, so ``/proc/self/fd/1``, a symlink to ``/dev/stdout``
+    and ``-o log >> log`` are all recognised.
+    """
+    try:
+        info = os.stat(given)
+    except (OSError, ValueError):
+        return None
+    first = STREAM_NAMES.get(os.path.normpath(given), 1)
+    for fd in (first, 3 - first):
+        try:
+            mine = os.fstat(fd)
+        except OSError:
+            continue
+        if (mine.st_dev, mine.st_ino) == (info.st_dev, info.st_ino):
+            return fd
+    return None
+
+
+def write_stream(target: OutputTarget, payload: bytes) -> None:
+    """Write ``payload`` to the descriptor of a ``TargetKind.STREAM`` target, all of it.
+
+    Python's own buffered stream on that descriptor is flushed first, so that what rosreconf
+    printed before stays before.
+
+    Raises:
+        UsageError: the write failed (a closed pipe, a full disk).
+    """
+    fd = 2 if target.fd == 2 else 1
+    with contextlib.suppress(OSError, ValueError, AttributeError):
+        (sys.stdout if fd == 1 else sys.stderr).flush()
+    view = memoryview(payload)
+    try:
+        while view:
+            view = view[os.write(fd, view) :]
+    except OSError as exc:
+        raise UsageError(f"{target.shown}: cannot write: {exc.strerror or exc}") from None
+
+
 def special_kind(mode: int) -> str:
     """Name a file type the way a user would ("a character device", "a FIFO")."""
     if stat.S_ISDIR(mode):
@@ -136,12 +198,17 @@ def write_atomic(path: Path | str, data: bytes | str) -> Path:
 
     Text is written as UTF-8. ``path`` is checked by ``output_target`` (symlinks are written
     through, the old mode is kept, special files are refused); the real path is returned.
+    A path that is this process's own stdout or stderr is written to that stream instead,
+    appended, never replaced (see the module docstring).
 
     Raises:
         UsageError: ``path`` may not be written (see ``output_target``), or writing failed.
     """
     target = output_target(path, stdout_ok=False)
     payload = data.encode("utf-8") if isinstance(data, str) else data
+    if target.kind is TargetKind.STREAM:
+        write_stream(target, payload)
+        return target.path
     real = target.path
     try:
         fd, tmp = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".tmp")

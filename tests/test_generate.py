@@ -80,3 +80,30 @@ def test_dynamics_add_models_and_a_simulation_block_and_change_nothing_else(
     assert schema.simulation is not None
     assert len(schema.simulation.loops) == 2  # one per actuator role (8 roles: 2 per layer)
     assert all(c.dynamics is not None for c in loaded.library)
+
+
+@pytest.mark.parametrize(
+    ("roles", "candidates"), [("1000000", "1"), ("1000", "1000"), ("1", "200001")]
+)
+def test_generate_refuses_more_than_its_bound_before_using_memory(
+    tmp_path: Path, roles: str, candidates: str
+) -> None:
+    # The old generate had no bound: --roles 1000000 ran the machine out of memory. The run
+    # is capped (2 GB of address space, 60 s) so that a regression cannot take the machine.
+    import resource
+    import subprocess
+    import sys
+
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_AS, (2 << 30, 2 << 30))
+
+    out = tmp_path / "out"
+    done = subprocess.run(
+        [sys.executable, "-m", "rosreconf", "generate", "-r", roles, "-k", candidates,
+         "-o", str(out)],
+        capture_output=True, text=True, timeout=60, preexec_fn=cap, check=False, cwd=tmp_path,
+    )  # fmt: skip
+    assert done.returncode == 2, done.stderr[-2000:]
+    assert "200,000" in done.stderr or "200000" in done.stderr
+    assert "Traceback" not in done.stderr
+    assert not out.exists()  # nothing made

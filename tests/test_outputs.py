@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import os
 import stat
+import subprocess
+import sys
 import threading
 from pathlib import Path
 
@@ -164,3 +166,47 @@ def test_a_pair_replaces_the_old_one_and_keeps_foreign_files(tmp_path: Path) -> 
         folder / "notes.txt"
     ).read_text() == "mine"
     assert [p.name for p in tmp_path.iterdir()] == ["out"]  # no temp folder left
+
+
+@pytest.mark.parametrize(
+    ("name", "fd"),
+    [
+        ("/dev/stdout", 1),
+        ("/dev/fd/1", 1),
+        ("/proc/self/fd/1", 1),
+        ("/dev/stderr", 2),
+        ("/dev/fd/2", 2),
+        ("/proc/self/fd/2", 2),
+        ("log", 1),  # the log's own name while stdout goes to it: the same file
+    ],
+)
+def test_dev_stdout_appended_to_a_log_keeps_the_log(tmp_path: Path, name: str, fd: int) -> None:
+    # ``-o /dev/stdout >> log``: the old code wrote a temp file beside the log and renamed
+    # it over the log, so the log's earlier lines were lost.
+    log = tmp_path / "log"
+    log.write_text("earlier line\n")
+    with open(log, "ab") as appended, open(os.devnull, "wb") as other:
+        streams = (
+            {"stdout": appended, "stderr": other}
+            if fd == 1
+            else {"stdout": other, "stderr": appended}
+        )
+        done = subprocess.run(
+            [sys.executable, "-m", "rosreconf", *GRAPH, name], cwd=tmp_path, check=False, **streams
+        )
+    assert done.returncode == 0
+    text = log.read_text()
+    assert text.startswith("earlier line\ndigraph ")  # kept, then the picture appended
+    assert text.count("digraph ") == 1 and "\n}\n" in text  # once, whole
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["log"]  # no temp file left beside it
+
+
+def test_a_symlink_to_dev_stdout_is_the_stream(tmp_path: Path) -> None:
+    (tmp_path / "out").symlink_to("/dev/stdout")
+    done = subprocess.run(
+        [sys.executable, "-m", "rosreconf", *GRAPH, "out"], cwd=tmp_path, capture_output=True,
+        text=True, check=False,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("digraph ")  # written into the pipe, not refused as a FIFO
+    assert (tmp_path / "out").is_symlink()

@@ -26,6 +26,7 @@ from rosreconf.procs import (
     run_program,
     start_program,
 )
+from rosreconf.procs.workdirs import MARKER, STALE_AFTER_SECONDS
 
 PY = sys.executable
 
@@ -206,9 +207,72 @@ def test_a_killed_runs_temp_dir_is_removed_by_the_next_run(report: Path, tmp_pat
     _killed_rosreconf(report, tmp_path)
     stale = [p for p in tmp_path.iterdir() if p.is_dir() and p not in foreign]
     assert len(stale) == 1 and (stale[0] / "output.sas").exists()
+    age(stale[0] / MARKER, STALE_AFTER_SECONDS + 1)
     removed = clean_stale_workdirs(tmp_path)
     assert removed == stale and not stale[0].exists()
     assert all(p.is_dir() for p in foreign)  # not ours, or its owner is alive
+
+
+def age(path: Path, seconds: float) -> None:
+    """Make ``path`` look ``seconds`` old (its modification time)."""
+    then = time.time() - seconds
+    os.utime(path, (then, then))
+
+
+def dead_pid() -> int:
+    """Return the pid of a process that has ended (and been reaped)."""
+    probe = subprocess.Popen([PY, "-c", "pass"])
+    probe.wait()
+    return probe.pid
+
+
+def test_a_user_folder_named_like_a_temp_dir_of_a_dead_pid_is_never_removed(
+    tmp_path: Path,
+) -> None:
+    # ``generate -o $TMPDIR/rosreconf-<n>-10``: the old cleanup removed it, content and all.
+    pid = dead_pid()
+    made = subprocess.run(
+        [PY, "-m", "rosreconf", "generate", "--roles", "2", "--candidates", "1",
+         "-o", str(tmp_path / f"rosreconf-{pid}-10")],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert made.returncode == 0, made.stderr
+    users = tmp_path / f"rosreconf-{pid}-10"
+    age(users, STALE_AFTER_SECONDS + 1)
+    assert clean_stale_workdirs(tmp_path) == []
+    assert (users / "libraries" / "generated.yaml").is_file()
+
+
+def test_a_stale_temp_dir_is_removed_only_with_our_marker_for_its_pid_and_old_enough(
+    tmp_path: Path,
+) -> None:
+    pid = dead_pid()
+    text = f"rosreconf temp dir of process {pid}; removed when that process is gone\n"
+    cases = {
+        "ours": (text, STALE_AFTER_SECONDS + 1),
+        "young": (text, 0.0),
+        "other-pid": (text.replace(str(pid), str(pid + 1)), STALE_AFTER_SECONDS + 1),
+        "no-marker": (None, STALE_AFTER_SECONDS + 1),
+    }
+    for name, (marker, seconds) in cases.items():
+        folder = tmp_path / f"rosreconf-{pid}-{name}"
+        folder.mkdir()
+        (folder / "keep.txt").write_text("user data")
+        if marker is not None:
+            (folder / MARKER).write_text(marker)
+            age(folder / MARKER, seconds)
+    assert clean_stale_workdirs(tmp_path) == [tmp_path / f"rosreconf-{pid}-ours"]
+    left = sorted(p.name for p in tmp_path.iterdir())
+    assert left == [f"rosreconf-{pid}-{n}" for n in ("no-marker", "other-pid", "young")]
+
+
+def test_a_private_workdir_carries_the_marker_of_its_process(tmp_path: Path) -> None:
+    with private_workdir(tmp_path) as work:
+        assert work.name.startswith(f"rosreconf-{os.getpid()}-")
+        assert (work / MARKER).read_text() == (
+            f"rosreconf temp dir of process {os.getpid()}; removed when that process is gone\n"
+        )
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_new_output_gives_each_part_of_the_log_once_and_only_its_tail(tmp_path: Path) -> None:

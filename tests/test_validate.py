@@ -211,3 +211,38 @@ def test_library_and_schema_options_read_what_paths_read(runner: CliRunner) -> N
     _, out, _ = _run(runner, REPO, "-l", lib, "--json")
     schemas = sorted(f"schemas/{p.name}" for p in REPO.glob("schemas/*.yaml"))
     assert json.loads(out)["files"] == [lib, *schemas]
+
+
+def test_a_library_and_schema_without_any_configuration_get_a_warning_at_the_schema(
+    runner: CliRunner,
+) -> None:
+    # The old validate said "valid: 0 error(s), 0 warning(s)" and only enumerate told.
+    where = Path(__file__).parent / "data" / "no_configuration"
+    code, out, _ = _run(runner, where)
+    assert code == 0, out  # a warning: the files are well formed
+    assert out.startswith(
+        "schemas/arm.yaml:1:1: warning: schema 'arm' has no configuration over the library: "
+        "Arm needs a sensor (role eye); every candidate is ruled out: "
+    )
+    assert "SPARE requires topic 'calibration'" in out
+    assert "0 error(s), 1 warning(s)" in out
+    assert _run(runner, where, "--strict")[0] == 1
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(where)
+        enumerated = runner.invoke(app, ["enumerate"])
+    why = enumerated.stdout.split("no configuration: ", 1)[1].strip()
+    assert why in out  # enumerate's own explanation, word for word
+
+
+def test_a_megabyte_name_is_quoted_short_with_its_length(runner: CliRunner, tmp_path: Path) -> None:
+    # The old message echoed the whole 1 MB name.
+    (tmp_path / "libraries").mkdir()
+    name = "A b" * 350_000
+    (tmp_path / "libraries" / "big.yaml").write_text(
+        "format: rosreconf/component-library\nversion: 1\nname: big\ncomponents:\n"
+        f'  - name: "{name}"\n    abstraction: sensor\n    failure_probability: 0.1\n'
+    )
+    code, out, _ = _run(runner, tmp_path, "libraries")
+    assert code == 1
+    assert len(out) < 1_000, out[:2_000]
+    assert f"'{name[:120]}... (1,050,000 characters)'" in out

@@ -25,6 +25,7 @@ from typer._click import Command, Context  # typer vendors click: its types are 
 from rosreconf import __version__, jsonout
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, InvalidInputError, RosreconfError
+from rosreconf.procs.signals import Terminated
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -108,7 +109,7 @@ COMMANDS: dict[str, Verb] = {
 
 
 def guard(command: Callable[P, R]) -> Callable[P, R]:
-    """Run a command body, turning rosreconf errors and Ctrl-C into exit codes."""
+    """Run a command body, turning rosreconf errors, Ctrl-C and SIGTERM into exit codes."""
 
     @functools.wraps(command)
     def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
@@ -123,7 +124,10 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
             raise typer.Exit(exc.exit_code) from None
         except KeyboardInterrupt:
             stderr.print("rosreconf: interrupted", markup=False)
-            raise typer.Exit(130) from None
+            raise typer.Exit(ExitCode.INTERRUPTED) from None
+        except Terminated:
+            stderr.print("rosreconf: terminated", markup=False)
+            raise typer.Exit(ExitCode.TERMINATED) from None
 
     return wrapper
 

@@ -9,14 +9,22 @@ import typer
 from rosreconf.cli.common import finite
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
-from rosreconf.formats.generate import generate, write
+from rosreconf.formats.generate import MAX_COMPONENTS, check_sizes, generate, write
 from rosreconf.outfiles import output_folder
 
 
 def generate_command(
-    roles: Annotated[int, typer.Option("--roles", "-r", min=1, help="Number of roles R.")],
+    roles: Annotated[
+        int,
+        typer.Option(
+            "--roles", "-r", min=1, max=MAX_COMPONENTS, help="Number of roles R (R x K <= 200,000)."
+        ),
+    ],
     candidates: Annotated[
-        int, typer.Option("--candidates", "-k", min=1, help="Candidates per role K.")
+        int,
+        typer.Option(
+            "--candidates", "-k", min=1, max=MAX_COMPONENTS, help="Candidates per role K."
+        ),
     ],
     output: Annotated[
         str, typer.Option("--output", "-o", help="Folder to write libraries/ and schemas/ into.")
@@ -47,11 +55,12 @@ def generate_command(
     gives the same bytes.
     """
 
-    folder = output_folder(output)
     try:
-        generated = generate(roles, candidates, coupling, seed, dynamics=dynamics)
+        check_sizes(roles, candidates, coupling)  # before the folder is made
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    folder = output_folder(output)
+    generated = generate(roles, candidates, coupling, seed, dynamics=dynamics)
     lib, schema = write(generated, folder)
     write_stdout(f"wrote {lib} and {schema}\n")
     raise typer.Exit(ExitCode.OK)

@@ -12,6 +12,7 @@ from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, Severity
 from rosreconf.formats.loader import load_paths, load_selection, load_split, problems_of
 from rosreconf.render.report import REPORTERS, OutputFormat
+from rosreconf.solve.unfillable import schemas_without_configuration
 
 
 def validate(
@@ -46,7 +47,11 @@ def validate(
         )
     else:
         loaded = load_selection(paths or [])
-    problems = sorted(problems_of(loaded))
+    found = problems_of(loaded)
+    clean = not any(p.severity is Severity.ERROR for p in found)
+    if clean and loaded.library_complete and loaded.libraries:
+        found = [*found, *schemas_without_configuration(loaded.library, loaded.schemas)]
+    problems = sorted(found)
     shown = OutputFormat.JSON if json_output else output_format
     write_stdout(REPORTERS[shown].render(loaded.files, problems, loaded.note))
     failing = [p for p in problems if strict or p.severity is Severity.ERROR]

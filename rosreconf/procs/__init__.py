@@ -31,11 +31,13 @@ One function owns the subprocess so that each rule below holds for all of them:
 
 The modules, one concern each: ``run`` (run a program to its end), ``background`` (own a
 long-running one: roslaunch), ``child`` (the setup between fork and exec: parent-death
-signal, watchdog, limits), ``signals`` (SIGTERM as an exception, signals to groups),
+signal, watchdog, limits; ``pool_worker_setup`` gives local worker processes the same
+parent-death signal), ``signals`` (SIGTERM as an exception, signals to groups),
 ``workdirs`` (private temp dirs). Import from here: the names below are the API.
 """
 
 from rosreconf.procs.background import Background, descendants, start_program, stop_all
+from rosreconf.procs.child import pool_worker_setup
 from rosreconf.procs.run import (
     GRACE_SECONDS,
     MAX_OUTPUT_BYTES,
@@ -56,6 +58,7 @@ __all__ = [
     "Terminated",
     "clean_stale_workdirs",
     "descendants",
+    "pool_worker_setup",
     "private_workdir",
     "run_program",
     "sigterm_raises",

@@ -88,6 +88,24 @@ def preexec(
     return setup
 
 
+def pool_worker_setup(parent: int) -> None:
+    """Make a pool worker die with rosreconf and leave every stop to it (run in the worker).
+
+    The initializer of ``simulate``'s and ``whatif``'s worker processes, for the same reason
+    as the planners' setup: a worker gets ``PR_SET_PDEATHSIG`` (SIGKILL), so it dies with
+    rosreconf even when rosreconf is killed with SIGKILL (Linux). It ignores SIGINT (a
+    terminal's Ctrl-C reaches the whole foreground group; rosreconf alone decides, and
+    kills its workers, so no worker prints a traceback) and gets SIGTERM's default action
+    back (a forked worker inherits rosreconf's handler, which would raise in it).
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if LINUX:
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    if os.getppid() != parent:  # rosreconf died before prctl took effect
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
 def _watchdog(alive_read: int, max_fd: int) -> None:
     """Wait until rosreconf's end of the pipe closes, then kill this process group; never return.
 

@@ -165,10 +165,30 @@ _ESCAPES = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b
 """Terminal escape sequences (CSI colours, OSC window titles), which roslaunch writes."""
 
 
+_LEVEL = re.compile(
+    r"^(?:\[[^\]]*\]\s*)*?(?:\[\s*(DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s*\]"
+    r"|(DEBUG|INFO|WARN|WARNING|ERROR|FATAL):)"
+)
+"""A line's log level, as rospy (``[INFO] [t]: ...``), roscpp (``[ INFO] [t]: ...``) and
+roslaunch (``ERROR: ...``) write it, after any ``[node-1]`` prefixes."""
+
+
+def _is_error(line: str) -> bool:
+    """Tell an error line: by its level when it has one, else by its words (``has died``)."""
+    level = _LEVEL.match(line)
+    if level is not None:
+        return (level.group(1) or level.group(2)) in ("ERROR", "FATAL")
+    return bool(_ERROR.search(line))
+
+
 def error_lines(output: str, limit: int = 10) -> list[str]:
-    """Return roslaunch's error lines from ``output``: escapes removed, the rest made printable."""
+    """Return roslaunch's error lines from ``output``: escapes removed, the rest made printable.
+
+    A line with a log level is an error only at ERROR or FATAL: an INFO line that mentions
+    "error" or "not found" is no ``launch-error``.
+    """
     lines = [printable(_ESCAPES.sub("", line).strip()) for line in output.splitlines()]
-    return [line for line in lines if line and _ERROR.search(line)][:limit]
+    return [line for line in lines if line and _is_error(line)][:limit]
 
 
 def launch_log_dir(env: Mapping[str, str]) -> Path:
