@@ -39,7 +39,8 @@ LIGHT = (
     "rosreconf.solve.unfillable",
 )
 """Exceptions: the stage's docstring-only package and its pure-Python pruning (with optional
-roles' empty choices), which ``validate`` uses to warn about a schema without any configuration (issue 22)."""
+roles' empty choices), which ``validate`` uses to warn about a schema without any
+configuration (issue 22)."""
 
 
 def imported(args: list[str], cwd: Path) -> tuple[set[str], subprocess.CompletedProcess[str]]:
