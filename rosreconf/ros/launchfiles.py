@@ -253,3 +253,28 @@ def _comment(text: str) -> str:
     while "--" in text:
         text = text.replace("--", "- -")
     return text if not text.endswith("-") else text + " "
+
+
+def ros2_node_arguments(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    configuration: Configuration,
+    component: str,
+) -> list[str]:
+    """Return the ``--ros-args`` that start ``component``'s node as its launch file would.
+
+    Node name, namespace, the remappings wiring it along the configuration's ROS-graph, and
+    its parameters (written as ROS 2 reads them, YAML), for running the executable directly
+    as ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
+    """
+    c = library[component]
+    args = ["--ros-args", "-r", f"__node:={c.node_name}"]
+    launch = c.launch
+    if launch is not None and launch.namespace:
+        args += ["-r", f"__ns:={launch.namespace}"]
+    remaps, _ = _wiring(library, schema, configuration)
+    for old, new in remaps.get(component, []):
+        args += ["-r", f"{old}:={new}"]
+    for name, value in sorted(launch.parameters.items()) if launch is not None else ():
+        args += ["-p", f"{name}:={_param(name, value, RosVersion.ROS2)['value']}"]
+    return args
