@@ -50,7 +50,7 @@ from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import listed_transitions, replan
 from rosreconf.ros.ros2.control import Ros2Control
-from rosreconf.ros.rosmaster import known_identity, restarted
+from rosreconf.ros.rosmaster import known_identity, restart_event
 from rosreconf.ros.sources import LiveSource
 
 __all__ = ["Event", "Watcher"]
@@ -103,6 +103,7 @@ class Watcher:
     _launcher: Launcher = field(init=False, repr=False)
     _control: Ros2Control | None = field(default=None, repr=False)
     _pending: float | None = None
+    _graph: LiveGraph | None = None
 
     def __post_init__(self) -> None:
         self._launcher = Launcher(
@@ -122,23 +123,33 @@ class Watcher:
 
     def _read(self) -> LiveGraph:
         graph = self.source.read()
-        return graph if self._control is None else self._control.visible(graph)
+        self._graph = graph if self._control is None else self._control.visible(graph)
+        return self._graph
 
     def _compare(self, graph: LiveGraph) -> Conformance:
         """Compare, leaving out the nodes rosreconf holds out of service on purpose."""
         check = compare(self.current, self.library, self.schema, graph)
         return check if self._control is None else self._control.filtered(check)
 
-    def _own_exits(self) -> None:
-        """Count a node whose process rosreconf started and saw exit as failed, at once."""
-        if self._control is not None:
-            self.failed |= self._control.exits(self.current, self.failed)
+    def _own_exits(self, tend: bool = True) -> bool:
+        """Count a node whose process rosreconf started and saw exit as failed, at once.
+
+        With ``tend``, standby nodes that came up are configured (not while confirming).
+        """
+        if self._control is None:
+            return False
+        now = self._control.exits(self.current, self.failed)
+        self.failed |= now
+        if tend:
+            self._control.tend()
+        return bool(now)
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_master()
         self._launcher.check()
-        self._own_exits()
+        if self._own_exits() and self._graph is not None and self._replan():
+            return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
         check = self._compare(graph)
         missing = []
@@ -221,28 +232,12 @@ class Watcher:
         """Notice a restarted master, and start over from what the new one lists."""
         now = self.source.identity()
         before, self._master = self._master, known_identity(self._master, now)
-        if before is None or now is None or not restarted(before, now):
+        said = restart_event(before, now)
+        if said is None:
             return
-        what = f"pid {before[0]} -> {now[0]}" if before[0] != now[0] else "new /run_id"
-        self._say(
-            "master-restarted",
-            f"the ROS master restarted ({what}): it lists none of the nodes registered with "
-            "the old one (ROS 1 nodes do not register again), so nothing is counted as "
-            "failed; checking the graph against the configuration again",
-            old_pid=before[0],
-            new_pid=now[0],
-            old_run_id=before[1],
-            new_run_id=now[1],
-        )
-        if self.apply and self.launches:
-            n = self._launcher.stop()
-            self._say(
-                "stopped",
-                f"stopped the {n} roslaunch process(es) started with the old master, "
-                "to start their nodes again with the new one",
-            )
+        self._say("master-restarted", said[0], **said[1])
+        self._launcher.restart(stop=self.apply)
         self._seen.clear()
-        self._launcher.launched.clear()
         self._missing = ()
         self._running = False
 
@@ -271,7 +266,7 @@ class Watcher:
         if not self.apply:
             self.current = new
             return False
-        graph = self._read()
+        graph = self._read() if self._control is None or self._graph is None else self._graph
         alive = {n.name for n in graph.nodes}
         if self._control is not None:  # make before break: the new ones start first
             self.current = new
@@ -317,17 +312,16 @@ class Watcher:
         start = time.monotonic()
         while True:
             ended = self._launcher.check()
-            self._own_exits()
+            self._own_exits(tend=False)
             check = self._compare(self._read())
             took = time.monotonic() - start
             if check.ok:
-                since = self._pending
                 self._conformant(check, took, "after the change")
-                if since is not None:
-                    self._pending = None
                 return check
-            if self.stop_requested() or (
-                self._control is not None and self._control.left_running(check)
+            if (
+                self.stop_requested()
+                or self.failed & set(self.current.components)
+                or (self._control is not None and self._control.left_running(check))
             ):
                 return check
             if took > self.settle or ended:
@@ -339,7 +333,7 @@ class Watcher:
                     findings=[f.message for f in check.findings],
                 )
                 return check
-            time.sleep(0.2)
+            time.sleep(0.1)
 
     def close(self) -> None:
         """Stop every roslaunch and node process this watcher started, and what they run."""
@@ -352,11 +346,10 @@ class Watcher:
         self.source.close()
 
     def run(self, interval: float, *, once: bool = False) -> Conformance:
-        """Poll every ``interval`` seconds until interrupted; with ``once``, poll once and return.
+        """Poll every ``interval`` seconds until stopped; with ``once``, poll once and return.
 
-        At the start a master that does not answer is an error (a wrong URI should fail
-        fast); later, a restarting master is waited for, with one event when it goes and
-        one when it is back.
+        A master that does not answer the first poll is an error (a wrong URI fails fast);
+        later, a restarting master is waited for (one event when it goes, one when back).
 
         Raises:
             ExternalToolError: the master does not answer the first poll (or, with ``once``,
@@ -391,9 +384,10 @@ class Watcher:
 
     def _wait(self, seconds: float) -> None:
         """Sleep between polls; end early when a node process of ours exits or a stop is asked."""
-        if self._control is not None:
-            self._control.nodes.wait(seconds, self.stop_requested)
-            return
+        if self.failed & set(self.current.components) and frozenset(self.failed) != self._hopeless:
+            return  # a failure seen while confirming: replan now
         deadline = time.monotonic() + seconds
         while not self.stop_requested() and (left := deadline - time.monotonic()) > 0:
-            time.sleep(min(left, 0.05))
+            if self._control is not None and self._control.nodes.any_exited():
+                return
+            time.sleep(min(left, 0.02))

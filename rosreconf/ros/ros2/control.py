@@ -35,7 +35,13 @@ from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.conformance import Conformance, node_live_name
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.lifecycle import OUT_OF_SERVICE, TIMEOUT, LifecycleAgent, LifecycleError
+from rosreconf.ros.ros2.lifecycle import (
+    APPEAR,
+    OUT_OF_SERVICE,
+    TIMEOUT,
+    LifecycleAgent,
+    LifecycleError,
+)
 from rosreconf.ros.ros2.nodes import NodeProcesses
 
 Say = Callable[..., None]
@@ -59,6 +65,7 @@ class Ros2Control:
         dead: live names of nodes whose process rosreconf saw exit.
         states: component -> the lifecycle state last read back.
         left: the nodes last said to be left for a person to stop.
+        unready: standby components started and not yet configured (``tend`` does it).
     """
 
     library: ComponentLibrary
@@ -74,6 +81,7 @@ class Ros2Control:
     dead: set[str] = field(default_factory=set)
     states: dict[str, str] = field(default_factory=dict)
     left: tuple[str, ...] = ()
+    unready: list[str] = field(default_factory=list)
     nodes: NodeProcesses = field(init=False)
     _agent: LifecycleAgent | None = None
 
@@ -164,6 +172,7 @@ class Ros2Control:
         Returns whether everything asked for was done.
         """
         fresh = [c for c in components if c not in self.nodes.nodes]
+        self.unready = [c for c in self.unready if c not in components]
         ok = True
         if fresh:
             try:
@@ -187,21 +196,22 @@ class Ros2Control:
         if managed:
             self.agent().watch([self._node(c) for c in managed])
         for comp in managed:
+            appear = APPEAR if comp in fresh else None
             if self.states.get(comp, "unconfigured") == "unconfigured" and not self._transition(
-                comp, "configure"
+                comp, "configure", appear
             ):
                 ok = False
                 continue
             if self.states.get(comp) != "active":
-                ok = self._transition(comp, "activate") and ok
+                ok = self._transition(comp, "activate", appear) and ok
             self.parked.discard(self._node(comp))
         return ok
 
-    def _transition(self, component: str, transition: str) -> bool:
+    def _transition(self, component: str, transition: str, appear: float | None = None) -> bool:
         """Perform one transition, confirmed by reading the state back; say how it went."""
         node = self._node(component)
         try:
-            outcome = self.agent().transition(node, transition)
+            outcome = self.agent().transition(node, transition, appear)
         except LifecycleError as exc:
             self.say("lifecycle", f"{node}: {transition} failed: {exc}", component=component,
                      node=node, transition=transition, ok=False, error=str(exc))  # fmt: skip
@@ -244,7 +254,7 @@ class Ros2Control:
                 self.say("stop", f"took {component} ({role}) out of service: replaced by "
                          f"{replacement}", component=component, how="lifecycle")  # fmt: skip
                 if self.standby and own and self.states.get(component) == "unconfigured":
-                    self._transition(component, "configure")  # a ready standby again
+                    self.unready.append(component)  # a ready standby again, once confirmed
             elif own:
                 processes.append((component, role, replacement))
             elif alive:
@@ -290,9 +300,19 @@ class Ros2Control:
             return
         self.parked |= {self._node(c) for c in wanted}
         self.agent().watch([self._node(c) for c in wanted])
-        self.say("launch", f"started standby {', '.join(wanted)} (configured in advance, so "
-                 "a failover is one activate)", components=wanted, standby=True)  # fmt: skip
-        for comp in wanted:
+        self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
+                 "as it is up, so a failover is one activate)", components=wanted,
+                 standby=True)  # fmt: skip
+        self.unready += wanted
+
+    def tend(self) -> None:
+        """Configure the standby nodes whose services have come up (never waits for one)."""
+        self.unready = [c for c in self.unready if c in self.nodes.nodes]
+        if not self.unready:
+            return
+        ready = self.agent().ready([self._node(c) for c in self.unready])
+        for comp in [c for c in self.unready if self._node(c) in ready]:
+            self.unready.remove(comp)
             self._transition(comp, "configure")
 
     def close(self) -> list[str]:

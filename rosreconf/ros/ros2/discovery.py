@@ -163,9 +163,10 @@ class Ros2Discovery:
             # The binding raises a bare Exception on a sample without data; an instance may
             # die between the take and the read, so try again.
             with suppress(Exception):
-                reader.take(N=1_000_000, condition=gone)
+                while len(reader.take(N=BATCH, condition=gone)) == BATCH:
+                    pass
             try:
-                samples: list[Any] = reader.read(N=1_000_000, condition=alive)
+                samples: list[Any] = _read_all(reader, alive)
             except Exception as exc:
                 if attempt == 4:
                     raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
@@ -199,7 +200,7 @@ class Ros2Discovery:
     def _take_infos(self) -> None:
         """Take new ``ros_discovery_info`` samples; keep each participant's newest."""
         for size, reader in self._info_readers.items():
-            for sample in reader.take(N=100_000):
+            for sample in _take_all(reader):
                 if not hasattr(sample, "gid"):
                     continue  # an InvalidSample: a writer left, no data
                 gid = bytes(sample.gid.data)
@@ -264,6 +265,31 @@ class Ros2Discovery:
             time.sleep(0.05)
         self._settled = True
         return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
+
+
+BATCH = 256
+"""Samples asked for per call: the binding allocates room for N samples on every call, so
+N = 1,000,000 cost about 0.27 s a call (measured: 3 reads of a 15-endpoint graph, 4.9 s)."""
+
+
+def _read_all(reader: Any, condition: Any) -> list[Any]:
+    """Read every sample the condition selects, asking for room only as it is needed."""
+    size = BATCH
+    while True:
+        samples: list[Any] = reader.read(N=size, condition=condition)
+        if len(samples) < size:
+            return samples
+        size *= 8
+
+
+def _take_all(reader: Any) -> list[Any]:
+    """Take every sample there is, a batch at a time."""
+    taken: list[Any] = []
+    while True:
+        batch: list[Any] = reader.take(N=BATCH)
+        taken += batch
+        if len(batch) < BATCH:
+            return taken
 
 
 def read_ros2_graph(

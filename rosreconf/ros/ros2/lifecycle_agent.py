@@ -10,6 +10,11 @@ stdout (same ``id``)::
     {"id": 2, "op": "transition", "node": "/NDC1", "transition": "activate", "timeout": 5}
         -> {"ok": true, "state": "active", "seconds": 0.004}   (change_state, then get_state)
     {"id": 3, "op": "state", "node": "/NDC1", "timeout": 5}  -> {"ok": true, "state": "inactive"}
+    {"id": 4, "op": "ready", "nodes": ["/NDC1", "/NDC2"]}   -> {"ok": true, "ready": ["/NDC2"]}
+                                                         (whose services are matched now)
+
+``appear`` (seconds, default ``timeout``) bounds the wait for a service to appear, separately
+from ``timeout``, which bounds each call: a node just started needs seconds to come up.
 
 A failure is {"ok": false, "error": "..."}: the service did not appear, the call timed out,
 the node refused the transition, or the state read back is not the one the transition leads
@@ -58,10 +63,10 @@ class Agent:
             )
         return self.clients[node]
 
-    def _call(self, client: Any, request: Any, deadline: float, what: str) -> Any:
-        left = deadline - time.monotonic()
-        if not client.wait_for_service(timeout_sec=max(0.0, left)):
-            raise TimeoutError(f"{client.srv_name} did not appear within the timeout ({what})")
+    def _call(self, client: Any, request: Any, deadline: float, what: str, appear: float) -> Any:
+        if not client.wait_for_service(timeout_sec=max(0.0, appear)):
+            raise TimeoutError(f"{client.srv_name} did not appear within {appear:g} s ({what})")
+        deadline = max(deadline, time.monotonic() + 0.5)
         future = client.call_async(request)
         rclpy.spin_until_future_complete(
             self.node, future, timeout_sec=max(0.0, deadline - time.monotonic())
@@ -71,21 +76,23 @@ class Agent:
             raise TimeoutError(f"{client.srv_name} did not answer within the timeout ({what})")
         return future.result()
 
-    def state(self, node: str, timeout: float) -> str:
+    def state(self, node: str, timeout: float, appear: float) -> str:
         """Return the node's current state label (its get_state service)."""
         _, get = self._clients(node)
         deadline = time.monotonic() + timeout
-        return str(self._call(get, GetState.Request(), deadline, "get_state").current_state.label)
+        answer = self._call(get, GetState.Request(), deadline, "get_state", appear)
+        return str(answer.current_state.label)
 
-    def transition(self, node: str, name: str, timeout: float) -> dict[str, Any]:
+    def transition(self, node: str, name: str, timeout: float, appear: float) -> dict[str, Any]:
         """Ask for one transition, then read the state back."""
         change, get = self._clients(node)
-        deadline = time.monotonic() + timeout
         start = time.monotonic()
         request = ChangeState.Request()
         request.transition.id = IDS[name]
-        answer = self._call(change, request, deadline, name)
-        state = str(self._call(get, GetState.Request(), deadline, "get_state").current_state.label)
+        answer = self._call(change, request, time.monotonic() + timeout, name, appear)
+        deadline = time.monotonic() + timeout
+        got = self._call(get, GetState.Request(), deadline, "get_state", appear)
+        state = str(got.current_state.label)
         took = round(time.monotonic() - start, 4)
         done = {"state": state, "seconds": took}
         if not answer.success:
@@ -98,15 +105,24 @@ class Agent:
     def handle(self, request: dict[str, Any]) -> dict[str, Any]:
         op = request.get("op")
         timeout = float(request.get("timeout", 5.0))
+        appear = float(request.get("appear", timeout))
         try:
             if op == "watch":
                 for node in request.get("nodes", []):
                     self._clients(node)
                 return {"ok": True}
+            if op == "ready":
+                ready = [
+                    n
+                    for n in request.get("nodes", [])
+                    if all(c.service_is_ready() for c in self._clients(n))
+                ]
+                return {"ok": True, "ready": ready}
             if op == "state":
-                return {"ok": True, "state": self.state(request["node"], timeout)}
+                return {"ok": True, "state": self.state(request["node"], timeout, appear)}
             if op == "transition":
-                return self.transition(request["node"], request["transition"], timeout)
+                node, name = request["node"], request["transition"]
+                return self.transition(node, name, timeout, appear)
             return {"ok": False, "error": f"unknown op {op!r}"}
         except TimeoutError as exc:
             return {"ok": False, "error": str(exc)}

@@ -20,7 +20,7 @@ import json
 import signal
 import subprocess
 import time
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -149,13 +149,9 @@ class NodeProcesses:
             self._reap(own)
         return gone
 
-    def wait(self, seconds: float, stop: Callable[[], bool]) -> None:
-        """Sleep ``seconds``, returning early when a node's process exits or ``stop()`` says so."""
-        deadline = time.monotonic() + seconds
-        while time.monotonic() < deadline and not stop():
-            if any(n.program.process.poll() is not None for n in self.nodes.values()):
-                return
-            time.sleep(min(0.02, max(0.0, deadline - time.monotonic())))
+    def any_exited(self) -> bool:
+        """Tell whether a node's process has ended and ``exited`` has not said so yet."""
+        return any(n.program.process.poll() is not None for n in self.nodes.values())
 
     def stop(self, components: Collection[str], grace: float = GRACE_SECONDS) -> list[OwnNode]:
         """Stop these components' processes: SIGINT, SIGTERM, SIGKILL, ``grace`` s apart."""
