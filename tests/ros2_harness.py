@@ -28,7 +28,9 @@ ANNOUNCER = Path(__file__).with_name("ros2_announcer.py")
 LEASE = 2.0
 """Seconds a participant's lease lasts in the tests (rmw_cyclonedds' default: 10 s)."""
 START_TIMEOUT = 20.0
-FIRST_DOMAIN = 42
+FIRST_DOMAIN = int(os.environ.get("ROSRECONF_TEST_DOMAIN_BASE", "42"))
+"""The first domain id tried (42; set ROSRECONF_TEST_DOMAIN_BASE to keep parallel runs apart)."""
+SPAN = min(190, 232 - FIRST_DOMAIN)
 
 
 def loopback_config(lease: float = LEASE) -> str:
@@ -52,25 +54,25 @@ def dds_env(lease: float = LEASE) -> dict[str, str]:
     return env
 
 
-_next = [FIRST_DOMAIN + (os.getpid() * 7) % 150]
+_next = [FIRST_DOMAIN + (os.getpid() * 7) % max(1, SPAN - 40)]
 
 
 def free_domain() -> int:
-    """Return a DDS domain id >= 42 whose first unicast discovery port is free on loopback.
+    """Return a DDS domain id >= FIRST_DOMAIN whose first unicast discovery port is free.
 
     Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
     a bound port 0 means someone uses the domain here.
     """
-    for _ in range(190):
+    for _ in range(SPAN):
         domain = _next[0]
-        _next[0] = FIRST_DOMAIN + (domain - FIRST_DOMAIN + 1) % 190
+        _next[0] = FIRST_DOMAIN + (domain - FIRST_DOMAIN + 1) % SPAN
         with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
             try:
                 s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
             except OSError:
                 continue
             return domain
-    raise RuntimeError("no free DDS domain id between 42 and 231")
+    raise RuntimeError(f"no free DDS domain id from {FIRST_DOMAIN} to {FIRST_DOMAIN + SPAN - 1}")
 
 
 def ros2_type(ros1_type: str, kind: str) -> str:

@@ -31,6 +31,8 @@ HOW_TO_GET_ONE = (
 )
 LEASE_SECONDS = 2.0
 """The participant lease of the processes rosreconf starts (Fast DDS's default is 20 s)."""
+FIND_RCLPY = "import importlib.util, sys; sys.exit(importlib.util.find_spec('rclpy') is None)"
+"""Finding rclpy without importing it (its C extension takes a second to load)."""
 _FOUND: dict[tuple[str | None, str | None], str] = {}
 
 
@@ -62,7 +64,7 @@ def ros2_python(env: Mapping[str, str]) -> str:
 
 def _imports_rclpy(python: str, env: Mapping[str, str]) -> bool:
     """Tell whether ``python`` can import rclpy (one short run of it)."""
-    result = run_program([python, "-c", "import rclpy"], timeout=60, env=env)
+    result = run_program([python, "-c", FIND_RCLPY], timeout=60, env=env)
     return result.ok
 
 
