@@ -255,24 +255,29 @@ def _comment(text: str) -> str:
     return text if not text.endswith("-") else text + " "
 
 
+def wiring(
+    library: ComponentLibrary, schema: InteroperabilitySchema, configuration: Configuration
+) -> dict[str, list[tuple[str, str]]]:
+    """Return per consumer the (from, to) remappings wiring it along the ROS-graph."""
+    return _wiring(library, schema, configuration)[0]
+
+
 def ros2_node_arguments(
     library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    configuration: Configuration,
     component: str,
+    remaps: dict[str, list[tuple[str, str]]],
 ) -> list[str]:
     """Return the ``--ros-args`` that start ``component``'s node as its launch file would.
 
-    Node name, namespace, the remappings wiring it along the configuration's ROS-graph, and
-    its parameters (written as ROS 2 reads them, YAML), for running the executable directly
-    as ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
+    Node name, namespace, the remappings wiring it (``remaps``, from ``wiring``), and its
+    parameters (written as ROS 2 reads them, YAML), for running the executable directly as
+    ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
     """
     c = library[component]
     args = ["--ros-args", "-r", f"__node:={c.node_name}"]
     launch = c.launch
     if launch is not None and launch.namespace:
         args += ["-r", f"__ns:={launch.namespace}"]
-    remaps, _ = _wiring(library, schema, configuration)
     for old, new in remaps.get(component, []):
         args += ["-r", f"{old}:={new}"]
     for name, value in sorted(launch.parameters.items()) if launch is not None else ():

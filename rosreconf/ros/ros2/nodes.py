@@ -28,7 +28,7 @@ from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySch
 from rosreconf.procs import Background, start_program
 from rosreconf.procs.signals import signal_group
 from rosreconf.ros.conformance import node_live_name
-from rosreconf.ros.launchfiles import ros2_node_arguments
+from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
 from rosreconf.ros.ros2.runtime import (
     LEASE_SECONDS,
     ament_executable,
@@ -96,16 +96,15 @@ class NodeProcesses:
     def command(
         self,
         library: ComponentLibrary,
-        schema: InteroperabilitySchema,
-        configuration: Configuration,
         component: str,
+        remaps: dict[str, list[tuple[str, str]]],
     ) -> list[str]:
-        """Return the command line that runs ``component``'s node.
+        """Return the command line that runs ``component``'s node (``remaps``: ``wiring``).
 
         Raises:
             ExternalToolError: no ROS 2 Python (stand-ins), or no such executable (exit 3).
         """
-        args = ros2_node_arguments(library, schema, configuration, component)
+        args = ros2_node_arguments(library, component, remaps)
         comp = library[component]
         if self.stand_ins:
             spec = json.dumps(ros2_standin_spec(comp))
@@ -129,8 +128,9 @@ class NodeProcesses:
         """
         started = []
         env = self._node_env()
+        remaps = wiring(library, schema, configuration)
         for name in components:
-            argv = self.command(library, schema, configuration, name)
+            argv = self.command(library, name, remaps)
             log = self.directory / f"{name}.log"
             program = start_program(argv, log=log, env=env)
             comp = library[name]
