@@ -70,7 +70,7 @@ def test_inspect_kill_and_replan(
 
     log = tmp_path / "watch.jsonl"
     argv = [sys.executable, "-m", "rosreconf", "watch", *ros2, "--only", SCHEMA, "--apply",
-            "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
+            "--ros2-launch", "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
     err = (tmp_path / "watch.err").open("wb")
     watch = subprocess.Popen(
         argv,
