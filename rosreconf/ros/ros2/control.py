@@ -40,7 +40,6 @@ from rosreconf.ros.ros2.lifecycle import (
     OUT_OF_SERVICE,
     TIMEOUT,
     LifecycleAgent,
-    LifecycleError,
 )
 from rosreconf.ros.ros2.nodes import NodeProcesses
 
@@ -84,6 +83,7 @@ class Ros2Control:
     unready: list[str] = field(default_factory=list)
     nodes: NodeProcesses = field(init=False)
     _agent: LifecycleAgent | None = None
+    _agent_error: str | None = None
 
     def __post_init__(self) -> None:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
@@ -98,11 +98,25 @@ class Ros2Control:
     def agent(self) -> LifecycleAgent:
         """Return the lifecycle agent, started on first use."""
         if self._agent is None:
+            if self._agent_error is not None:  # said once; not retried on every call
+                raise ExternalToolError(self._agent_error)
             self.directory.mkdir(parents=True, exist_ok=True)
-            self._agent = LifecycleAgent(
-                self.env, self.directory / "lifecycle-agent.log", self.timeout
-            )
+            try:
+                self._agent = LifecycleAgent(
+                    self.env, self.directory / "lifecycle-agent.log", self.timeout
+                )
+            except ExternalToolError as exc:
+                self._agent_error = str(exc)
+                raise
         return self._agent
+
+    def _agent_call(self, call: Callable[[LifecycleAgent], Any]) -> Any:
+        """Ask the lifecycle agent something; a failure is said (never raised), None returned."""
+        try:
+            return call(self.agent())
+        except ExternalToolError as exc:
+            self.say("lifecycle", f"lifecycle agent: {exc}", ok=False, error=str(exc))
+            return None
 
     def exited(self) -> list[tuple[str, str, int]]:
         """Return (component, node, exit status) of each own process that ended since last asked."""
@@ -194,7 +208,7 @@ class Ros2Control:
             )
         managed = [c for c in components if self._managed(c)]
         if managed:
-            self.agent().watch([self._node(c) for c in managed])
+            self._agent_call(lambda agent: agent.watch([self._node(c) for c in managed]))
         for comp in managed:
             appear = APPEAR if comp in fresh else None
             if self.states.get(comp, "unconfigured") == "unconfigured" and not self._transition(
@@ -212,7 +226,7 @@ class Ros2Control:
         node = self._node(component)
         try:
             outcome = self.agent().transition(node, transition, appear)
-        except LifecycleError as exc:
+        except ExternalToolError as exc:  # LifecycleError, or the agent could not start
             self.say("lifecycle", f"{node}: {transition} failed: {exc}", component=component,
                      node=node, transition=transition, ok=False, error=str(exc))  # fmt: skip
             return False
@@ -299,7 +313,7 @@ class Ros2Control:
             self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
             return
         self.parked |= {self._node(c) for c in wanted}
-        self.agent().watch([self._node(c) for c in wanted])
+        self._agent_call(lambda agent: agent.watch([self._node(c) for c in wanted]))
         self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
                  "as it is up, so a failover is one activate)", components=wanted,
                  standby=True)  # fmt: skip
@@ -310,7 +324,8 @@ class Ros2Control:
         self.unready = [c for c in self.unready if c in self.nodes.nodes]
         if not self.unready:
             return
-        ready = self.agent().ready([self._node(c) for c in self.unready])
+        nodes = [self._node(c) for c in self.unready]
+        ready = self._agent_call(lambda agent: agent.ready(nodes)) or set()
         for comp in [c for c in self.unready if self._node(c) in ready]:
             self.unready.remove(comp)
             self._transition(comp, "configure")
