@@ -5,8 +5,9 @@ it can, and says so where it cannot::
 
     component to take out of service       what is done
     -------------------------------------  ---------------------------------------------------
-    managed (ros.lifecycle: true)          deactivate, cleanup (each confirmed with get_state);
-                                           the node stays, out of service ("parked")
+    managed (ros.lifecycle: true)          deactivate, cleanup (each confirmed with get_state;
+                                           with standby deactivate only: an inactive node is a
+                                           ready standby); the node stays ("parked")
     a process rosreconf started            SIGINT, then SIGTERM, then SIGKILL
     any other node                         named once, as "stop this by hand"
 
@@ -35,12 +36,7 @@ from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.conformance import Conformance, node_live_name
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.lifecycle import (
-    APPEAR,
-    OUT_OF_SERVICE,
-    TIMEOUT,
-    LifecycleAgent,
-)
+from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent, Outcome
 from rosreconf.ros.ros2.nodes import NodeProcesses
 
 Say = Callable[..., None]
@@ -209,27 +205,45 @@ class Ros2Control:
         managed = [c for c in components if self._managed(c)]
         if managed:
             self._agent_call(lambda agent: agent.watch([self._node(c) for c in managed]))
-        for comp in managed:
-            appear = APPEAR if comp in fresh else None
-            if self.states.get(comp, "unconfigured") == "unconfigured" and not self._transition(
-                comp, "configure", appear
-            ):
-                ok = False
-                continue
-            if self.states.get(comp) != "active":
-                ok = self._transition(comp, "activate", appear) and ok
-            self.parked.discard(self._node(comp))
+        groups = [c for c in managed if c in fresh], [c for c in managed if c not in fresh]
+        for group, appear in zip(groups, (APPEAR, None), strict=True):
+            todo = [c for c in group if self.states.get(c, "unconfigured") == "unconfigured"]
+            configured = self._transitions([(c, "configure") for c in todo], appear)
+            ready = [c for c in group if c not in todo or configured.get(c)]
+            ok = ok and len(ready) == len(group)
+            steps = [(c, "activate") for c in ready if self.states.get(c) != "active"]
+            ok = all(self._transitions(steps, appear).values()) and ok
+        self.parked -= {self._node(c) for c in managed}
         return ok
+
+    def _transitions(
+        self, steps: list[tuple[str, str]], appear: float | None = None
+    ) -> dict[str, bool]:
+        """Perform several transitions at once; say each (with its result); component -> ok."""
+        if not steps:
+            return {}
+        nodes = {self._node(c): c for c, _ in steps}
+        try:
+            outcomes = self.agent().transitions([(self._node(c), t) for c, t in steps], appear)
+        except ExternalToolError as exc:
+            return {c: self._said_failure(c, t, str(exc)) for c, t in steps}
+        done = {}
+        for outcome in outcomes:
+            done[nodes[outcome.node]] = self._said(nodes[outcome.node], outcome)
+        return done
+
+    def _said_failure(self, component: str, transition: str, error: str) -> bool:
+        node = self._node(component)
+        self.say("lifecycle", f"{node}: {transition} failed: {error}", component=component,
+                 node=node, transition=transition, ok=False, error=error)  # fmt: skip
+        return False
 
     def _transition(self, component: str, transition: str, appear: float | None = None) -> bool:
         """Perform one transition, confirmed by reading the state back; say how it went."""
-        node = self._node(component)
-        try:
-            outcome = self.agent().transition(node, transition, appear)
-        except ExternalToolError as exc:  # LifecycleError, or the agent could not start
-            self.say("lifecycle", f"{node}: {transition} failed: {exc}", component=component,
-                     node=node, transition=transition, ok=False, error=str(exc))  # fmt: skip
-            return False
+        return self._transitions([(component, transition)], appear).get(component, False)
+
+    def _said(self, component: str, outcome: Outcome) -> bool:
+        """Say how one transition went (event ``lifecycle``); return whether it held."""
         if outcome.state is not None:
             self.states[component] = outcome.state
         result = (
@@ -239,16 +253,16 @@ class Ros2Control:
         )
         self.say(
             "lifecycle",
-            f"{node}: {transition} {result}",
+            f"{outcome.node}: {outcome.transition} {result}",
             component=component,
-            node=node,
-            transition=transition,
+            node=outcome.node,
+            transition=outcome.transition,
             ok=outcome.ok,
             state=outcome.state,
             seconds=round(outcome.seconds, 4),
             **({"error": outcome.error} if outcome.error else {}),
         )
-        return outcome.ok
+        return bool(outcome.ok)
 
     def retire(self, leaving: list[tuple[str, str, str, bool]]) -> None:
         """Take components out of service, each the way its kind allows (module docstring).
@@ -256,19 +270,12 @@ class Ros2Control:
         ``leaving`` holds (component, role, replacement, alive in the graph). Own processes
         are stopped together, so their grace periods overlap.
         """
-        processes = []
+        processes, managed = [], []
         for component, role, replacement, alive in leaving:
             node = self._node(component)
             own = component in self.nodes.nodes
             if self._managed(component) and (own or alive):
-                for transition in OUT_OF_SERVICE:
-                    if not self._transition(component, transition):
-                        break
-                self.parked.add(node)
-                self.say("stop", f"took {component} ({role}) out of service: replaced by "
-                         f"{replacement}", component=component, how="lifecycle")  # fmt: skip
-                if self.standby and own and self.states.get(component) == "unconfigured":
-                    self.unready.append(component)  # a ready standby again, once confirmed
+                managed.append((component, role, replacement))
             elif own:
                 processes.append((component, role, replacement))
             elif alive:
@@ -281,6 +288,16 @@ class Ros2Control:
                     component=component,
                     node=node,
                 )
+        # With standby, an inactive node is a ready standby: deactivate is enough.
+        steps = OUT_OF_SERVICE[:1] if self.standby else OUT_OF_SERVICE
+        out = {c: True for c, _, _ in managed}
+        for transition in steps:
+            todo = [(c, transition) for c, _, _ in managed if out[c]]
+            out.update(self._transitions(todo))
+        for component, role, replacement in managed:
+            self.parked.add(self._node(component))
+            self.say("stop", f"took {component} ({role}) out of service: replaced by "
+                     f"{replacement}", component=component, how="lifecycle")  # fmt: skip
         stopped = {n.component: n for n in self.nodes.stop([c for c, _, _ in processes])}
         for component, role, replacement in processes:
             ended = stopped[component]
@@ -326,9 +343,9 @@ class Ros2Control:
             return
         nodes = [self._node(c) for c in self.unready]
         ready = self._agent_call(lambda agent: agent.ready(nodes)) or set()
-        for comp in [c for c in self.unready if self._node(c) in ready]:
-            self.unready.remove(comp)
-            self._transition(comp, "configure")
+        up = [c for c in self.unready if self._node(c) in ready]
+        self.unready = [c for c in self.unready if c not in up]
+        self._transitions([(c, "configure") for c in up])
 
     def close(self) -> list[str]:
         """Stop every process started here and the lifecycle agent; return the components."""

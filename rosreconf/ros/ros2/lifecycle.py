@@ -163,6 +163,33 @@ class LifecycleAgent:
             answer.get("error"),
         )
 
+    def transitions(
+        self, items: list[tuple[str, str]], appear: float | None = None
+    ) -> list[Outcome]:
+        """Perform several (node, transition) at once, each confirmed with ``get_state``."""
+        if not items:
+            return []
+        wait = self.timeout if appear is None else appear
+        start = time.monotonic()
+        request = {"op": "batch", "timeout": self.timeout, "appear": wait,
+                   "items": [{"node": n, "transition": t} for n, t in items]}  # fmt: skip
+        try:
+            answer = self._ask(request, 2 * self.timeout + wait * len(items))
+        except LifecycleError as exc:
+            took = time.monotonic() - start
+            return [Outcome(n, t, False, None, took, str(exc)) for n, t in items]
+        return [
+            Outcome(
+                r["node"],
+                r["transition"],
+                bool(r["ok"]),
+                r.get("state"),
+                float(r["seconds"]),
+                r.get("error"),
+            )
+            for r in answer.get("results", [])
+        ]
+
     def close(self) -> None:
         """End the helper (its stdin closes; then SIGKILL) and release its watchdog."""
         if self.process.stdin is not None:

@@ -12,6 +12,9 @@ stdout (same ``id``)::
     {"id": 3, "op": "state", "node": "/NDC1", "timeout": 5}  -> {"ok": true, "state": "inactive"}
     {"id": 4, "op": "ready", "nodes": ["/NDC1", "/NDC2"]}   -> {"ok": true, "ready": ["/NDC2"]}
                                                          (whose services are matched now)
+    {"id": 5, "op": "batch", "items": [{"node": "/NDC1", "transition": "activate"}, ...]}
+        -> {"ok": true, "results": [{"node", "transition", "ok", "state", "seconds", "error"}]}
+                                    (all calls in flight at once, then all states read back)
 
 ``appear`` (seconds, default ``timeout``) bounds the wait for a service to appear, separately
 from ``timeout``, which bounds each call: a node just started needs seconds to come up.
@@ -102,6 +105,43 @@ class Agent:
             return {"ok": False, **done, "error": why}
         return {"ok": True, **done}
 
+    def batch(self, items: list[dict[str, str]], timeout: float, appear: float) -> list[Any]:
+        """Ask for several transitions at once, then read every state back."""
+        start = time.monotonic()
+        calls: list[tuple[dict[str, str], Any, str | None]] = []
+        for item in items:
+            change, _ = self._clients(item["node"])
+            if not change.wait_for_service(timeout_sec=appear):
+                calls.append((item, None, f"{change.srv_name} did not appear within {appear:g} s"))
+                continue
+            request = ChangeState.Request()
+            request.transition.id = IDS[item["transition"]]
+            calls.append((item, change.call_async(request), None))
+        self._spin([f for _, f, _ in calls if f is not None], time.monotonic() + timeout)
+        reads = [
+            self._clients(item["node"])[1].call_async(GetState.Request()) if f else None
+            for item, f, _ in calls
+        ]
+        self._spin([r for r in reads if r is not None], time.monotonic() + timeout)
+        results = []
+        for (item, future, error), read in zip(calls, reads, strict=True):
+            node, name = item["node"], item["transition"]
+            state = read.result().current_state.label if read and read.done() else None
+            if error is None and (future is None or not future.done()):
+                error = f"{node}/change_state did not answer within {timeout:g} s ({name})"
+            elif error is None and not future.result().success:
+                error = f"{node} refused {name} (it is {state})"
+            elif error is None and state != GOAL[name]:
+                error = f"after {name}, {node} is {state}, not {GOAL[name]}"
+            took = round(time.monotonic() - start, 4)
+            results.append({"node": node, "transition": name, "ok": error is None,
+                            "state": state, "seconds": took, "error": error})  # fmt: skip
+        return results
+
+    def _spin(self, futures: list[Any], deadline: float) -> None:
+        while futures and not all(f.done() for f in futures) and time.monotonic() < deadline:
+            rclpy.spin_once(self.node, timeout_sec=max(0.0, min(0.05, deadline - time.monotonic())))
+
     def handle(self, request: dict[str, Any]) -> dict[str, Any]:
         op = request.get("op")
         timeout = float(request.get("timeout", 5.0))
@@ -120,6 +160,8 @@ class Agent:
                 return {"ok": True, "ready": ready}
             if op == "state":
                 return {"ok": True, "state": self.state(request["node"], timeout, appear)}
+            if op == "batch":
+                return {"ok": True, "results": self.batch(request["items"], timeout, appear)}
             if op == "transition":
                 node, name = request["node"], request["transition"]
                 return self.transition(node, name, timeout, appear)
