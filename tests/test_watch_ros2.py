@@ -259,3 +259,42 @@ def test_stand_ins_without_a_python_that_has_rclpy_say_how_to_get_one(
     assert out.returncode == 3, out.stderr
     assert "no-such-python" in out.stderr and "ros-jazzy-rclpy" in out.stderr
     assert "Traceback" not in out.stderr
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])
+def test_a_stand_in_announces_the_librarys_invented_types(
+    distro: str, ros2_domain: int, tmp_path: Path
+) -> None:
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    python = ROOT / f".venv-ros2-{distro}" / "bin" / "python"
+    if not python.exists():
+        pytest.fail(f"the {distro} venv is missing: run `make ros2-venvs`", pytrace=False)
+    spec = ros2_standin_spec(load_bundled().library["NFB21"])  # serves, calls, subscribes
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain), "ROSRECONF_ROS2_PYTHON": ""}
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    node = subprocess.Popen([str(python), str(script), json.dumps(spec)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+    try:
+        assert node.stdout is not None
+        ready = json.loads(node.stdout.readline())
+        assert ready["ready"] == "/NFB21"
+        out = subprocess.run([str(python), str(PROBE), "3"], env=env, capture_output=True,
+                             timeout=120, check=True)  # fmt: skip
+        seen = json.loads(out.stdout)
+        assert seen["services"]["/position_arm"] == ["robot_arm_msgs/srv/PositionArm"]
+        declared = {s["service"]: [s["type"]] for s in [*spec["serve"], *spec["call"]]}
+        assert len(declared) == 9  # 1 served, 8 called: all in the library's own names
+        assert {n: seen["services"].get(n) for n in declared} == declared
+        if distro == "jazzy":  # rosreconf's own reader (Kilted's needs issue 21's reader fix)
+            from rosreconf.ros.ros2.discovery import read_ros2_graph
+
+            graph = read_ros2_graph(ros2_domain)
+            assert graph.service_types["/position_arm"] == "robot_arm_msgs/srv/PositionArm"
+        node.send_signal(signal.SIGINT)
+        assert node.wait(20) == 0
+    finally:
+        if node.poll() is None:
+            node.kill()
+            node.wait()

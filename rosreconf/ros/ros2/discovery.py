@@ -183,7 +183,7 @@ class Ros2Discovery:
             try:
                 kept = self._kept.get(name)
                 if kept is not None and not left:
-                    new = _read_all(reader, fresh)
+                    new = _read_new(reader, fresh)
                     kept.update((s.key.bytes, s) for s in new if _is_alive(s))
                     self._changed[name] = bool(new)
                     return list(kept.values())
@@ -310,6 +310,16 @@ def _read_all(reader: Any, condition: Any) -> list[Any]:
         if len(samples) < size:
             return samples
         size *= 8
+
+
+def _read_new(reader: Any, condition: Any) -> list[Any]:
+    """Read every sample not read before, a batch at a time (each read marks its batch read)."""
+    new: list[Any] = []
+    while True:
+        batch: list[Any] = reader.read(N=BATCH, condition=condition)
+        new += batch
+        if len(batch) < BATCH:
+            return new
 
 
 def _take_all(reader: Any) -> list[Any]:
