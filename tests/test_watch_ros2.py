@@ -283,15 +283,17 @@ def test_a_stand_in_announces_the_librarys_invented_types(
         out = subprocess.run([str(python), str(PROBE), "3"], env=env, capture_output=True,
                              timeout=120, check=True)  # fmt: skip
         seen = json.loads(out.stdout)
-        assert seen["services"]["/position_arm"] == ["robot_arm_msgs/srv/PositionArm"]
+        served = seen["services"]["/control/position_arm"]  # the library's remapping
+        assert served == ["robot_arm_msgs/srv/PositionArm"]
         declared = {s["service"]: [s["type"]] for s in [*spec["serve"], *spec["call"]]}
-        assert len(declared) == 9  # 1 served, 8 called: all in the library's own names
+        assert len(declared) == 8  # 1 served, 7 called: all in the library's own names
         assert {n: seen["services"].get(n) for n in declared} == declared
         if distro == "jazzy":  # rosreconf's own reader (Kilted's needs issue 21's reader fix)
             from rosreconf.ros.ros2.discovery import read_ros2_graph
 
             graph = read_ros2_graph(ros2_domain)
-            assert graph.service_types["/position_arm"] == "robot_arm_msgs/srv/PositionArm"
+            served = graph.service_types["/control/position_arm"]
+            assert served == "robot_arm_msgs/srv/PositionArm"
         node.send_signal(signal.SIGINT)
         assert node.wait(20) == 0
     finally:
