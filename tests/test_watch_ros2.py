@@ -300,3 +300,74 @@ def test_a_stand_in_announces_the_librarys_invented_types(
         if node.poll() is None:
             node.kill()
             node.wait()
+
+
+def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.ros.ros2.runtime import lease_profile
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    library = load_bundled().library
+    profile = tmp_path / "lease.xml"
+    profile.write_text(lease_profile(2.0))  # a crash is seen by DDS within seconds
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain),
+           "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}  # fmt: skip
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    ours = {
+        c: subprocess.Popen([str(_ros2_python()), str(script), json.dumps(ros2_standin_spec(
+            library[c]))], env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        for c in NOMINAL
+    }  # fmt: skip
+    watch: Watch | None = None
+    try:
+        for p in ours.values():  # all up before watch looks, or it would start its own
+            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        watch.wait("running")  # the test's own nodes: watch started none of them
+        assert not watch.pids()
+        before = len(watch.events())
+        ours["NSM3"].kill()
+        left = watch.wait("left-running", after=before)
+        after = watch.events()[before:]
+        by_hand = sorted(e["component"] for e in after if e["event"] == "stop-by-hand")
+        assert by_hand == sorted(REPLACED)
+        assert sorted(left["nodes"]) == sorted(f"/{c}" for c in REPLACED)
+        assert not [e for e in after if e["event"] == "conformant"]
+        for c in REPLACED:  # a person stops them
+            ours[c].send_signal(signal.SIGINT)
+        done = watch.wait("conformant", after=before)
+        assert done["configuration"]["elbow_joint"] == "NDC3"
+    finally:
+        if watch is not None:
+            watch.stop(signal.SIGKILL)
+        for p in ours.values():
+            if p.poll() is None:
+                p.kill()
+            p.wait()
+
+
+def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> None:
+    from rosreconf.errors import ExternalToolError
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.model import Configuration
+    from rosreconf.ros.ros2.nodes import NodeProcesses
+
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    prefix = tmp_path / "install"  # an ament prefix, as colcon installs one
+    (prefix / "share" / "ament_index" / "resource_index" / "packages").mkdir(parents=True)
+    (prefix / "share" / "ament_index" / "resource_index" / "packages" / "robot_arm_dc").touch()
+    program = prefix / "lib" / "robot_arm_dc" / "dc_joint_driver"
+    program.parent.mkdir(parents=True)
+    program.write_text("#!/bin/sh\n")
+    program.chmod(0o755)
+    nodes = NodeProcesses({"AMENT_PREFIX_PATH": f"/nonexistent:{prefix}"}, tmp_path)
+    from rosreconf.ros.launchfiles import wiring
+
+    argv = nodes.command(bundle.library, "NDC1", wiring(bundle.library, schema, config))
+    assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", "joint:=base"]
+    with pytest.raises(ExternalToolError, match="robot_arm_servo was not found"):
+        nodes.command(bundle.library, "NSM1", {})

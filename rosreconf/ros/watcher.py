@@ -193,7 +193,7 @@ class Watcher:
                 self._missing = tuple(stuck)
                 if not self.apply:
                     why = "use --apply to start"
-                elif self.launches:
+                elif self.launches or self._control is not None:
                     why = f"launched but not running (see the launch output in {self._where})"
                 else:
                     why = f"no launcher here: the launch file is in {self._where}"
@@ -303,6 +303,7 @@ class Watcher:
         """Start ``components`` (or say what would run); True if something was done."""
         if self._control is None:
             return self._launcher.start(self.current, components, why)
+        self._launcher.launched |= set(components)  # not started again on every poll
         self._control.start(self.current, components, why)
         self._control.prepare_standby(self.current, self.failed)
         return True
