@@ -354,7 +354,3 @@ class Ros2Control:
             self._agent.close()
             self._agent = None
         return stopped
-
-    def summary(self) -> dict[str, Any]:
-        """Return what is left for a person to do (for the end state)."""
-        return {"stop_by_hand": sorted(self.by_hand)}

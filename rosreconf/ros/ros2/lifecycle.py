@@ -36,7 +36,6 @@ TIMEOUT = 5.0
 """Seconds one lifecycle service call may take."""
 APPEAR = 30.0
 """Seconds a node just started may take until its lifecycle services appear."""
-INTO_SERVICE = ("configure", "activate")
 OUT_OF_SERVICE = ("deactivate", "cleanup")
 
 
@@ -126,42 +125,6 @@ class LifecycleAgent:
         """Return the nodes whose lifecycle services are matched now (no waiting)."""
         answer = self._ask({"op": "ready", "nodes": sorted(nodes)}, self.timeout)
         return set(answer.get("ready", []))
-
-    def state(self, node: str) -> str:
-        """Return the node's lifecycle state read from its ``get_state`` service.
-
-        Raises:
-            LifecycleError: no answer within the timeout.
-        """
-        answer = self._ask({"op": "state", "node": node, "timeout": self.timeout}, self.timeout)
-        if not answer.get("ok"):
-            raise LifecycleError(f"{node}: cannot read its lifecycle state: {answer.get('error')}")
-        return str(answer["state"])
-
-    def transition(self, node: str, transition: str, appear: float | None = None) -> Outcome:
-        """Perform one transition and read the state back (``Outcome.ok`` says if it held).
-
-        ``appear``: seconds to wait for the node's services to appear (default: the
-        timeout); a node just started needs longer.
-        """
-        start = time.monotonic()
-        wait = self.timeout if appear is None else appear
-        try:
-            answer = self._ask(
-                {"op": "transition", "node": node, "transition": transition,
-                 "timeout": self.timeout, "appear": wait},
-                2 * self.timeout + wait,
-            )  # fmt: skip
-        except LifecycleError as exc:
-            return Outcome(node, transition, False, None, time.monotonic() - start, str(exc))
-        return Outcome(
-            node,
-            transition,
-            bool(answer.get("ok")),
-            answer.get("state"),
-            time.monotonic() - start,
-            answer.get("error"),
-        )
 
     def transitions(
         self, items: list[tuple[str, str]], appear: float | None = None
