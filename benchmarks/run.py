@@ -14,6 +14,9 @@ Three parts, all written to benchmarks/results.json and printed as tables:
   child (this script with ``--child``) reporting seconds and its own peak RSS.
 * ``watch``: in-process, what the watcher does between detecting a failure and having the
   new configuration, against Fast Downward's own time on the same task.
+* ``recovery``: whole process, real nodes: ``kill -9`` NSM3 under ``watch --apply
+  --stand-ins`` to ``conformant``, ROS 2 standby, ROS 2 cold starts and ROS 1, 5 kills each,
+  detect / re-plan / start / stop / conformant read from the JSON log (benchmarks/recovery.py).
 
 ``--quick`` runs a tiny version of each; ``benchmarks/selfcheck.py`` (first in ``make bench``)
 runs it and checks that every table and JSON entry comes out.
@@ -38,6 +41,8 @@ from typing import Any
 
 from loading import loading  # benchmarks/loading.py: this folder is the script's sys.path[0]
 from loading import markdown as loading_markdown
+from recovery import recovery
+from recovery import table as recovery_table
 
 HERE = Path(__file__).resolve().parent
 FULL = [(r, k) for r in (10, 50, 200, 1000) for k in (2, 10)]
@@ -626,6 +631,11 @@ def main() -> None:
             subprocess.run(watch_cmd, capture_output=True, text=True, check=True).stdout
         )
         watched["scope"] = "in-process"
+        recovered = (
+            {"status": "skipped in --quick (real nodes, minutes: make bench)"}
+            if args.quick
+            else recovery(5)
+        )
         for r, k in grid:
             folder = Path(tmp) / f"{r}x{k}"
             write_in_child(r, k, folder)
@@ -666,6 +676,7 @@ def main() -> None:
         "whole_process": wholes,
         "growth": grown,
         "watch": watched,
+        "recovery": recovered,
         "grid_scope": "in-process (YAML loading excluded), fresh child per cell",
         "grid": rows,
         "streaming_rss_kib": {str(n): v.get("rss_kib") for n, v in flat.items()},
@@ -678,6 +689,8 @@ def main() -> None:
     console.print(whole_table(wholes))
     console.print(growth_table(grown))
     console.print(f"watch (in-process): {watched}")
+    console.print("recovery (whole process, real nodes, median seconds):")
+    console.print(recovery_table(recovered), markup=False)
     table = Table(title="rosreconf benchmark, in-process (median seconds / peak RSS MiB)")
     for col in ["R x K", *kinds, "overhead", "FD first", "FD anytime"]:
         table.add_column(col)
@@ -757,6 +770,9 @@ def markdown(doc: dict[str, Any]) -> str:
         f"watch (in-process): replan {w['replan_seconds'] * 1000:.0f} ms, Fast Downward's own "
         f"time ({w['search']}) {w['fast_downward_seconds']:.2f} s; goal met: {w['met']}",
     ]
+    if "recovery" in doc:
+        out += ["", "recovery (whole process, real nodes, median seconds):", ""]
+        out.append(recovery_table(doc["recovery"]))
     return "\n".join(out)
 
 

@@ -70,7 +70,7 @@ def test_inspect_kill_and_replan(
 
     log = tmp_path / "watch.jsonl"
     argv = [sys.executable, "-m", "rosreconf", "watch", *ros2, "--only", SCHEMA, "--apply",
-            "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
+            "--ros2-launch", "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
     err = (tmp_path / "watch.err").open("wb")
     watch = subprocess.Popen(
         argv,
@@ -184,7 +184,8 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
     config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     no_ros2 = {"PATH": str(tmp_path)}  # no `ros2` command on this PATH
     watcher = Watcher(Ros2Source(ros2_domain), managed, schema, config, tmp_path, no_ros2,
-                      events.append, apply=True, launch_dir=tmp_path)  # fmt: skip
+                      events.append, apply=True, launch_dir=tmp_path,
+                      ros2_launch=True)  # fmt: skip
     try:
         assert watcher.step().ok
         nodes["NSM3"].kill()

@@ -347,3 +347,28 @@ def test_the_interrupt_tests_pass_when_pytest_runs_as_a_background_job() -> None
     )
     assert done.returncode == 0, done.stdout + done.stderr
     assert "4 passed" in done.stdout
+
+
+def test_a_background_programs_group_dies_with_rosreconf_even_under_sigkill(
+    report: Path, tmp_path: Path
+) -> None:
+    """What roslaunch and ROS 2 nodes run as (start_program): gone when rosreconf is killed.
+
+    Issue 22: SIGKILL of ``watch`` left roslaunch and its 13 stand-ins running.
+    """
+    code = (
+        "import sys, time; from pathlib import Path;"
+        "from rosreconf.procs import start_program;"
+        "start_program([sys.executable, sys.argv[1]], log=Path(sys.argv[2]));"
+        "time.sleep(60)"
+    )
+    argv = [PY, "-c", code, fake("fork_ignore_term.py")[1], str(tmp_path / "out.log")]
+    parent = subprocess.Popen(argv)
+    deadline = time.monotonic() + 20
+    while not report.exists() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    facts = read_report(report)
+    parent.kill()  # SIGKILL: no finally block, no signal handler runs
+    parent.wait()
+    assert len(facts["pids"]) == 2  # the program and the child it forked
+    assert wait_until_gone(facts["pgid"], seconds=5) == []

@@ -26,14 +26,17 @@ from rosreconf.cli.common import (
     select,
 )
 from rosreconf.cli.console import stderr
+from rosreconf.cli.stopping import stop_on_signals
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
+from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.sources import open_source
-from rosreconf.ros.watcher import Event, Watcher
+from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 
 
@@ -50,6 +53,20 @@ def watch_command(
     stand_ins: Annotated[
         bool,
         typer.Option("--stand-ins", help="Launch stand-in nodes instead of the real executables."),
+    ] = False,
+    standby: Annotated[
+        bool,
+        typer.Option(
+            "--standby",
+            help="ROS 2: start, configure managed alternatives in advance (failover: activate).",
+        ),
+    ] = False,
+    ros2_launch: Annotated[
+        bool,
+        typer.Option(
+            "--ros2-launch",
+            help="ROS 2: run 'ros2 launch' on launch files instead of starting each node.",
+        ),
     ] = False,
     interval: Annotated[
         float, typer.Option(min=0.05, max=3600, callback=finite, help="Seconds between polls.")
@@ -76,9 +93,10 @@ def watch_command(
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
-    started. With --apply, launch files and roslaunch's output are kept in a new directory
-    rosreconf-watch-* under ROS's log directory (said at the start). With --once: exit 0 if
-    the system conforms at the end, else 1.
+    started (within 5 s; exit 130 or 143). With --apply, launch files and output are kept in a
+    new directory rosreconf-watch-* under ROS's log directory (said at the start). ROS 2 nodes
+    and stand-ins run under ROSRECONF_ROS2_PYTHON or the first python3 with rclpy (exit 3 if
+    none). With --once: exit 0 if the system conforms at the end, else 1.
     """
 
     sel = select(library, schema, None, [only] if only else None)
@@ -90,12 +108,17 @@ def watch_command(
     source = open_source(
         master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
     )
-    if stand_ins and source.ros_version is RosVersion.ROS2:
-        raise UsageError("--stand-ins starts ROS 1 stand-in nodes: it cannot be used with --ros2")
+    ros2 = source.ros_version is RosVersion.ROS2
+    if (standby or ros2_launch) and not (ros2 and apply):
+        raise UsageError("--standby and --ros2-launch are for --ros2 --apply")
+    if stand_ins and ros2_launch:
+        raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
     if master is not None:
         env["ROS_MASTER_URI"] = master
     else:
         env["ROS_DOMAIN_ID"] = str(domain)
+        if apply and stand_ins:
+            ros2_python(env)  # no rclpy here: say how to get one now, not at the first start
     keep: Path | None = None
     if apply:
         try:
@@ -105,6 +128,7 @@ def watch_command(
             msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
             raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
     with ExitStack() as stack:
+        signals = stack.enter_context(stop_on_signals())
         stack.callback(source.close)
         if keep is not None:
             stack.callback(_remove_if_empty, keep)
@@ -123,7 +147,8 @@ def watch_command(
         watcher = Watcher(
             source, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
-            launch_dir=keep,
+            launch_dir=keep, standby=standby, ros2_launch=ros2_launch,
+            stop_requested=signals.requested,
         )  # fmt: skip
         stack.callback(watcher.close)
         what = (
@@ -140,6 +165,8 @@ def watch_command(
             )
         )
         check = watcher.run(interval, once=once)
+        if signals.signum is not None:
+            raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
 
 

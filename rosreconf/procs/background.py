@@ -17,7 +17,8 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.procs.signals import sigint_default, sigint_ignored, signal_group
+from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
+from rosreconf.procs.signals import signal_group
 
 
 class Background:
@@ -36,12 +37,18 @@ class Background:
     """
 
     def __init__(
-        self, argv: tuple[str, ...], process: subprocess.Popen[bytes], log: Path | None = None
+        self,
+        argv: tuple[str, ...],
+        process: subprocess.Popen[bytes],
+        log: Path | None = None,
+        alive: int = -1,
     ) -> None:
         self.argv = argv
         self.process = process
         self.pids: set[int] = set()
         self.log = log
+        self.alive = alive
+        """The write end of the watchdog's pipe (-1: none), released once the group is dead."""
         self._read_to = 0
 
     def new_output(self, limit: int = 64 << 10) -> str:
@@ -97,6 +104,9 @@ def stop_all(programs: Sequence[Background], grace: float = 5.0, sig: int = sign
             with contextlib.suppress(ProcessLookupError, PermissionError):
                 os.kill(pid, signal.SIGKILL)
         prog.process.wait()
+        if prog.alive >= 0:
+            release(prog.alive)  # after the kill: the watchdog died with its group
+            prog.alive = -1
 
 
 def start_program(
@@ -105,24 +115,35 @@ def start_program(
     """Start ``argv`` in a new session with output to ``log``; the caller must ``stop`` it.
 
     The same rules as ``run_program`` (argument list, new session, the whole group killed at
-    the end) hold, but the program keeps running after the call: use it for roslaunch.
+    the end, and on Linux the parent-death signal and the group watchdog of
+    ``rosreconf.procs.child``, so the program's group dies with rosreconf even on SIGKILL) hold,
+    but the program keeps running after the call: use it for roslaunch and ROS 2 nodes.
 
     Raises:
         ExternalToolError: the program is missing or cannot be run.
     """
     args = tuple(str(a) for a in argv)
+    alive_read, alive_write = os.pipe() if LINUX else (-1, -1)
     with log.open("ab") as out:
         try:
             proc = subprocess.Popen(
                 args, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=cwd,
                 env=None if env is None else dict(env), start_new_session=True,
-                preexec_fn=sigint_default() if sigint_ignored() else None,
+                pass_fds=(alive_read,) if LINUX else (),
+                preexec_fn=preexec(None, None, alive_read),
             )  # fmt: skip
         except FileNotFoundError:
+            release(alive_write)
             raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None
         except OSError as exc:
+            release(alive_write)
             raise ExternalToolError(f"cannot run {args[0]}: {exc.strerror or exc}") from exc
-    return Background(args, proc, log)
+        finally:
+            if LINUX:
+                os.close(alive_read)  # the write end closes when rosreconf ends, however
+    if LINUX:
+        ALIVE_PIPES.append(alive_write)
+    return Background(args, proc, log, alive_write)
 
 
 def descendants(root: int) -> set[int]:

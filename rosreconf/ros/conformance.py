@@ -48,6 +48,7 @@ from typing import Any
 from rosreconf.model import (
     ComponentLibrary,
     Configuration,
+    Interface,
     InterfaceKind,
     InteroperabilitySchema,
 )
@@ -163,13 +164,21 @@ def compare(
             Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
         )
     # Calls the library declares (every option of a service requirement, under the component's
-    # own name for it) are judged along the edges, not as unserved calls.
+    # own name for it or under the name of any library component providing that option, as a
+    # launch remapping wires it) are judged along the edges, not as unserved calls: a node
+    # kept through a repair still calls the alternative it was first wired to.
+    servers: dict[Interface, set[str]] = {}
+    for comp in library.components:
+        for iface in comp.provides:
+            if iface.kind is InterfaceKind.SERVICE:
+                servers.setdefault(iface, set()).add(interface_live_name(comp, iface.label))
     wired = {
-        (names[c], interface_live_name(comp, option.label))
+        (names[c], called)
         for c, comp in comps.items()
         for req in comp.requires
         for option in req.options
         if option.kind is InterfaceKind.SERVICE
+        for called in (interface_live_name(comp, option.label), *servers.get(option, ()))
     }
     found += edge_findings(configuration, library, schema, graph, answering, comps, wired)
     found += unserved_findings(answering, owner, wired)

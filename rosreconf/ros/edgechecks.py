@@ -32,13 +32,18 @@ def unserved_findings(
 
     Calls along the configuration's own service edges (``wired``: consumer node, the name it
     calls) are judged there (``unmet-requirement``, with the consumer's own name accepted as
-    a launch remapping would set it), not again here.
+    a launch remapping would set it), not again here. Only the configuration's nodes
+    (``owner``) are judged: a node outside it is an ``extra-node`` already, or one held out
+    of service on purpose (a parked standby of ``watch``), whose calls are not the
+    configuration's.
     """
     served = {s for n in answering.values() for s in n.serves}
     out = []
     for node in answering.values():
+        comp = owner.get(node.name)
+        if comp is None:
+            continue
         for service in node.clients:
-            comp = owner.get(node.name)
             if service in served or (node.name, service) in wired:
                 continue
             msg = f"{node.name} calls service {service}, which no live node serves"

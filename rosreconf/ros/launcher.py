@@ -136,6 +136,17 @@ class Launcher:
         self.launches.clear()
         return n
 
+    def restart(self, *, stop: bool) -> None:
+        """Forget what was launched with a master that restarted (with ``stop``, stop it)."""
+        if stop and self.launches:
+            n = self.stop()
+            self.say(
+                "stopped",
+                f"stopped the {n} roslaunch process(es) started with the old master, "
+                "to start their nodes again with the new one",
+            )
+        self.launched.clear()
+
     def close(self) -> None:
         """Stop every launch process, and say where the launch files are kept."""
         n = self.stop()

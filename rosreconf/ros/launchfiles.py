@@ -271,3 +271,33 @@ def _comment(text: str) -> str:
     while "--" in text:
         text = text.replace("--", "- -")
     return text if not text.endswith("-") else text + " "
+
+
+def wiring(
+    library: ComponentLibrary, schema: InteroperabilitySchema, configuration: Configuration
+) -> dict[str, list[Remap]]:
+    """Return per consumer the remappings wiring it along the ROS-graph."""
+    return _wiring(library, schema, configuration)[0]
+
+
+def ros2_node_arguments(
+    library: ComponentLibrary,
+    component: str,
+    remaps: dict[str, list[Remap]],
+) -> list[str]:
+    """Return the ``--ros-args`` that start ``component``'s node as its launch file would.
+
+    Node name, namespace, the remappings wiring it (``remaps``, from ``wiring``), and its
+    parameters (written as ROS 2 reads them, YAML), for running the executable directly as
+    ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
+    """
+    c = library[component]
+    args = ["--ros-args", "-r", f"__node:={c.node_name}"]
+    launch = c.launch
+    if launch is not None and launch.namespace:
+        args += ["-r", f"__ns:={launch.namespace}"]
+    for old, new, _ in remaps.get(component, []):  # rcl remaps an action's name as a topic's
+        args += ["-r", f"{old}:={new}"]
+    for name, value in sorted(launch.parameters.items()) if launch is not None else ():
+        args += ["-p", f"{name}:={_param(name, value, RosVersion.ROS2)['value']}"]
+    return args

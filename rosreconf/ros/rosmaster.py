@@ -270,6 +270,22 @@ def restarted(before: tuple[int | None, str | None], now: tuple[int | None, str 
     return run0 is not None and run1 is not None and run0 != run1
 
 
+def restart_event(
+    before: tuple[int | None, str | None] | None, now: tuple[int | None, str | None] | None
+) -> tuple[str, dict[str, int | str | None]] | None:
+    """Return what to say when the master restarted between two reads (None: it did not)."""
+    if before is None or now is None or not restarted(before, now):
+        return None
+    what = f"pid {before[0]} -> {now[0]}" if before[0] != now[0] else "new /run_id"
+    message = (
+        f"the ROS master restarted ({what}): it lists none of the nodes registered with "
+        "the old one (ROS 1 nodes do not register again), so nothing is counted as "
+        "failed; checking the graph against the configuration again"
+    )
+    data = {"old_pid": before[0], "new_pid": now[0], "old_run_id": before[1], "new_run_id": now[1]}
+    return message, data
+
+
 def known_identity(
     before: tuple[int | None, str | None] | None, now: tuple[int | None, str | None] | None
 ) -> tuple[int | None, str | None] | None:

@@ -79,8 +79,20 @@ def answer(cls: Any, node: str) -> Any:
     return handle
 
 
+def _die_with_parent() -> None:
+    """Stop (SIGTERM) when roslaunch dies: a SIGKILLed watch kills roslaunch, not its nodes."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+        import signal
+
+        ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+        if os.getppid() == 1:  # roslaunch died before prctl took effect
+            os.kill(os.getpid(), signal.SIGTERM)
+
+
 def main(argv: list[str]) -> int:
     """Register the spec's topics and services, publish until told to stop."""
+    _die_with_parent()
     argv = rospy.myargv(argv)  # drop roslaunch's __name:= and __log:= arguments
     if len(argv) != 2:
         print(f"usage: {argv[0]} SPEC_JSON_OR_FILE", file=sys.stderr)

@@ -13,19 +13,23 @@ alive by this watcher and is gone now. A component never seen is only *missing*:
 ``apply`` it is started (so a watcher can also bring a configuration up); without, it is
 only reported.
 
-When the master restarts (its pid or roscore's ``/run_id`` changes), the new master lists
-none of the nodes registered with the old one: ROS 1 nodes do not register again. That is
-not every component failing: the watcher says the master restarted, forgets which components
-it saw, and checks the graph again (with ``apply``, it stops its own roslaunch processes, whose
-nodes the new master does not know, and starts the configuration again).
+A restarted master (new pid or ``/run_id``) lists none of the old nodes, which do not register
+again: that is said, not counted as failures; the graph is checked again (with ``apply``, the
+own roslaunch processes are stopped and the configuration started again).
 
-roslaunch's own errors (a package that does not exist, a node that cannot start) are read
-from its output while the watcher waits, and handed on, escaped, with the paths of the launch
-file and of that output; both are kept in ``launch_dir`` (``rosreconf.ros.launcher`` owns the
-launch processes). A component that was launched and never came up is not launched again on
-every poll.
+On ROS 2 (without ``ros2 launch``), ``rosreconf.ros.ros2.control`` acts: a node process of its
+own that exits is a failure at once (no DDS lease to wait for); managed nodes get lifecycle
+transitions; nodes it cannot stop are named ("stop this by hand"); ``standby`` prepares
+managed alternatives. Nodes held out of service on purpose are not extra nodes.
 
-Every decision is an ``Event`` handed to the ``log`` callback; nothing here prints.
+A repair is confirmed however it is made: after a replan the watcher keeps comparing, and
+logs ``conformant`` (with the seconds since the failure was seen) once the live graph
+matches, with ``apply`` or after a person repaired it by hand. ``stop_requested`` is polled
+between steps and in every wait, so a signal stops the watcher within one poll slice.
+
+roslaunch's errors are handed on (``rosreconf.ros.launcher``); a component that was launched
+and never came up is not launched again on every poll. Every decision is an ``Event``
+(``rosreconf.ros.events``) handed to the ``log`` callback; nothing here prints.
 """
 
 from __future__ import annotations
@@ -33,43 +37,23 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
-from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.planning.narrative import explain_replan
 from rosreconf.procs import Background
 from rosreconf.ros.conformance import Conformance, compare, node_live_name
+from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import Launcher
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.rosmaster import known_identity, restarted
-from rosreconf.ros.sources import LiveSource, lifecycle_steps
-from rosreconf.solve.running import nearest_valid
-from rosreconf.solve.solver import why_not
+from rosreconf.ros.replanning import listed_transitions, replan
+from rosreconf.ros.ros2.control import Ros2Control
+from rosreconf.ros.rosmaster import known_identity, restart_event
+from rosreconf.ros.sources import LiveSource
 
-
-@dataclass(frozen=True)
-class Event:
-    """One decision or observation, for people (``message``) and programs (``data``).
-
-    Attributes:
-        kind: ``started``, ``running`` (once: every component seen alive), ``stopped``,
-            ``failed``, ``purged``, ``replanned``, ``why``, ``no-configuration``, ``stop``,
-            ``launch``, ``would-launch`` (no launcher here), ``lifecycle`` (ROS 2 managed
-            nodes), ``launch-error``, ``launch-exited``, ``conformant``, ``not-conformant``,
-            ``missing``, ``master-lost``, ``master-back``, ``master-restarted``, ``kept``.
-        message: what happened and why, in plain words.
-        data: details for the JSON log (component names, configurations, seconds).
-        time: when (UTC).
-    """
-
-    kind: str
-    message: str
-    data: Mapping[str, Any] = field(default_factory=dict)
-    time: datetime = field(default_factory=lambda: datetime.now(UTC))
+__all__ = ["Event", "Watcher"]
 
 
 @dataclass
@@ -90,6 +74,10 @@ class Watcher:
         launch_dir: where launch files and roslaunch's output go, kept after the watcher
             ends (default: ``workdir``).
         failed: components known to have failed (sticky).
+        standby: ROS 2: start and configure managed alternatives in advance.
+        ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
+            node's process (needs a ``ros2`` command).
+        stop_requested: polled between steps and while waiting; True ends ``run``.
     """
 
     source: LiveSource
@@ -104,18 +92,29 @@ class Watcher:
     settle: float = 30.0
     launch_dir: Path | None = None
     failed: set[str] = field(default_factory=set)
+    standby: bool = False
+    ros2_launch: bool = False
+    stop_requested: Callable[[], bool] = lambda: False
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
     _master: tuple[int | None, str | None] | None = None
     _running: bool = False
     _launcher: Launcher = field(init=False, repr=False)
+    _control: Ros2Control | None = field(default=None, repr=False)
+    _pending: float | None = None
+    _graph: LiveGraph | None = None
 
     def __post_init__(self) -> None:
         self._launcher = Launcher(
             self.source, self.library, self.schema, self.workdir, self.env, self._say,
             stand_ins=self.stand_ins, launch_dir=self.launch_dir,
         )  # fmt: skip
+        if self.apply and self.source.ros_version is RosVersion.ROS2 and not self.ros2_launch:
+            self._control = Ros2Control(
+                self.library, self.schema, self.env, self._launcher.directory, self._say,
+                stand_ins=self.stand_ins, standby=self.standby,
+            )  # fmt: skip
 
     @property
     def launches(self) -> list[Background]:
@@ -123,14 +122,36 @@ class Watcher:
         return self._launcher.launches
 
     def _read(self) -> LiveGraph:
-        return self.source.read()
+        graph = self.source.read()
+        self._graph = graph if self._control is None else self._control.visible(graph)
+        return self._graph
+
+    def _compare(self, graph: LiveGraph) -> Conformance:
+        """Compare, leaving out the nodes rosreconf holds out of service on purpose."""
+        check = compare(self.current, self.library, self.schema, graph)
+        return check if self._control is None else self._control.filtered(check)
+
+    def _own_exits(self, tend: bool = True) -> bool:
+        """Count a node whose process rosreconf started and saw exit as failed, at once.
+
+        With ``tend``, standby nodes that came up are configured (not while confirming).
+        """
+        if self._control is None:
+            return False
+        now = self._control.exits(self.current, self.failed)
+        self.failed |= now
+        if tend:
+            self._control.tend()
+        return bool(now)
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_master()
         self._launcher.check()
+        if self._own_exits() and self._graph is not None and self._replan():
+            return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
-        check = compare(self.current, self.library, self.schema, graph)
+        check = self._compare(graph)
         missing = []
         for comp in self.current.components:
             codes = {f.code for f in check.findings if f.component == comp}
@@ -138,8 +159,9 @@ class Watcher:
                 if comp not in self.failed:
                     why = "registered but not answering" if "dead-node" in codes else "gone"
                     self._say(
-                        "failed", f"{comp} ({self._role(comp)}) is {why}: failed", component=comp
-                    )
+                        "failed", f"{comp} ({self._role(comp)}) is {why}: failed", component=comp,
+                        how="graph",
+                    )  # fmt: skip
                     self.failed.add(comp)
             elif "missing-node" in codes:
                 missing.append(comp)
@@ -171,7 +193,7 @@ class Watcher:
                 self._missing = tuple(stuck)
                 if not self.apply:
                     why = "use --apply to start"
-                elif self.launches:
+                elif self.launches or self._control is not None:
                     why = f"launched but not running (see the launch output in {self._where})"
                 else:
                     why = f"no launcher here: the launch file is in {self._where}"
@@ -179,34 +201,43 @@ class Watcher:
             fresh = [c for c in missing if c not in stuck]
             if fresh and self._start(fresh, "not running yet"):
                 return self._confirm()
-        return check if not dead else compare(self.current, self.library, self.schema, self._read())
+        if dead:
+            check = self._compare(self._read())
+        self._follow(check)
+        return check
+
+    def _follow(self, check: Conformance) -> None:
+        """Confirm a repair made since the last replan, by rosreconf or by a person."""
+        if self._pending is None:
+            return
+        if check.ok:
+            self._conformant(check, time.monotonic() - self._pending, "since the failure")
+        elif self._control is not None:
+            self._control.left_running(check)
+
+    def _conformant(self, check: Conformance, took: float, since: str) -> None:
+        self._seen |= set(self.current.components)
+        self._running = True  # "conformant" says it
+        self._pending = None
+        if self._control is not None:
+            self._control.left = ()
+        self._say(
+            "conformant",
+            f"the live system conforms to the configuration ({took:.1f} s {since})",
+            seconds=round(took, 3),
+            configuration=self.current.shown,
+        )
 
     def _check_master(self) -> None:
         """Notice a restarted master, and start over from what the new one lists."""
         now = self.source.identity()
         before, self._master = self._master, known_identity(self._master, now)
-        if before is None or now is None or not restarted(before, now):
+        said = restart_event(before, now)
+        if said is None:
             return
-        what = f"pid {before[0]} -> {now[0]}" if before[0] != now[0] else "new /run_id"
-        self._say(
-            "master-restarted",
-            f"the ROS master restarted ({what}): it lists none of the nodes registered with "
-            "the old one (ROS 1 nodes do not register again), so nothing is counted as "
-            "failed; checking the graph against the configuration again",
-            old_pid=before[0],
-            new_pid=now[0],
-            old_run_id=before[1],
-            new_run_id=now[1],
-        )
-        if self.apply and self.launches:
-            n = self._launcher.stop()
-            self._say(
-                "stopped",
-                f"stopped the {n} roslaunch process(es) started with the old master, "
-                "to start their nodes again with the new one",
-            )
+        self._say("master-restarted", said[0], **said[1])
+        self._launcher.restart(stop=self.apply)
         self._seen.clear()
-        self._launcher.launched.clear()
         self._missing = ()
         self._running = False
 
@@ -220,80 +251,47 @@ class Watcher:
     def _say(self, kind: str, message: str, **data: Any) -> None:
         self.log(Event(kind, message, data))
 
-    def _performing(
-        self, fewest: Configuration, failed: frozenset[str]
-    ) -> tuple[Configuration | None, str]:
-        """Return the configuration that meets the schema's performance requirements.
-
-        Says so when the fewest-change configuration was passed over for failing them.
-        """
-        from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
-
-        choice = choose(self.library, self.schema, fewest, self.current.mapping, {}, failed)
-        if choice.passed_over is not None and choice.passed_over_performance is not None:
-            self._say(
-                "passed-over",
-                "the fewest-change configuration fails the performance requirements "
-                f"({shortfall(self.schema, choice.passed_over_performance)}): passed over",
-                configuration=choice.passed_over.mapping,
-            )
-        if choice.configuration is None:
-            return None, (
-                f"every one of the {choice.valid} valid configuration(s) fails the schema's "
-                "performance requirements"
-            )
-        return choice.configuration, ""
-
     def _replan(self) -> bool:
         """Find the minimal-change configuration without the failed components; apply it."""
         failed = frozenset(self.failed)
         if failed == self._hopeless:
             return False
-        new = nearest_valid(self.library, self.schema, failed, self.current)
-        why = why_not(self.library, self.schema, failed) if new is None else ""
-        fewest = "the fewest possible (exact optimum)"
-        if new is not None and self.schema.simulation is not None:
-            nearest = new
-            new, why = self._performing(new, failed)
-            if new is not None and new != nearest:
-                fewest = (
-                    "the fewest among the configurations that meet the performance requirements"
-                )
-        if new is None:
-            self._say(
-                "no-configuration",
-                f"no valid configuration without {', '.join(sorted(failed))}: {why}",
-                failed=sorted(failed),
-            )
+        found = replan(self.library, self.schema, self.current, failed, self._say)
+        if found is None:
             self._hopeless = failed
             return False
-        old = self.current.mapping
-        changes = [(r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c]
-        text = "; ".join(f"{r}: {a or '(empty)'} -> {b or '(empty)'}" for r, a, b in changes)
-        self._say(
-            "replanned",
-            f"replanned without {', '.join(sorted(failed))}: "
-            f"{len(changes)} change(s), {fewest}: {text}",
-            failed=sorted(failed),
-            configuration=new.shown,
-            changes=[{"role": r, "from": a or None, "to": b or None} for r, a, b in changes],
-        )
-        # best_configuration is the exact optimum of the change count, so it is the fewest by
-        # proof; passing len(changes) as "fewest" would only compare a number with itself.
-        for line in explain_replan(self.library, self.schema, failed, old, new):
-            self._say("why", line)
+        new, changes = found
+        if self._pending is None:
+            self._pending = time.monotonic()
         if not self.apply:
             self.current = new
             return False
-        graph = self._read()
+        graph = self._read() if self._control is None or self._graph is None else self._graph
+        alive = {n.name for n in graph.nodes}
+        if self._control is not None:  # make before break: the new ones start first
+            self.current = new
+            self._seen -= {a for _, a, _ in changes}
+            started = self._start([b for _, _, b in changes if b], "new in the configuration")
+            self._control.retire(
+                [
+                    (a, r, b, node_live_name(self.library[a]) in alive)
+                    for r, a, b in changes
+                    if a and a not in self.failed  # an optional role that was empty: none
+                ]
+            )
+            return started
         for role, old_comp, new_comp in changes:
-            self._lifecycle(old_comp, new_comp, role)
+            if self.source.ros_version is RosVersion.ROS2:
+                listed_transitions(self.library, old_comp, new_comp, role, self._say)
             if not old_comp:  # an optional role that was empty: nothing to stop
                 continue
             name = node_live_name(self.library[old_comp])
-            alive = any(n.name == name for n in graph.nodes)
-            reason = f"rosreconf: {role} is now {new_comp}"
-            if alive and old_comp not in self.failed and self.source.stop(graph, name, reason):
+            reason = f"rosreconf: {role} is now {new_comp or '(empty)'}"
+            if (
+                name in alive
+                and old_comp not in self.failed
+                and self.source.stop(graph, name, reason)
+            ):
                 self._say(
                     "stop",
                     f"stopped {old_comp} ({role}): replaced by {new_comp}",
@@ -303,46 +301,31 @@ class Watcher:
         self._seen -= {a for _, a, _ in changes}
         return self._start([b for _, _, b in changes if b], "new in the configuration")
 
-    def _lifecycle(self, old_comp: str, new_comp: str, role: str) -> None:
-        """List the lifecycle transitions swapping managed nodes (ROS 2 ``ros.lifecycle``)."""
-        if self.source.ros_version is not RosVersion.ROS2:
-            return
-        steps: list[str] = []
-        for comp, stop in ((old_comp, True), (new_comp, False)):
-            if not comp:  # an optional role left empty
-                continue
-            launch = self.library[comp].launch
-            if launch is not None and launch.lifecycle:
-                steps += lifecycle_steps(node_live_name(self.library[comp]), stop=stop)
-        if steps:
-            self._say(
-                "lifecycle",
-                f"{role}: lifecycle transitions {old_comp} -> {new_comp}: {'; '.join(steps)}",
-                role=role,
-                transitions=steps,
-            )
-
     def _start(self, components: Collection[str], why: str) -> bool:
-        """Start ``components`` with one launch process (or say what would run); True if run."""
-        return self._launcher.start(self.current, components, why)
+        """Start ``components`` (or say what would run); True if something was done."""
+        if self._control is None:
+            return self._launcher.start(self.current, components, why)
+        self._launcher.launched |= set(components)  # not started again on every poll
+        self._control.start(self.current, components, why)
+        self._control.prepare_standby(self.current, self.failed)
+        return True
 
     def _confirm(self) -> Conformance:
         """Wait until the live graph conforms or ``settle`` passes; log which."""
         start = time.monotonic()
         while True:
             ended = self._launcher.check()
-            check = compare(self.current, self.library, self.schema, self._read())
+            self._own_exits(tend=False)
+            check = self._compare(self._read())
             took = time.monotonic() - start
             if check.ok:
-                self._seen |= set(self.current.components)
-                self._running = True  # "conformant" says it
-                self._say(
-                    "conformant",
-                    f"the live system conforms to the configuration "
-                    f"({took:.1f} s after the change)",
-                    seconds=round(took, 3),
-                    configuration=self.current.mapping,
-                )
+                self._conformant(check, took, "after the change")
+                return check
+            if (
+                self.stop_requested()
+                or self.failed & set(self.current.components)
+                or (self._control is not None and self._control.left_running(check))
+            ):
                 return check
             if took > self.settle or ended:
                 first = "; ".join(f.message for f in check.findings[:3])
@@ -353,26 +336,31 @@ class Watcher:
                     findings=[f.message for f in check.findings],
                 )
                 return check
-            time.sleep(0.2)
+            time.sleep(0.1)
 
     def close(self) -> None:
-        """Stop every roslaunch this watcher started, and the nodes they run."""
+        """Stop every roslaunch and node process this watcher started, and what they run."""
         self._launcher.close()
+        if self._control is not None:
+            stopped = self._control.close()
+            if stopped:
+                self._say("stopped", f"stopped the {len(stopped)} node process(es) started: "
+                          f"{', '.join(stopped)}", components=stopped)  # fmt: skip
         self.source.close()
 
     def run(self, interval: float, *, once: bool = False) -> Conformance:
-        """Poll every ``interval`` seconds until interrupted; with ``once``, poll once and return.
+        """Poll every ``interval`` seconds until stopped; with ``once``, poll once and return.
 
-        At the start a master that does not answer is an error (a wrong URI should fail
-        fast); later, a restarting master is waited for, with one event when it goes and
-        one when it is back.
+        A master that does not answer the first poll is an error (a wrong URI fails fast);
+        later, a restarting master is waited for (one event when it goes, one when back).
 
         Raises:
             ExternalToolError: the master does not answer the first poll (or, with ``once``,
                 any poll).
         """
-        started = False
-        lost_at: float | None = None
+        if self.schema.simulation is not None:  # numpy and the loops: not at the first failure
+            import rosreconf.analysis.simulate  # noqa: F401
+        started, lost_at, check = False, None, None
         while True:
             try:
                 check = self.step()
@@ -382,13 +370,27 @@ class Watcher:
                 if lost_at is None:
                     lost_at = time.monotonic()
                     self._say("master-lost", f"{exc}; retrying every {interval:g} s")
-                time.sleep(interval)
+                self._wait(interval)
+                if self.stop_requested() and check is not None:
+                    return check
                 continue
             started = True
             if lost_at is not None:
                 gone = time.monotonic() - lost_at
                 self._say("master-back", f"the master answers again after {gone:.1f} s")
                 lost_at = None
-            if once:
+            if once or self.stop_requested():
                 return check
-            time.sleep(interval)
+            self._wait(interval)
+            if self.stop_requested():
+                return check
+
+    def _wait(self, seconds: float) -> None:
+        """Sleep between polls; end early when a node process of ours exits or a stop is asked."""
+        if self.failed & set(self.current.components) and frozenset(self.failed) != self._hopeless:
+            return  # a failure seen while confirming: replan now
+        deadline = time.monotonic() + seconds
+        while not self.stop_requested() and (left := deadline - time.monotonic()) > 0:
+            if self._control is not None and self._control.nodes.any_exited():
+                return
+            time.sleep(min(left, 0.02))

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from rosreconf import jsonout
-from rosreconf.ros.watcher import Event
+from rosreconf.ros.events import Event
 
 
 def event_line(event: Event) -> str:

@@ -56,8 +56,25 @@ def take_all(reader: Any, **kw: Any) -> list[Any]:
             return out
 
 
+def read_new(reader: Any, **kw: Any) -> list[Any]:
+    """Read every sample not read before, a batch at a time, keeping every batch.
+
+    For a condition on unread samples: each read marks its batch read, so asking again with
+    room for more (as ``read_all`` does) would return only the rest and lose the first batch.
+    """
+    out: list[Any] = []
+    while True:
+        batch: list[Any] = reader.read(N=_BATCH, **kw)
+        out += batch
+        if len(batch) < _BATCH:
+            return out
+
+
 def read_all(reader: Any, **kw: Any) -> list[Any]:
-    """Read every sample (reading keeps them: ask again for more when a batch is full)."""
+    """Read every sample (reading keeps them: ask again for more when a batch is full).
+
+    Only for conditions that select samples whether read or not (``read_new`` otherwise).
+    """
     n = _BATCH
     while True:
         batch: list[Any] = reader.read(N=n, **kw)

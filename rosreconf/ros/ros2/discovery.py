@@ -56,6 +56,9 @@ from rosreconf.ros.ros2.dds import (
     read_all as _read_all,
 )
 from rosreconf.ros.ros2.dds import (
+    read_new as _read_new,
+)
+from rosreconf.ros.ros2.dds import (
     take_all as _take_all,
 )
 from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
@@ -229,7 +232,11 @@ class Ros2Discovery:
             resync = True  # a sample without data: which instance died is unknown
         for attempt in range(5):
             try:
-                samples = _read_all(reader, condition=alive if resync else fresh)
+                samples = (
+                    _read_all(reader, condition=alive)
+                    if resync
+                    else _read_new(reader, condition=fresh)
+                )
             except Exception as exc:
                 # The binding raises a bare Exception on a sample without data; an instance
                 # may die between the take and the read, so try again.

@@ -1,0 +1,118 @@
+"""Decide a watcher's new configuration after failures, and say why, step by step.
+
+The fewest-change valid configuration without the failed components
+(``rosreconf.solve.running.nearest_valid``, an exact optimum), passed over when it fails the
+schema's performance requirements (``rosreconf.analysis.simulate.choose``), with the
+narrative of every change (``rosreconf.planning.narrative``). Every decision goes to the
+``say`` callback (``replanned``, ``why``, ``passed-over``, ``no-configuration``); acting on it
+is the watcher's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.planning.narrative import explain_replan
+from rosreconf.ros.conformance import node_live_name
+from rosreconf.ros.sources import lifecycle_steps
+from rosreconf.solve.running import nearest_valid
+from rosreconf.solve.solver import why_not
+
+Say = Callable[..., None]
+Change = tuple[str, str, str]
+"""One role's change: (role, old component, new component; "" for an empty optional role)."""
+
+
+def replan(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    current: Configuration,
+    failed: frozenset[str],
+    say: Say,
+) -> tuple[Configuration, list[Change]] | None:
+    """Return the new configuration and its changes, or None when there is none (said)."""
+    new = nearest_valid(library, schema, failed, current)
+    why = why_not(library, schema, failed) if new is None else ""
+    fewest = "the fewest possible (exact optimum)"
+    if new is not None and schema.simulation is not None:
+        nearest = new
+        new, why = _performing(library, schema, current, new, failed, say)
+        if new is not None and new != nearest:
+            fewest = "the fewest among the configurations that meet the performance requirements"
+    if new is None:
+        say(
+            "no-configuration",
+            f"no valid configuration without {', '.join(sorted(failed))}: {why}",
+            failed=sorted(failed),
+        )
+        return None
+    old = current.mapping
+    changes = [(r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c]
+    text = "; ".join(f"{r}: {a or '(empty)'} -> {b or '(empty)'}" for r, a, b in changes)
+    say(
+        "replanned",
+        f"replanned without {', '.join(sorted(failed))}: "
+        f"{len(changes)} change(s), {fewest}: {text}",
+        failed=sorted(failed),
+        configuration=new.shown,
+        changes=[{"role": r, "from": a or None, "to": b or None} for r, a, b in changes],
+    )
+    # best_configuration is the exact optimum of the change count, so it is the fewest by
+    # proof; passing len(changes) as "fewest" would only compare a number with itself.
+    for line in explain_replan(library, schema, failed, old, new):
+        say("why", line)
+    return new, changes
+
+
+def _performing(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    current: Configuration,
+    fewest: Configuration,
+    failed: frozenset[str],
+    say: Say,
+) -> tuple[Configuration | None, str]:
+    """Return the configuration that meets the schema's performance requirements.
+
+    Says so when the fewest-change configuration was passed over for failing them.
+    """
+    from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
+
+    choice = choose(library, schema, fewest, current.mapping, {}, failed)
+    if choice.passed_over is not None and choice.passed_over_performance is not None:
+        say(
+            "passed-over",
+            "the fewest-change configuration fails the performance requirements "
+            f"({shortfall(schema, choice.passed_over_performance)}): passed over",
+            configuration=choice.passed_over.shown,
+        )
+    if choice.configuration is None:
+        return None, (
+            f"every one of the {choice.valid} valid configuration(s) fails the schema's "
+            "performance requirements"
+        )
+    return choice.configuration, ""
+
+
+def listed_transitions(
+    library: ComponentLibrary, old_comp: str, new_comp: str, role: str, say: Say
+) -> None:
+    """Say the lifecycle transitions swapping managed nodes, for a person to run.
+
+    For ROS 2 through ``ros2 launch``, where rosreconf does not perform them itself.
+    """
+    steps: list[str] = []
+    for comp, stop in ((old_comp, True), (new_comp, False)):
+        if not comp:  # an optional role left empty
+            continue
+        launch = library[comp].launch
+        if launch is not None and launch.lifecycle:
+            steps += lifecycle_steps(node_live_name(library[comp]), stop=stop)
+    if steps:
+        say(
+            "lifecycle",
+            f"{role}: lifecycle transitions {old_comp} -> {new_comp}: {'; '.join(steps)}",
+            role=role,
+            transitions=steps,
+        )

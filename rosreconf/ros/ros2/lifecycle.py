@@ -1,0 +1,167 @@
+"""Perform ROS 2 lifecycle transitions: ``change_state``, confirmed with ``get_state``.
+
+A managed node (``ros.lifecycle: true``) is taken into service by ``configure`` then
+``activate`` and out of it by ``deactivate`` then ``cleanup``; each is a call of the node's
+``/<node>/change_state`` service (``lifecycle_msgs/srv/ChangeState``), what ``ros2 lifecycle
+set`` does. rosreconf reads DDS without rclpy, so the calls go through one helper process it
+owns, ``lifecycle_agent.py`` under the ROS 2 Python (``rosreconf.ros.ros2.runtime``), which
+answers JSON lines and stays up, so its service clients are matched before they are needed:
+a transition then takes milliseconds, not a new process and a discovery round (seconds).
+Each transition has a timeout and is confirmed by reading the state back; any failure is a
+``LifecycleError`` with the node, the transition and why. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import queue
+import signal
+import subprocess
+import threading
+import time
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import IO, Any
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
+from rosreconf.procs.signals import signal_group
+from rosreconf.ros.ros2.runtime import ros2_python
+
+AGENT_SCRIPT = Path(__file__).with_name("lifecycle_agent.py")
+TIMEOUT = 5.0
+"""Seconds one lifecycle service call may take."""
+APPEAR = 30.0
+"""Seconds a node just started may take until its lifecycle services appear."""
+OUT_OF_SERVICE = ("deactivate", "cleanup")
+
+
+class LifecycleError(ExternalToolError):
+    """A transition was refused, timed out, or did not lead to the state it should."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """One transition performed: the node, the transition, the state read back, how long."""
+
+    node: str
+    transition: str
+    ok: bool
+    state: str | None
+    seconds: float
+    error: str | None = None
+
+
+class LifecycleAgent:
+    """Own the helper process that calls lifecycle services (see the module docstring)."""
+
+    def __init__(self, env: Mapping[str, str], log: Path, timeout: float = TIMEOUT) -> None:
+        self.timeout = timeout
+        python = ros2_python(env)
+        alive_read, self._alive = os.pipe() if LINUX else (-1, -1)
+        with log.open("ab") as err:
+            try:
+                self.process = subprocess.Popen(
+                    [python, str(AGENT_SCRIPT)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                    stderr=err, env=dict(env), start_new_session=True,
+                    pass_fds=(alive_read,) if LINUX else (),
+                    preexec_fn=preexec(None, None, alive_read),
+                )  # fmt: skip
+            except OSError as exc:
+                release(self._alive)
+                raise ExternalToolError(f"cannot run {python}: {exc.strerror or exc}") from exc
+            finally:
+                if LINUX:
+                    os.close(alive_read)
+        if LINUX:
+            ALIVE_PIPES.append(self._alive)
+        self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
+        self._next = 0
+        assert self.process.stdout is not None
+        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
+        self._log = log
+        first = self._answer(None, 60.0, "start")
+        if "ready" not in first:
+            self.close()
+            raise ExternalToolError(f"the lifecycle agent did not start (see {log})")
+
+    def _read(self, stream: IO[bytes]) -> None:
+        for line in stream:
+            with contextlib.suppress(ValueError):
+                self._answers.put(json.loads(line))
+        self._answers.put({"eof": True})
+
+    def _answer(self, wanted: int | None, timeout: float, what: str) -> dict[str, Any]:
+        deadline = time.monotonic() + timeout
+        while True:
+            try:
+                answer = self._answers.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise LifecycleError(f"the lifecycle agent did not answer ({what})") from None
+            if answer.get("eof"):
+                raise LifecycleError(f"the lifecycle agent has exited (see {self._log})")
+            if wanted is None or answer.get("id") == wanted:
+                return answer
+
+    def _ask(self, request: dict[str, Any], timeout: float) -> dict[str, Any]:
+        self._next += 1
+        assert self.process.stdin is not None
+        try:
+            self.process.stdin.write((json.dumps({"id": self._next, **request}) + "\n").encode())
+            self.process.stdin.flush()
+        except OSError:
+            raise LifecycleError(f"the lifecycle agent has exited (see {self._log})") from None
+        return self._answer(self._next, timeout + 2.0, str(request.get("op")))
+
+    def watch(self, nodes: Collection[str]) -> None:
+        """Make the clients for these nodes now, so that their transitions are fast later."""
+        if nodes:
+            self._ask({"op": "watch", "nodes": sorted(nodes)}, self.timeout)
+
+    def ready(self, nodes: Collection[str]) -> set[str]:
+        """Return the nodes whose lifecycle services are matched now (no waiting)."""
+        answer = self._ask({"op": "ready", "nodes": sorted(nodes)}, self.timeout)
+        return set(answer.get("ready", []))
+
+    def transitions(
+        self, items: list[tuple[str, str]], appear: float | None = None
+    ) -> list[Outcome]:
+        """Perform several (node, transition) at once, each confirmed with ``get_state``."""
+        if not items:
+            return []
+        wait = self.timeout if appear is None else appear
+        start = time.monotonic()
+        request = {"op": "batch", "timeout": self.timeout, "appear": wait,
+                   "items": [{"node": n, "transition": t} for n, t in items]}  # fmt: skip
+        try:
+            answer = self._ask(request, 2 * self.timeout + wait * len(items))
+        except LifecycleError as exc:
+            took = time.monotonic() - start
+            return [Outcome(n, t, False, None, took, str(exc)) for n, t in items]
+        return [
+            Outcome(
+                r["node"],
+                r["transition"],
+                bool(r["ok"]),
+                r.get("state"),
+                float(r["seconds"]),
+                r.get("error"),
+            )
+            for r in answer.get("results", [])
+        ]
+
+    def close(self) -> None:
+        """End the helper (its stdin closes; then SIGKILL) and release its watchdog."""
+        if self.process.stdin is not None:
+            with contextlib.suppress(OSError):
+                self.process.stdin.close()
+        try:
+            self.process.wait(timeout=1.0)
+        except subprocess.TimeoutExpired:
+            signal_group(self.process.pid, signal.SIGKILL)
+            self.process.wait()
+        signal_group(self.process.pid, signal.SIGKILL)
+        release(self._alive)

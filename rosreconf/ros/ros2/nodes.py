@@ -1,0 +1,181 @@
+"""Run a configuration's ROS 2 nodes as processes rosreconf owns, without ``ros2 launch``.
+
+Each component is one process, started as ``ros2 run`` would start it: its executable found
+through the ament index (``rosreconf.ros.ros2.runtime.ament_executable``) with ``--ros-args``
+naming the node, its namespace, its remappings and parameters
+(``rosreconf.ros.launchfiles.ros2_node_arguments``); or, with stand-ins, rosreconf's rclpy
+stand-in (``standin_node.py`` next to this module) under the ROS 2 Python. Every process is a
+``rosreconf.procs.Background`` (a new session; on Linux a parent-death signal and a group
+watchdog, so it dies with rosreconf even when rosreconf is SIGKILLed), with a short-lease
+Fast DDS profile and its output in ``<directory>/<component>.log``.
+
+Because rosreconf is the parent, it sees a node's process exit at once (``exited``; ``wait``
+returns as soon as one does), long before DDS would. Stopping is SIGINT (rclpy says goodbye
+and exits), then SIGTERM, then SIGKILL, each after ``grace`` seconds. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import time
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.procs import Background, start_program
+from rosreconf.procs.signals import signal_group
+from rosreconf.ros.conformance import node_live_name
+from rosreconf.ros.launchfiles import Remap, ros2_node_arguments, wiring
+from rosreconf.ros.ros2.runtime import (
+    LEASE_SECONDS,
+    ament_executable,
+    lease_profile,
+    node_env,
+    ros2_python,
+)
+from rosreconf.ros.standin_spec import ros2_standin_spec
+
+STANDIN_SCRIPT = Path(__file__).with_name("standin_node.py")
+GRACE_SECONDS = 1.0
+"""Seconds between SIGINT, SIGTERM and SIGKILL when rosreconf stops a node's process."""
+
+
+@dataclass
+class OwnNode:
+    """One node process rosreconf started.
+
+    Attributes:
+        component: the library component it runs.
+        node: its global node name.
+        program: the process (and what it forks).
+        managed: a lifecycle node (taken in and out of service by transitions).
+        argv: the command line, for the log.
+    """
+
+    component: str
+    node: str
+    program: Background
+    managed: bool
+    argv: tuple[str, ...]
+
+    @property
+    def pid(self) -> int:
+        """Return the process id."""
+        return self.program.process.pid
+
+
+@dataclass
+class NodeProcesses:
+    """Own the node processes of one watcher, from the first start to ``close``.
+
+    Attributes:
+        env: the environment nodes run in (ROS_DOMAIN_ID set).
+        directory: where each node's output goes (``<component>.log``) and the lease profile.
+        stand_ins: run rosreconf's rclpy stand-in instead of each component's executable.
+        lease: the participant lease, seconds, of the processes started here.
+        nodes: component -> its running process.
+    """
+
+    env: Mapping[str, str]
+    directory: Path
+    stand_ins: bool = False
+    lease: float = LEASE_SECONDS
+    nodes: dict[str, OwnNode] = field(default_factory=dict)
+    _profile: Path | None = None
+
+    def _node_env(self) -> dict[str, str]:
+        if self._profile is None:
+            self.directory.mkdir(parents=True, exist_ok=True)
+            self._profile = self.directory / "fastdds-short-lease.xml"
+            self._profile.write_text(lease_profile(self.lease), encoding="utf-8")
+        return node_env(self.env, self._profile)
+
+    def command(
+        self,
+        library: ComponentLibrary,
+        component: str,
+        remaps: dict[str, list[Remap]],
+    ) -> list[str]:
+        """Return the command line that runs ``component``'s node (``remaps``: ``wiring``).
+
+        Raises:
+            ExternalToolError: no ROS 2 Python (stand-ins), or no such executable (exit 3).
+        """
+        args = ros2_node_arguments(library, component, remaps)
+        comp = library[component]
+        if self.stand_ins:
+            spec = json.dumps(ros2_standin_spec(comp))
+            return [ros2_python(self.env), str(STANDIN_SCRIPT), spec, *args]
+        launch = comp.launch
+        assert launch is not None  # the watcher refuses components without a ros: entry
+        program = ament_executable(launch.package, launch.executable, self.env)
+        return [str(program), *launch.args, *args]
+
+    def start(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        configuration: Configuration,
+        components: Collection[str],
+    ) -> list[OwnNode]:
+        """Start one process per component (all before any is waited for); return them.
+
+        Raises:
+            ExternalToolError: a program is missing or cannot be run (those started stay).
+        """
+        started = []
+        env = self._node_env()
+        remaps = wiring(library, schema, configuration)
+        for name in components:
+            argv = self.command(library, name, remaps)
+            log = self.directory / f"{name}.log"
+            program = start_program(argv, log=log, env=env)
+            comp = library[name]
+            managed = bool(comp.launch is not None and comp.launch.lifecycle)
+            own = OwnNode(name, node_live_name(comp), program, managed, tuple(argv))
+            self.nodes[name] = own
+            started.append(own)
+        return started
+
+    def exited(self) -> list[tuple[OwnNode, int]]:
+        """Return the nodes whose process has ended since the last call, with the exit status."""
+        ended = [(n, n.program.process.poll()) for n in self.nodes.values()]
+        gone = [(n, code) for n, code in ended if code is not None]
+        for own, _ in gone:
+            del self.nodes[own.component]
+            self._reap(own)
+        return gone
+
+    def any_exited(self) -> bool:
+        """Tell whether a node's process has ended and ``exited`` has not said so yet."""
+        return any(n.program.process.poll() is not None for n in self.nodes.values())
+
+    def stop(self, components: Collection[str], grace: float = GRACE_SECONDS) -> list[OwnNode]:
+        """Stop these components' processes: SIGINT, SIGTERM, SIGKILL, ``grace`` s apart."""
+        own = [self.nodes.pop(c) for c in components if c in self.nodes]
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            alive = [n for n in own if n.program.process.poll() is None]
+            for n in alive:
+                n.program.remember()
+                signal_group(n.pid, sig)
+            deadline = time.monotonic() + grace
+            for n in alive:
+                try:
+                    n.program.process.wait(timeout=max(0.0, deadline - time.monotonic()))
+                except subprocess.TimeoutExpired:
+                    continue
+        for n in own:
+            self._reap(n)
+        return own
+
+    @staticmethod
+    def _reap(own: OwnNode) -> None:
+        """Kill what is left of the node's group (SIGKILL) and release its watchdog."""
+        own.program.stop(grace=0.0, sig=signal.SIGKILL)
+
+    def close(self) -> list[OwnNode]:
+        """Stop every node process started here; return them."""
+        return self.stop(list(self.nodes))

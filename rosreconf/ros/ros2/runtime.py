@@ -1,0 +1,132 @@
+"""Find what running ROS 2 nodes needs here: a Python with rclpy, executables, lease settings.
+
+rosreconf's own environment has no rclpy (it reads DDS with cyclonedds); what it starts as a
+ROS 2 node (a stand-in, a lifecycle agent) runs under a Python that has it:
+``ROSRECONF_ROS2_PYTHON``, else the first ``python3`` on PATH that imports rclpy. A
+component's real executable is found as ``ros2 run`` finds it: the package is a file
+``share/ament_index/resource_index/packages/<package>`` under a prefix of
+``AMENT_PREFIX_PATH``, and the program is ``<prefix>/lib/<package>/<executable>``.
+
+Processes rosreconf starts get a Fast DDS XML profile with a short participant lease
+(``lease_profile``), so that another reader (``inspect``, a second ``watch``) sees them go
+within seconds when they are killed; rosreconf itself sees its own processes exit at once.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from collections.abc import Mapping
+from pathlib import Path
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.procs import run_program
+
+PYTHON_ENV = "ROSRECONF_ROS2_PYTHON"
+HOW_TO_GET_ONE = (
+    "set ROSRECONF_ROS2_PYTHON to a Python that has rclpy, or put one first on PATH "
+    "(a ROS 2 install's 'source /opt/ros/<distro>/setup.bash', or from PyPI: "
+    "python3 -m venv ros2 && ros2/bin/pip install 'ros-jazzy-rclpy[fastrtps]==7.1.6' "
+    "ros-jazzy-std-msgs ros-jazzy-std-srvs ros-jazzy-lifecycle-msgs; see docs/live.md)"
+)
+LEASE_SECONDS = 2.0
+"""The participant lease of the processes rosreconf starts (Fast DDS's default is 20 s)."""
+FIND_RCLPY = "import importlib.util, sys; sys.exit(importlib.util.find_spec('rclpy') is None)"
+"""Finding rclpy without importing it (its C extension takes a second to load)."""
+_FOUND: dict[tuple[str | None, str | None], str] = {}
+
+
+def ros2_python(env: Mapping[str, str]) -> str:
+    """Return the Python that runs rosreconf's ROS 2 helpers (see the module docstring).
+
+    Raises:
+        ExternalToolError: none is found (exit 3), with how to get one.
+    """
+    key = (env.get(PYTHON_ENV), env.get("PATH"))
+    if key in _FOUND:
+        return _FOUND[key]
+    named = env.get(PYTHON_ENV)
+    if named:
+        path = shutil.which(named, path=env.get("PATH")) or named
+        if not os.access(path, os.X_OK):
+            raise ExternalToolError(f"{PYTHON_ENV}={named}: no such executable ({HOW_TO_GET_ONE})")
+        if not _imports_rclpy(path, env):
+            raise ExternalToolError(f"{PYTHON_ENV}={named} cannot import rclpy ({HOW_TO_GET_ONE})")
+        _FOUND[key] = path
+        return path
+    for folder in (env.get("PATH") or "").split(os.pathsep):
+        path = os.path.join(folder or ".", "python3")
+        if os.access(path, os.X_OK) and _imports_rclpy(path, env):
+            _FOUND[key] = path
+            return path
+    raise ExternalToolError(f"no python3 on PATH imports rclpy: {HOW_TO_GET_ONE}")
+
+
+def _imports_rclpy(python: str, env: Mapping[str, str]) -> bool:
+    """Tell whether ``python`` can import rclpy (one short run of it)."""
+    result = run_program([python, "-c", FIND_RCLPY], timeout=60, env=env)
+    return result.ok
+
+
+def ament_executable(package: str, executable: str, env: Mapping[str, str]) -> Path:
+    """Return ``<prefix>/lib/<package>/<executable>`` as ``ros2 run`` finds it.
+
+    Raises:
+        ExternalToolError: no prefix of AMENT_PREFIX_PATH has the package or the program.
+    """
+    prefixes = [p for p in (env.get("AMENT_PREFIX_PATH") or "").split(os.pathsep) if p]
+    for prefix in prefixes:
+        marker = Path(prefix, "share", "ament_index", "resource_index", "packages", package)
+        if marker.is_file():
+            program = Path(prefix, "lib", package, executable)
+            if program.is_file() and os.access(program, os.X_OK):
+                return program
+            raise ExternalToolError(
+                f"package {package} (in {prefix}) has no executable {executable} "
+                f"(looked for {program})"
+            )
+    where = ", ".join(prefixes) if prefixes else "AMENT_PREFIX_PATH is empty"
+    raise ExternalToolError(
+        f"ROS 2 package {package} was not found ({where}): source the workspace that "
+        "builds it, or use --stand-ins"
+    )
+
+
+def lease_profile(lease: float = LEASE_SECONDS) -> str:
+    """Return a Fast DDS XML profile giving every participant a ``lease`` s lease.
+
+    The participant announces itself three times per lease. Fast DDS 2 (Jazzy) reads it from
+    ``FASTRTPS_DEFAULT_PROFILES_FILE``, Fast DDS 3 (Kilted) from
+    ``FASTDDS_DEFAULT_PROFILES_FILE``.
+    """
+    sec, nsec = int(lease), int(lease % 1 * 1e9)
+    asec, ansec = int(lease / 3), int(lease / 3 % 1 * 1e9)
+    return f"""<?xml version="1.0" encoding="UTF-8"?>
+<dds xmlns="http://www.eprosima.com">
+  <profiles>
+    <participant profile_name="rosreconf_short_lease" is_default_profile="true">
+      <rtps>
+        <builtin>
+          <discovery_config>
+            <leaseDuration><sec>{sec}</sec><nanosec>{nsec}</nanosec></leaseDuration>
+            <leaseAnnouncement><sec>{asec}</sec><nanosec>{ansec}</nanosec></leaseAnnouncement>
+          </discovery_config>
+        </builtin>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+"""
+
+
+def node_env(env: Mapping[str, str], profile: Path) -> dict[str, str]:
+    """Return ``env`` for a node rosreconf starts: the short-lease profile, a log directory.
+
+    A profile the user named already is kept (theirs wins). rclpy needs HOME or ROS_LOG_DIR.
+    """
+    out = dict(env)
+    for name in ("FASTRTPS_DEFAULT_PROFILES_FILE", "FASTDDS_DEFAULT_PROFILES_FILE"):
+        out.setdefault(name, str(profile))
+    if not out.get("HOME") and not out.get("ROS_LOG_DIR"):
+        out["ROS_LOG_DIR"] = str(profile.parent)
+    return out

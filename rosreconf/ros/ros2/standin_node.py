@@ -1,0 +1,307 @@
+#!/usr/bin/env python3
+"""Stand in for a library component as a real rclpy node, so a ROS 2 system can be tried bare.
+
+It ships inside rosreconf because ``rosreconf watch --ros2 --stand-ins`` starts it (see
+``rosreconf.ros.ros2.nodes``); it is a script, not part of the library, and is never imported
+by rosreconf. Run it with a Python that has rclpy (``ROSRECONF_ROS2_PYTHON``; rosreconf's own
+venv has none). The one argument is a JSON spec, inline or as a file path
+(``rosreconf.ros.standin_spec.ros2_standin_spec`` writes it)::
+
+    {"name": "NSM3", "namespace": "/",
+     "publish":   [{"topic": "/a", "type": "std_msgs/msg/String"}],
+     "subscribe": [{"topic": "/b", "type": "robot_arm_msgs/msg/DcServoCommand"}],
+     "serve":     [{"service": "/s", "type": "robot_arm_msgs/srv/DigitalServoCommand"}],
+     "call":      [{"service": "/t", "type": "std_srvs/srv/Trigger"}],
+     "lifecycle": false, "rate_hz": 1.0}
+
+Types: an installed type (``std_msgs/msg/String``) is used as it is. Any other name (the
+example library's invented ``robot_arm_msgs/msg/DcServoCommand``) is *posed*, as the ROS 1
+stand-in poses: a subclass of ``std_msgs/msg/String`` (services: ``std_srvs/srv/Trigger``)
+whose type support is a copy of String's Fast DDS one (``rosidl_typesupport_fastrtps_c``)
+with the declared namespace and name, so rmw_fastrtps announces
+``robot_arm_msgs::msg::dds_::DcServoCommand_`` over DDS and rclpy's graph API says
+``robot_arm_msgs/msg/DcServoCommand``. The wire format and type hash are String's (Trigger's):
+two stand-ins posing as one type talk to each other; a real node with the real type would
+not match. Only the Fast DDS route is posed (the RMW the ROS 2 wheels ship).
+
+A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode`` that starts
+unconfigured, creates its endpoints on ``configure``, publishes only while active, and
+destroys them on ``cleanup``. Actions (``action_serve`` / ``action_call`` in the spec) are
+the seam for ACTION interfaces: refused here until the library format has them.
+
+Stops cleanly on SIGINT/SIGTERM (its participant says goodbye). Writes one JSON line to stdout
+once its node exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import importlib
+import json
+import os
+import sys
+from pathlib import Path
+from typing import Any
+
+import rclpy
+import std_msgs.msg
+import std_srvs.srv
+from rclpy.executors import ExternalShutdownException
+from rclpy.type_support import check_for_type_support
+
+POSING: set[str] = set()
+_KEEP: list[Any] = []  # every buffer and callback the posed type supports point to
+_FAST = b"rosidl_typesupport_fastrtps_c"
+_P = ctypes.c_void_p
+_HANDLE_FN = ctypes.CFUNCTYPE(_P, _P, ctypes.c_char_p)
+_API = ctypes.pythonapi
+_API.PyCapsule_GetPointer.restype = _P
+_API.PyCapsule_GetPointer.argtypes = [ctypes.py_object, ctypes.c_char_p]
+_API.PyCapsule_New.restype = ctypes.py_object
+_API.PyCapsule_New.argtypes = [_P, ctypes.c_char_p, _P]
+_MSG_HANDLE_BYTES = 6 * 8
+"""rosidl_message_type_support_t (Iron+): identifier, data, func, three type-description hooks."""
+_SRV_HANDLE_BYTES = 11 * 8
+"""rosidl_service_type_support_t (Iron+): identifier, data, func, 3 message handles, 5 hooks."""
+_MSG_CALLBACKS_BYTES = 16 * 8
+"""More than message_type_support_callbacks_t holds; only the first two fields are changed."""
+_SRV_CALLBACKS_BYTES = 4 * 8
+"""service_type_support_callbacks_t: namespace, name, request and response handles."""
+
+
+class _Handle(ctypes.Structure):
+    _fields_ = [("identifier", ctypes.c_char_p), ("data", _P), ("func", _P)]
+
+
+def _lookup(handle: int, identifier: bytes) -> int:
+    """Return the type support ``identifier`` of ``handle`` (rosidl's dispatch)."""
+    h = _Handle.from_address(handle)
+    if h.identifier == identifier:
+        return handle
+    return int(_HANDLE_FN(h.func)(handle, identifier) or 0)
+
+
+def _copy(address: int, size: int) -> Any:
+    buf = ctypes.create_string_buffer(size)
+    ctypes.memmove(buf, address, size)
+    _KEEP.append(buf)
+    return buf
+
+
+def _text(value: str) -> int:
+    s = ctypes.c_char_p(value.encode())
+    _KEEP.append(s)
+    return int(ctypes.cast(s, _P).value or 0)
+
+
+def _posed_handle(original: int, size: int, names: tuple[str, str], extra: Any = None) -> int:
+    """Copy the Fast DDS type support of ``original`` with another namespace and name."""
+    fast = _lookup(original, _FAST)
+    if not fast:
+        raise RuntimeError("no Fast DDS type support (rmw_fastrtps_cpp is the RMW posed)")
+    callbacks_size = _MSG_CALLBACKS_BYTES if extra is None else _SRV_CALLBACKS_BYTES
+    callbacks = _copy(_Handle.from_address(fast).data, callbacks_size)
+    fields = (_P * 4).from_buffer(callbacks)
+    fields[0], fields[1] = _text(names[0]), _text(names[1])
+    if extra is not None:
+        extra(fields)
+    handle = _copy(fast, size)
+
+    def dispatch(_me: int, identifier: bytes) -> int:
+        return ctypes.addressof(handle) if identifier == _FAST else _lookup(original, identifier)
+
+    func = _HANDLE_FN(dispatch)
+    _KEEP.append(func)
+    view = _Handle.from_buffer(handle)
+    view.data = ctypes.addressof(callbacks)
+    view.func = ctypes.cast(func, _P).value
+    return ctypes.addressof(handle)
+
+
+def _posed_class(base: Any, name: str, handle: int, attrs: dict[str, Any]) -> Any:
+    meta = type(base)
+    capsule = _API.PyCapsule_New(handle, None, None)
+    posed_meta = type(
+        f"Metaclass_{name}",
+        (meta,),
+        {"_TYPE_SUPPORT": capsule, "__import_type_support__": classmethod(lambda cls: None)},
+    )
+    return posed_meta(name, (base,), attrs)
+
+
+def message_class(name: str) -> Any:
+    """Return the installed class of ``pkg/msg/Name``, or a String posing as it."""
+    pkg, _, short = name.split("/")
+    try:
+        return getattr(importlib.import_module(f"{pkg}.msg"), short)
+    except (ImportError, AttributeError):
+        pass
+    POSING.add(name)
+    base = std_msgs.msg.String
+    check_for_type_support(base)
+    original = _API.PyCapsule_GetPointer(type(base)._TYPE_SUPPORT, None)
+    handle = _posed_handle(original, _MSG_HANDLE_BYTES, (f"{pkg}::msg", short))
+    return _posed_class(base, short, handle, {"__slots__": ()})
+
+
+def service_class(name: str) -> Any:
+    """Return the installed class of ``pkg/srv/Name``, or a Trigger posing as it."""
+    pkg, _, short = name.split("/")
+    try:
+        return getattr(importlib.import_module(f"{pkg}.srv"), short)
+    except (ImportError, AttributeError):
+        pass
+    POSING.add(name)
+    base = std_srvs.srv.Trigger
+    check_for_type_support(base)
+    original = _API.PyCapsule_GetPointer(type(base)._TYPE_SUPPORT, None)
+    ns = f"{pkg}::srv"
+
+    def messages(fields: Any) -> None:  # request_members_, response_members_
+        fields[2] = _posed_handle(fields[2], _MSG_HANDLE_BYTES, (ns, f"{short}_Request"))
+        fields[3] = _posed_handle(fields[3], _MSG_HANDLE_BYTES, (ns, f"{short}_Response"))
+
+    handle = _posed_handle(original, _SRV_HANDLE_BYTES, (ns, short), messages)
+    return _posed_class(base, short, handle, {})
+
+
+class Endpoints:
+    """The spec's publishers, subscriptions, servers and clients on one node."""
+
+    def __init__(self, node: Any, spec: dict[str, Any]) -> None:
+        self.node = node
+        self.made: list[Any] = []
+        self.pubs: list[tuple[Any, Any]] = []
+        if spec.get("action_serve") or spec.get("action_call"):
+            raise SystemExit("stand-in: actions are not acted out yet")
+        for p in spec.get("publish", []):
+            cls = message_class(p["type"])
+            pub = node.create_publisher(cls, p["topic"], 10)
+            self.pubs.append((pub, cls))
+            self.made.append(pub)
+        for s in spec.get("subscribe", []):
+            self.made.append(
+                node.create_subscription(message_class(s["type"]), s["topic"], _ignore, 10)
+            )
+        for s in spec.get("serve", []):
+            cls = service_class(s["type"])
+            self.made.append(node.create_service(cls, s["service"], _answer(node)))
+        for c in spec.get("call", []):
+            self.made.append(node.create_client(service_class(c["type"]), c["service"]))
+
+    def publish(self) -> None:
+        """Publish one message on every topic (posed types carry the node's name)."""
+        for pub, cls in self.pubs:
+            msg = cls()
+            if isinstance(msg, std_msgs.msg.String):
+                msg.data = self.node.get_fully_qualified_name()
+            pub.publish(msg)
+
+    def destroy(self) -> None:
+        """Destroy every endpoint (a managed node's cleanup)."""
+        for entity in self.made:
+            for kind in ("publisher", "subscription", "service", "client"):
+                destroy = getattr(self.node, f"destroy_{kind}")
+                try:
+                    destroy(entity)
+                    break
+                except Exception:  # not this kind
+                    continue
+        self.made.clear()
+        self.pubs.clear()
+
+
+def _ignore(_msg: Any) -> None:
+    return None
+
+
+def _answer(node: Any) -> Any:
+    def handle(_request: Any, response: Any) -> Any:
+        if hasattr(response, "success"):
+            response.success = True
+            response.message = f"stand-in {node.get_fully_qualified_name()}"
+        return response
+
+    return handle
+
+
+def plain_node(spec: dict[str, Any]) -> Any:
+    """Return an unmanaged node with every endpoint, publishing at the spec's rate."""
+    node = rclpy.create_node(spec["name"], namespace=spec.get("namespace") or "/")
+    ends = Endpoints(node, spec)
+    node.create_timer(1.0 / float(spec.get("rate_hz", 1.0)), ends.publish)
+    return node
+
+
+def managed_node(spec: dict[str, Any]) -> Any:
+    """Return a lifecycle node whose endpoints exist from configure to cleanup."""
+    from rclpy.lifecycle import LifecycleNode, State, TransitionCallbackReturn
+
+    class StandIn(LifecycleNode):  # type: ignore[misc]
+        def __init__(self) -> None:
+            super().__init__(spec["name"], namespace=spec.get("namespace") or "/")
+            self.ends: Endpoints | None = None
+            self.active = False
+            self.create_timer(1.0 / float(spec.get("rate_hz", 1.0)), self.tick)
+
+        def tick(self) -> None:
+            if self.active and self.ends is not None:
+                self.ends.publish()
+
+        def on_configure(self, state: State) -> TransitionCallbackReturn:
+            self.ends = Endpoints(self, spec)
+            return TransitionCallbackReturn.SUCCESS
+
+        def on_activate(self, state: State) -> TransitionCallbackReturn:
+            self.active = True
+            return TransitionCallbackReturn.SUCCESS
+
+        def on_deactivate(self, state: State) -> TransitionCallbackReturn:
+            self.active = False
+            return TransitionCallbackReturn.SUCCESS
+
+        def on_cleanup(self, state: State) -> TransitionCallbackReturn:
+            if self.ends is not None:
+                self.ends.destroy()
+            self.ends = None
+            return TransitionCallbackReturn.SUCCESS
+
+        def on_shutdown(self, state: State) -> TransitionCallbackReturn:
+            return self.on_cleanup(state)
+
+    return StandIn()
+
+
+def main(argv: list[str]) -> int:
+    """Create the spec's node and spin until told to stop."""
+    args = rclpy.utilities.remove_ros_args(argv)
+    if len(args) != 2:
+        print(f"usage: {args[0]} SPEC_JSON_OR_FILE", file=sys.stderr)
+        return 2
+    text = args[1] if args[1].lstrip().startswith("{") else Path(args[1]).read_text()
+    spec = json.loads(text)
+    rclpy.init(args=argv)
+    node = None
+    try:
+        node = managed_node(spec) if spec.get("lifecycle") else plain_node(spec)
+        ready = {
+            "ready": node.get_fully_qualified_name(),
+            "pid": os.getpid(),
+            "posing_as": sorted(POSING),
+        }
+        print(json.dumps(ready), flush=True)
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()  # while the posed type supports it points to still exist
+        rclpy.try_shutdown()  # the participant says goodbye
+    sys.stdout.flush()
+    # No interpreter teardown: it would free the posed type supports in no set order (a
+    # segfault at exit was seen), and it is slow; everything that matters is done.
+    os._exit(0)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
