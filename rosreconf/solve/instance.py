@@ -149,6 +149,9 @@ def compile_instance(
     _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
+    # a consumer's wanted options over an edge that allows every interface: the same for
+    # all its edges (a fan-in sink has thousands), so made once per requirement list
+    wanted_all: dict[tuple[tuple[int, ...], ...], frozenset[int]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
         out_edges.setdefault(u, []).append((e, v))
@@ -164,7 +167,14 @@ def compile_instance(
             reqs = options[cu.name]
             mates = by_opts.get(reqs)
             if mates is None:
-                wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                wanted: frozenset[int] | set[int]
+                if e.interfaces:
+                    wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                else:
+                    found = wanted_all.get(reqs)
+                    if found is None:
+                        found = wanted_all[reqs] = frozenset(o for g in reqs for o in g)
+                    wanted = found
                 mates = by_opts[reqs] = (
                     {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
                 )
@@ -173,6 +183,13 @@ def compile_instance(
         inst.partners.append(partners)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
+        # which of these edges lead to a role offering an interface: a requirement looks
+        # only at those (a fan-in sink's 2,000 requirements each scanned 2,000 edges)
+        offering: dict[int, set[int]] = {}
+        for j, (_, v) in enumerate(mine):
+            for cv in domains[v]:
+                for o in provides[cv.name]:
+                    offering.setdefault(o, set()).add(j)
         # the pairs depend only on the requirement's options: a role's candidates share a
         # few requirements, and one (read-only) list is made for each
         made: dict[tuple[int, ...], list[tuple[int, str]]] = {}
@@ -181,7 +198,8 @@ def compile_instance(
                 pairs = made.get(opts)
                 if pairs is None:
                     pairs = made[opts] = []
-                    for e, v in mine:
+                    near = sorted(set().union(*(offering.get(o, ()) for o in opts)))
+                    for e, v in (mine[j] for j in near):
                         allowed = {o for o in opts if _allows(e, labels[o])}
                         pairs.extend(
                             (v, cv.name)
