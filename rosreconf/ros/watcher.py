@@ -48,6 +48,7 @@ from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.rosmaster import known_identity, restarted
 from rosreconf.ros.sources import LiveSource, lifecycle_steps
 from rosreconf.solve.running import nearest_valid
+from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import why_not
 
 
@@ -90,6 +91,8 @@ class Watcher:
         launch_dir: where launch files and roslaunch's output go, kept after the watcher
             ends (default: ``workdir``).
         failed: components known to have failed (sticky).
+        budget: how far to search for a configuration that meets the performance
+            requirements when the fewest-change one does not (``analysis.choice``).
     """
 
     source: LiveSource
@@ -104,6 +107,7 @@ class Watcher:
     settle: float = 30.0
     launch_dir: Path | None = None
     failed: set[str] = field(default_factory=set)
+    budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
@@ -227,9 +231,15 @@ class Watcher:
 
         Says so when the fewest-change configuration was passed over for failing them.
         """
-        from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
+        from rosreconf.analysis.choice import SearchExhausted, choose, shortfall  # numpy
 
-        choice = choose(self.library, self.schema, fewest, self.current.mapping, {}, failed)
+        try:
+            choice = choose(
+                self.library, self.schema, fewest, self.current.mapping, {}, failed,
+                budget=self.budget,
+            )  # fmt: skip
+        except SearchExhausted as exc:
+            return None, str(exc)
         if choice.passed_over is not None and choice.passed_over_performance is not None:
             self._say(
                 "passed-over",
@@ -239,8 +249,8 @@ class Watcher:
             )
         if choice.configuration is None:
             return None, (
-                f"every one of the {choice.valid} valid configuration(s) fails the schema's "
-                "performance requirements"
+                "every valid configuration fails the schema's performance requirements "
+                f"({choice.tried} simulated to prove it)"
             )
         return choice.configuration, ""
 
