@@ -42,6 +42,7 @@ from rosreconf.model.dynamics import METRICS, UNITY
 from rosreconf.solve.solver import configurations
 
 __all__ = [
+    "DEFAULT_LIMIT",
     "Cache",
     "LoopOutcome",
     "Performance",
@@ -112,6 +113,14 @@ def check_metrics(library: ComponentLibrary, names: Iterable[str]) -> tuple[str,
     return out
 
 
+DEFAULT_LIMIT = 1000
+"""Configurations ``rosreconf simulate`` simulates per schema unless ``--limit`` says otherwise.
+
+Without a bound a schema of 10^97 configurations grew to 6.7 GB in two minutes (issue 22);
+the output says when the limit stopped the listing, and the ranking is over what was
+simulated."""
+
+
 def simulate_schema(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -123,7 +132,7 @@ def simulate_schema(
     executor: Executor | None = None,
     progress: Progress | None = None,
 ) -> SchemaSimulation:
-    """Simulate every valid configuration of ``schema`` (at most ``limit``) and rank them.
+    """Simulate the valid configurations of ``schema`` (at most ``limit``) and rank them.
 
     Each configuration becomes one row of indices, per loop, into that loop's distinct
     assignments of components to its roles; only those distinct loops are simulated, and
@@ -143,7 +152,11 @@ def simulate_schema(
     assigned: list[list[tuple[LoopSpec, tuple[str, ...]]]] = [[] for _ in sim.loops]
     report = SchemaSimulation(schema)
     rows: list[int] = []
-    for config in configurations(library, schema, failed, limit):
+    listed = configurations(library, schema, failed, None if limit is None else limit + 1)
+    for n, config in enumerate(listed):
+        if limit is not None and n == limit:  # one more than the limit: there are more
+            report.limited = True
+            break
         names = [c for _, c in config.assignment]
         for i, pos in enumerate(positions):
             key = tuple(names[p] for p in pos)
