@@ -234,10 +234,8 @@ class Watcher:
         from rosreconf.analysis.choice import SearchExhausted, choose, shortfall  # numpy
 
         try:
-            choice = choose(
-                self.library, self.schema, fewest, self.current.mapping, {}, failed,
-                budget=self.budget,
-            )  # fmt: skip
+            mapping, budget = self.current.mapping, self.budget
+            choice = choose(self.library, self.schema, fewest, mapping, {}, failed, budget=budget)
         except SearchExhausted as exc:
             return None, str(exc)
         if choice.passed_over is not None and choice.passed_over_performance is not None:

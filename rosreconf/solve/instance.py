@@ -149,8 +149,7 @@ def compile_instance(
     _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
-    # a consumer's wanted options over an edge that allows every interface: the same for
-    # all its edges (a fan-in sink has thousands), so made once per requirement list
+    # wanted options over an edge allowing every interface: once per requirement list
     wanted_all: dict[tuple[tuple[int, ...], ...], frozenset[int]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
@@ -171,10 +170,9 @@ def compile_instance(
                 if e.interfaces:
                     wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
                 else:
-                    found = wanted_all.get(reqs)
-                    if found is None:
-                        found = wanted_all[reqs] = frozenset(o for g in reqs for o in g)
-                    wanted = found
+                    if reqs not in wanted_all:
+                        wanted_all[reqs] = frozenset(o for g in reqs for o in g)
+                    wanted = wanted_all[reqs]
                 mates = by_opts[reqs] = (
                     {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
                 )
@@ -183,13 +181,11 @@ def compile_instance(
         inst.partners.append(partners)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
-        # which of these edges lead to a role offering an interface: a requirement looks
-        # only at those (a fan-in sink's 2,000 requirements each scanned 2,000 edges)
+        # the edges to a role offering each interface (a fan-in scanned all, per requirement)
         offering: dict[int, set[int]] = {}
         for j, (_, v) in enumerate(mine):
-            for cv in domains[v]:
-                for o in provides[cv.name]:
-                    offering.setdefault(o, set()).add(j)
+            for o in {o for cv in domains[v] for o in provides[cv.name]}:
+                offering.setdefault(o, set()).add(j)
         # the pairs depend only on the requirement's options: a role's candidates share a
         # few requirements, and one (read-only) list is made for each
         made: dict[tuple[int, ...], list[tuple[int, str]]] = {}
