@@ -13,7 +13,8 @@ import pytest
 from conftest import DC_CAMERA_1
 from typer.testing import CliRunner
 
-from rosreconf.analysis.simulate import choose, performance_of, shortfall, simulate_schema
+from rosreconf.analysis.choice import choose, shortfall
+from rosreconf.analysis.simulate import performance_of, simulate_schema
 from rosreconf.cli.app import app
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import ComponentLibrary, Configuration

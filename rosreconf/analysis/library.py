@@ -201,14 +201,16 @@ def incompatible_pairs(inst: Instance) -> list[IncompatiblePair]:
         # Name only what the consumer could want from this provider's role.
         offered = {i.label for c in inst.domains[v] for i in c.provides}
         for cu in inst.domains[u]:
-            wanted = [
-                " or ".join(o.label for o in r.options)
-                for r in cu.requires
-                if any(o.label in offered for o in r.options)
-            ]
+            wanted: list[str] | None = None  # made only when some pair is refused
             for cv in inst.domains[v]:
                 if (cu.name, cv.name) in ok:
                     continue
+                if wanted is None:
+                    wanted = [
+                        " or ".join(o.label for o in r.options)
+                        for r in cu.requires
+                        if any(o.label in offered for o in r.options)
+                    ]
                 needs = ", ".join(wanted) or "nothing " + inst.roles[v].name + " offers"
                 has = ", ".join(sorted(i.label for i in cv.provides)) or "nothing"
                 out.setdefault(

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import operator
 from collections import defaultdict
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from rosreconf.solve.emptyroles import is_empty_choice
@@ -64,7 +65,11 @@ class Marginals:
         """Return the components in every valid configuration (none when there is none)."""
         if not self.total:
             return []
-        return sorted(c for c in self.usable() if self.holding(c) == self.total)
+        held: dict[str, int] = defaultdict(int)
+        for m in self.per_role:
+            for c, k in m.items():
+                held[c] += k
+        return sorted(c for c, k in held.items() if k and k == self.total)
 
 
 def marginals(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Marginals:
@@ -166,14 +171,46 @@ def _backward(
         joined = _join_all([*(f for f, _ in inputs), lam], operator.mul, max_rows)
         for (c,), k in _project(joined, (var,)).rows.items():
             per_role[var][c] = k
-        for i, (message, child) in enumerate(inputs):
-            if child is None:
-                continue
-            rest = [f for j, (f, _) in enumerate(inputs) if j != i]
-            around = _join_all([*rest, lam], operator.mul, max_rows) if rest else lam
+        for message, child, around in _all_but_one(inputs, lam, max_rows):
             keep = tuple(v for v in message.scope if v in around.scope)
             outside[child] = _project(around, keep)
     return Marginals(total, per_role)
+
+
+SMALL_STEP = 8
+"""Most inputs of a step for which each child's "everything else" is joined afresh."""
+
+
+def _all_but_one(
+    inputs: list[tuple[Factor, int | None]], lam: Factor, max_rows: int
+) -> Iterator[tuple[Factor, int, Factor]]:
+    """Yield per child message (message, child, join of every other input and ``lam``).
+
+    A few inputs are joined afresh for each child. Many (a hub's 10,000 consumers, a
+    fan-in's 2,000 providers) would make that quadratic, so the joins of the inputs after
+    each one are made once, right to left, and combined with a running join of those before
+    it: linear in the inputs (issue 22).
+    """
+    tables = [f for f, _ in inputs]
+    if len(inputs) <= SMALL_STEP:
+        for i, (message, child) in enumerate(inputs):
+            if child is None:
+                continue
+            rest = tables[:i] + tables[i + 1 :]
+            around = _join_all([*rest, lam], operator.mul, max_rows) if rest else lam
+            yield message, child, around
+        return
+    after: list[Factor] = [lam] * (len(tables) + 1)
+    for i in range(len(tables) - 1, 0, -1):
+        after[i] = _join_all([tables[i], after[i + 1]], operator.mul, max_rows)
+    before: Factor | None = None
+    for i, (message, child) in enumerate(inputs):
+        if child is not None:
+            around = after[i + 1]
+            if before is not None:
+                around = _join_all([before, around], operator.mul, max_rows)
+            yield message, child, around
+        before = message if before is None else _join_all([before, message], operator.mul, max_rows)
 
 
 def _project(f: Factor, keep: tuple[int, ...]) -> Factor:

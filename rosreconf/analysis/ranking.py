@@ -84,6 +84,8 @@ class SchemaSimulation:
         distinct_loops: distinct loops among this schema's configurations.
         pareto: ranks (indices into ``ranked``) of the Pareto front over ``pareto_metrics``.
         pareto_metrics: the metrics of the front (empty when none was asked for).
+        limited: the limit stopped the listing: more valid configurations exist than were
+            simulated, and the ranking is over those simulated only.
     """
 
     schema: InteroperabilitySchema
@@ -98,6 +100,7 @@ class SchemaSimulation:
     distinct_loops: int = 0
     pareto: list[int] = field(default_factory=list)
     pareto_metrics: tuple[str, ...] = ()
+    limited: bool = False
 
     @property
     def ranked(self) -> Ranked:

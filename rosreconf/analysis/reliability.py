@@ -14,7 +14,6 @@ import math
 from collections import Counter
 from collections.abc import Collection, Iterable
 from dataclasses import dataclass
-from functools import cache
 
 import numpy
 
@@ -48,6 +47,10 @@ class Reliability:
     assumed_reliable: tuple[str, ...] = ()
 
 
+State = frozenset[frozenset[str]]
+"""A set of configurations, each the set of its components' names."""
+
+
 def _absorb(configs: Iterable[frozenset[str]]) -> frozenset[frozenset[str]]:
     """Drop configurations that are supersets of others (they never add to survival)."""
     ordered = sorted(set(configs), key=len)
@@ -63,25 +66,63 @@ def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) ->
 
     Shannon expansion on the most frequent component: P = p_x * P(x failed) +
     (1 - p_x) * P(x works), where "x failed" drops every configuration using x and "x works"
-    removes x from them; memoised on the (absorbed) set of configurations.
+    removes x from them; memoised on the (absorbed) set of configurations. A single
+    configuration is the product of its components' chances. The expansion runs on an
+    explicit stack: it is as deep as a configuration is long, and a chain of 500 roles
+    overflowed Python's recursion limit (issue 22).
     """
+    memo: dict[State, float] = {}
+    splits: dict[State, tuple[str, State, State]] = {}
+    root = _absorb(configs)
+    stack = [root]
+    while stack:
+        state = stack[-1]
+        if state in memo:
+            stack.pop()
+            continue
+        leaf = _leaf(state, p)
+        if leaf is not None:
+            memo[state] = leaf
+            stack.pop()
+            continue
+        if state not in splits:
+            splits[state] = _split(state)
+        x, if_failed, if_works = splits[state]
+        todo = [s for s in (if_failed, if_works) if s not in memo]
+        if todo:
+            stack.extend(todo)
+            continue
+        memo[state] = p[x] * memo[if_failed] + (1 - p[x]) * memo[if_works]
+        del splits[state]
+        stack.pop()
+    return memo[root]
 
-    @cache
-    def works(state: frozenset[frozenset[str]]) -> float:
-        if not state:
-            return 0.0
-        if frozenset() in state:
-            return 1.0
-        freq: dict[str, int] = {}
-        for cfg in state:
-            for c in cfg:
-                freq[c] = freq.get(c, 0) + 1
-        x = max(sorted(freq), key=lambda c: freq[c])
-        if_failed = _absorb(cfg for cfg in state if x not in cfg)
-        if_works = _absorb(cfg - {x} for cfg in state)
-        return p[x] * works(if_failed) + (1 - p[x]) * works(if_works)
 
-    return works(_absorb(configs))
+def _leaf(state: State, p: dict[str, float]) -> float | None:
+    """Return the probability of a state that needs no expansion, else None."""
+    if not state:
+        return 0.0
+    if frozenset() in state:
+        return 1.0
+    if len(state) == 1:
+        return math.prod(1 - p[c] for c in next(iter(state)))
+    return None
+
+
+def _split(
+    state: State,
+) -> tuple[str, State, State]:
+    """Return the most frequent component and the states where it failed and where it works."""
+    freq: dict[str, int] = {}
+    for cfg in state:
+        for c in cfg:
+            freq[c] = freq.get(c, 0) + 1
+    x = max(sorted(freq), key=lambda c: freq[c])
+    return (
+        x,
+        _absorb(cfg for cfg in state if x not in cfg),
+        _absorb(cfg - {x} for cfg in state),
+    )
 
 
 def monte_carlo(

@@ -7,17 +7,13 @@ process pool or on a Dask cluster), and every configuration then reads its loops
 cache. A configuration's figure for a metric is the worst over its loops; it meets the
 schema's requirements when every loop does.
 
-``choose`` is what ``plan`` and ``watch`` use so that they never pick a configuration that
-connects but does not perform: it keeps the lexicographic objective (fewest changes first,
-then the weighted metrics), over the configurations that meet the requirements only.
-Simulated metrics are not sums over roles (a loop's settling time is not the sum of its
-blocks'), so that choice is made by enumerating the valid configurations, which the cache
-keeps cheap.
+``rosreconf.analysis.choice`` is what ``plan`` and ``watch`` use so that they never pick a
+configuration that connects but does not perform; it judges configurations one at a time
+with ``performance_of`` through the same cache.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
@@ -46,17 +42,15 @@ from rosreconf.model.dynamics import METRICS, UNITY
 from rosreconf.solve.solver import configurations
 
 __all__ = [
+    "DEFAULT_LIMIT",
     "Cache",
-    "Choice",
     "LoopOutcome",
     "Performance",
     "SchemaSimulation",
     "Sweep",
     "check_metrics",
-    "choose",
     "loop_spec",
     "performance_of",
-    "shortfall",
     "simulate_schema",
     "simulation_of",
     "sweep",
@@ -123,6 +117,14 @@ def check_metrics(library: ComponentLibrary, names: Iterable[str]) -> tuple[str,
     return out
 
 
+DEFAULT_LIMIT = 1000
+"""Configurations ``rosreconf simulate`` simulates per schema unless ``--limit`` says otherwise.
+
+Without a bound a schema of 10^97 configurations grew to 6.7 GB in two minutes (issue 22);
+the output says when the limit stopped the listing, and the ranking is over what was
+simulated."""
+
+
 def simulate_schema(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -134,7 +136,7 @@ def simulate_schema(
     executor: Executor | None = None,
     progress: Progress | None = None,
 ) -> SchemaSimulation:
-    """Simulate every valid configuration of ``schema`` (at most ``limit``) and rank them.
+    """Simulate the valid configurations of ``schema`` (at most ``limit``) and rank them.
 
     Each configuration becomes one row of indices, per loop, into that loop's distinct
     assignments of components to its roles; only those distinct loops are simulated, and
@@ -154,7 +156,11 @@ def simulate_schema(
     assigned: list[list[tuple[LoopSpec, tuple[str, ...]]]] = [[] for _ in sim.loops]
     report = SchemaSimulation(schema)
     rows: list[int] = []
-    for config in configurations(library, schema, failed, limit):
+    listed = configurations(library, schema, failed, None if limit is None else limit + 1)
+    for n, config in enumerate(listed):
+        if limit is not None and n == limit:  # one more than the limit: there are more
+            report.limited = True
+            break
         names = [c for _, c in config.assignment]
         for i, pos in enumerate(positions):
             key = tuple(names[p] for p in pos)
@@ -270,84 +276,3 @@ def performance_of(
     )
     judge(report, library)
     return report.performance(0)
-
-
-@dataclass(frozen=True)
-class Choice:
-    """A configuration chosen with the schema's performance requirements honoured.
-
-    Attributes:
-        configuration: the chosen configuration, or None when no valid one performs.
-        performance: how it performs (None when no simulation block or nothing chosen).
-        passed_over: the fewest-change configuration when it was passed over because it
-            fails the requirements (None otherwise).
-        passed_over_performance: how that one performs.
-        valid: how many valid configurations there were (None when not enumerated).
-    """
-
-    configuration: Configuration | None
-    performance: Performance | None = None
-    passed_over: Configuration | None = None
-    passed_over_performance: Performance | None = None
-    valid: int | None = None
-
-
-def choose(
-    library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    fewest: Configuration,
-    current: Mapping[str, str],
-    weights: Mapping[str, float],
-    failed: Collection[str] = (),
-    cache: Cache | None = None,
-) -> Choice:
-    """Return the best configuration that meets ``schema``'s performance requirements.
-
-    ``fewest`` is the optimum of the plain objective (fewest changes, then weighted library
-    metrics). When it performs and no weight names a simulated metric, it stands. Otherwise
-    every valid configuration is simulated (each distinct loop once) and the best that meets
-    the requirements by (changes, weighted metrics with simulated figures) is chosen.
-    """
-    if schema.simulation is None:
-        return Choice(fewest)
-    cache = {} if cache is None else cache
-    first = performance_of(library, schema, fewest, cache)
-    simulated_weights = any(m in METRICS for m in weights)
-    if first.meets_requirements and not simulated_weights:
-        return Choice(fewest, first)
-    report = simulate_schema(library, schema, failed, cache=cache)
-
-    def score(index: int) -> tuple[int, float]:
-        assignment = report.configurations[index].assignment
-        changes = sum(1 for r, c in assignment if r in current and current[r] != c)
-        figures = report.figure_map(index)
-        metric = sum(w * figures.get(m, 0.0) for m, w in weights.items() if w)
-        return changes, (metric if math.isfinite(metric) else math.inf)
-
-    good = [int(i) for i in report.order if report.meets[i]]  # in rank order
-    at = min(range(len(good)), key=lambda k: (*score(good[k]), k), default=None)
-    best = None if at is None else report.performance(good[at])
-    passed = None if first.meets_requirements else first
-    return Choice(
-        best.configuration if best else None,
-        best,
-        passed.configuration if passed else None,
-        passed,
-        len(report.configurations),
-    )
-
-
-def shortfall(schema: InteroperabilitySchema, performance: Performance) -> str:
-    """Say which loop misses which requirement, e.g. "gripper_force: overshoot 29.9 > 25"."""
-    sim = simulation_of(schema)
-    parts = []
-    for o in performance.loops:
-        if not o.result.stable:
-            parts.append(f"{o.loop}: unstable")
-            continue
-        for metric, limit in sim.requirements.limits().items():
-            value = o.result.figure(metric)
-            if value > limit:
-                shown = "not settled" if math.isinf(value) else f"{value:.3g}"
-                parts.append(f"{o.loop}: {metric} {shown} > {limit:g}")
-    return "; ".join(parts) or "none"

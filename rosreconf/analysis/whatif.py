@@ -18,8 +18,8 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from concurrent.futures import Executor, as_completed
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, as_completed, wait
 from dataclasses import dataclass, field
 
 import clingo
@@ -147,6 +147,14 @@ def relevant_components(task: Task) -> frozenset[str]:
     return frozenset(last) if result.satisfiable else frozenset()
 
 
+LISTED = 10_000
+"""Most failure sets a report keeps for listing (the JSON's ``failure_sets``), fewest first.
+
+Every set used to be kept: ``-k 2`` on 1000 roles x 10 candidates reached 8.9 GB (issue 22).
+The summaries (shares, critical components and pairs) are reduced from every set as it is
+decided; only sets smaller than the largest asked for are kept whole, for pruning."""
+
+
 @dataclass
 class SchemaReport:
     """What failures do to one schema.
@@ -155,8 +163,12 @@ class SchemaReport:
         schema: the schema's name.
         components: the library's size N (every component may fail).
         relevant: components in some valid configuration, in library order.
-        outcomes: failure set (over relevant components) -> outcome, for sizes 0..K.
+        outcomes: failure set (over relevant components) -> outcome, for sizes below the
+            largest asked for (and single failures always): what pruning reads.
         solver_calls: failure sets the solver decided (the rest were pruned).
+        alive_by_size: per size j, the surviving j-sets over the relevant components.
+        listed: the first ``LISTED`` failure sets by (size, names), for the JSON listing.
+        listed_all: ``listed`` holds every decided failure set.
     """
 
     schema: str
@@ -164,6 +176,36 @@ class SchemaReport:
     relevant: tuple[str, ...]
     outcomes: dict[frozenset[str], Outcome] = field(default_factory=dict)
     solver_calls: int = 0
+    alive_by_size: list[int] = field(default_factory=list)
+    listed: list[Outcome] = field(default_factory=list)
+    listed_all: bool = True
+    _pairs: list[tuple[str, str]] = field(default_factory=list)
+
+    def note(self, outcome: Outcome, *, keep: bool) -> None:
+        """Reduce one decided failure set into the summaries; keep it whole when ``keep``."""
+        size = len(outcome.failed)
+        while len(self.alive_by_size) <= size:
+            self.alive_by_size.append(0)
+        self.alive_by_size[size] += outcome.survives
+        if keep:
+            self.outcomes[frozenset(outcome.failed)] = outcome
+        if size == 2 and not outcome.survives:
+            a, b = outcome.failed
+            if self._survives(frozenset((a,))) and self._survives(frozenset((b,))):
+                self._pairs.append((a, b))
+        self.listed.append(outcome)
+        if len(self.listed) >= 2 * LISTED:
+            self._trim()
+
+    def _trim(self) -> None:
+        self.listed.sort(key=lambda o: (len(o.failed), o.failed))
+        if len(self.listed) > LISTED:
+            del self.listed[LISTED:]
+            self.listed_all = False
+
+    def finish(self) -> None:
+        """Sort and bound ``listed`` once every set is decided."""
+        self._trim()
 
     @property
     def critical(self) -> list[str]:
@@ -174,18 +216,12 @@ class SchemaReport:
     def critical_pairs(self) -> list[tuple[str, str]]:
         """Return the pairs that kill the schema although neither failure alone does.
 
-        Read from the decided pairs, not from every pair of relevant components (with 7,500
-        relevant components that loop alone was 28 million sets even at one failure).
+        Reduced from the decided pairs as they come, not from every pair of relevant
+        components (with 7,500 relevant components that loop alone was 28 million sets).
         """
         rank = {c: i for i, c in enumerate(self.relevant)}
-        pairs = []
-        for key, outcome in self.outcomes.items():
-            if len(key) != 2 or outcome.survives:
-                continue
-            a, b = sorted(key, key=rank.__getitem__)
-            if self._survives(frozenset((a,))) and self._survives(frozenset((b,))):
-                pairs.append((a, b))
-        return sorted(pairs, key=lambda ab: (rank[ab[0]], rank[ab[1]]))
+        pairs = [tuple(sorted(ab, key=rank.__getitem__)) for ab in self._pairs]
+        return sorted(((a, b) for a, b in pairs), key=lambda ab: (rank[ab[0]], rank[ab[1]]))
 
     def _survives(self, failed: frozenset[str]) -> bool:
         outcome = self.outcomes.get(failed)
@@ -194,10 +230,9 @@ class SchemaReport:
     def survived(self, k: int) -> tuple[int, int]:
         """Return (surviving, all) k-failure sets over the whole library (exact integers)."""
         n, m = self.components, len(self.relevant)
-        by_size = [0] * (k + 1)
-        for failed, outcome in self.outcomes.items():
-            if len(failed) <= k and outcome.survives:
-                by_size[len(failed)] += 1
+        by_size = [
+            self.alive_by_size[j] if j < len(self.alive_by_size) else 0 for j in range(k + 1)
+        ]
         alive = sum(by_size[j] * math.comb(n - m, k - j) for j in range(k + 1))
         return alive, math.comb(n, k)
 
@@ -239,39 +274,54 @@ def analyse(
     in_every = frozenset(marg.in_every()) if marg is not None else frozenset()
     order = tuple(c.name for c in library.components if c.name in relevant)
     report = SchemaReport(schema.name, len(library), order)
-    report.outcomes[frozenset()] = base
+    report.note(base, keep=True)
     report.solver_calls = 1
     if not base.survives:
+        report.finish()
         return report
     for k in range(1, max_failures + 1):
-        pending: list[tuple[str, ...]] = []
-        for failed in itertools.combinations(order, k):
-            decided = _prune(report.outcomes, failed)
-            if decided is None and k == 1 and failed[0] in in_every:
-                decided = Outcome(failed, None, solved=False)
-            if decided is None:
-                pending.append(failed)
-            else:
-                report.outcomes[frozenset(failed)] = decided
-        if pending and task is None:
+        keep = k < max_failures or k == 1  # the largest sets are reduced, never kept whole
+        pruned = 0
+
+        def undecided(k: int = k, keep: bool = keep) -> Iterator[tuple[str, ...]]:
+            nonlocal pruned
+            for failed in itertools.combinations(order, k):
+                decided = _prune(report.outcomes, failed)
+                if decided is None and k == 1 and failed[0] in in_every:
+                    decided = Outcome(failed, None, solved=False)
+                if decided is None:
+                    yield failed
+                else:
+                    report.note(decided, keep=keep)
+                    pruned += 1
+
+        pending = undecided()
+        head = next(pending, None)
+        if head is not None and task is None:
             task = make_task(library, schema)
-        if progress:
-            progress(math.comb(len(order), k) - len(pending))
         chunks = (
-            []
-            if task is None
-            else [
-                Chunk(task, tuple(pending[i : i + chunk_size]))
-                for i in range(0, len(pending), chunk_size)
-            ]
+            ()
+            if task is None or head is None
+            else _chunks(task, itertools.chain((head,), pending), chunk_size)
         )
         for outcomes in _run(chunks, executor):
             for outcome in outcomes:
-                report.outcomes[frozenset(outcome.failed)] = outcome
+                report.note(outcome, keep=keep)
             report.solver_calls += len(outcomes)
             if progress:
-                progress(len(outcomes))
+                progress(len(outcomes) + pruned)
+                pruned = 0
+        if progress and pruned:
+            progress(pruned)
+    report.finish()
     return report
+
+
+def _chunks(task: Task, sets: Iterable[tuple[str, ...]], size: int) -> Iterator[Chunk]:
+    """Cut the failure sets into chunks as they come (never all of them at once)."""
+    it = iter(sets)
+    while batch := tuple(itertools.islice(it, size)):
+        yield Chunk(task, batch)
 
 
 SchemaProgress = Callable[[InteroperabilitySchema, int], None]
@@ -321,11 +371,22 @@ def _prune(known: dict[frozenset[str], Outcome], failed: tuple[str, ...]) -> Out
     return None
 
 
-def _run(chunks: list[Chunk], executor: Executor | None) -> Iterable[list[Outcome]]:
-    if executor is None or len(chunks) < 2:
+IN_FLIGHT = 64
+"""Most chunks handed to the pool at once: the rest are made only as results come back."""
+
+
+def _run(chunks: Iterable[Chunk], executor: Executor | None) -> Iterable[list[Outcome]]:
+    """Yield each chunk's outcomes; in the pool, at most ``IN_FLIGHT`` chunks at a time."""
+    if executor is None:
         for chunk in chunks:
             yield evaluate_chunk(chunk)
         return
-    futures = [executor.submit(evaluate_chunk, chunk) for chunk in chunks]
-    for future in as_completed(futures):
+    flying: set[Future[list[Outcome]]] = set()
+    for chunk in chunks:
+        flying.add(executor.submit(evaluate_chunk, chunk))
+        if len(flying) >= IN_FLIGHT:
+            done, flying = wait(flying, return_when=FIRST_COMPLETED)
+            for future in done:
+                yield future.result()
+    for future in as_completed(flying):
         yield future.result()

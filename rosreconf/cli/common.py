@@ -156,6 +156,26 @@ CurrentOption = Annotated[
         show_default=False,
     ),
 ]
+SearchLimitOption = Annotated[
+    int,
+    typer.Option(
+        "--search-limit",
+        min=1,
+        max=10_000_000,
+        help="When the fewest-change configuration fails the performance requirements: the "
+        "most configurations simulated to find one that meets them (then exit 3, saying what "
+        "was tried). Memory grows with it, not with the number of valid configurations.",
+    ),
+]
+SearchTimeOption = Annotated[
+    float,
+    typer.Option(
+        "--search-time",
+        min=1,
+        max=7 * 24 * 3600.0,
+        help="The most seconds spent on that search (then exit 3, saying what was tried).",
+    ),
+]
 ObjectiveOption = Annotated[
     list[str] | None,
     typer.Option(

@@ -15,6 +15,8 @@ from rosreconf.cli.common import (
     ObjectiveOption,
     OnlyOption,
     SchemaOption,
+    SearchLimitOption,
+    SearchTimeOption,
     finite,
     select,
     weights_of,
@@ -27,6 +29,7 @@ from rosreconf.planning.replan import replan_all
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.plan import REPORTERS, pictures
 from rosreconf.solve.running import running_mappings
+from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
 
 MAX_TIMEOUT = 7 * 24 * 3600.0
 """Longest --timeout: a week; beyond it a number is a typo, and ``inf`` crashed the timer."""
@@ -54,6 +57,8 @@ def plan_command(
         Path | None, typer.Option("--keep-pddl", help="Also write the PDDL into this folder.")
     ] = None,
     objective: ObjectiveOption = None,
+    search_limit: SearchLimitOption = SEARCH_LIMIT,
+    search_time: SearchTimeOption = SEARCH_TIME,
     as_json: JsonOption = False,
     graph: Annotated[
         Path | None,
@@ -70,7 +75,8 @@ def plan_command(
 
     Exit 0 when every schema has a new configuration, 1 when some schema has none (its
     task is no longer possible; the others are still planned and reported), 2 on usage
-    errors, 3 when the planner is missing, fails or runs out of time.
+    errors, 3 when the planner is missing, fails or runs out of time, or when the search for
+    a configuration that meets the performance requirements runs out of its budget.
     """
 
     if graph is not None:
@@ -84,6 +90,7 @@ def plan_command(
     results = replan_all(
         sel.library, sel.schemas, sel.failed, running, chosen,
         weights=weights, timeout=timeout, keep_pddl=keep_pddl,
+        budget=Budget(search_limit, search_time),
     )  # fmt: skip
     if graph is not None:
         from rosreconf.render.pictures import ros_dot, write_picture  # only when drawing

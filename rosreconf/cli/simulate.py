@@ -29,11 +29,15 @@ def simulate_command(
     only: OnlyOption = None,
     fail: FailOption = None,
     limit: Annotated[
-        int | None,
+        int,
         typer.Option(
-            min=1, help="Simulate at most N configurations per schema.", show_default=False
+            min=1,
+            max=100_000_000,
+            help="Simulate at most N configurations per schema, in listing order; the output "
+            "says when there were more (the ranking is over those simulated). Memory and the "
+            "--json document grow with N.",
         ),
-    ] = None,
+    ] = 1000,  # analysis.simulate.DEFAULT_LIMIT (not imported here: it loads numpy)
     pareto: Annotated[
         str | None,
         typer.Option(

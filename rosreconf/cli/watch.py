@@ -22,6 +22,8 @@ from rosreconf.cli.common import (
     OptionalMasterOption,
     Ros2Option,
     SchemaOption,
+    SearchLimitOption,
+    SearchTimeOption,
     finite,
     select,
 )
@@ -38,6 +40,7 @@ from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.sources import open_source
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
+from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
 
 
 def watch_command(
@@ -89,6 +92,8 @@ def watch_command(
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
+    search_limit: SearchLimitOption = SEARCH_LIMIT,
+    search_time: SearchTimeOption = SEARCH_TIME,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
@@ -148,7 +153,7 @@ def watch_command(
             source, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
             launch_dir=keep, standby=standby, ros2_launch=ros2_launch,
-            stop_requested=signals.requested,
+            budget=Budget(search_limit, search_time), stop_requested=signals.requested,
         )  # fmt: skip
         stack.callback(watcher.close)
         what = (

@@ -24,9 +24,11 @@ from rosreconf.planning.narrative import Change, changes, explain_impossible, ex
 from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
-from rosreconf.solve.instance import compile_instance, explain
+from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.objective import Objective
+from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import ClingoEngine, configurations, optimise
+from rosreconf.solve.unfillable import explain
 
 
 @dataclass(frozen=True)
@@ -77,6 +79,7 @@ def plan(
     timeout: float = 60.0,
     memory_limit_mb: int = 2048,
     keep_pddl: Path | None = None,
+    budget: Budget | None = None,
 ) -> ReplanResult:
     """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``.
 
@@ -109,7 +112,9 @@ def plan(
     forbid: list[Configuration] = []
     notes: list[str] = []
     if schema.simulation is not None:
-        target, forbid, notes = _performing(library, schema, inst.failed, current, weights, best)
+        target, forbid, notes = _performing(
+            library, schema, inst.failed, current, weights, best, budget
+        )
         if target is None:
             why = notes[-1]
             lines = [*explain_impossible(schema, inst.failed, current, why)]
@@ -147,6 +152,7 @@ def _performing(
     current: Mapping[str, str],
     weights: Mapping[str, float] | None,
     fewest: Configuration,
+    budget: Budget | None = None,
 ) -> tuple[Configuration | None, list[Configuration], list[str]]:
     """Return the target that meets the performance requirements, what to forbid, and notes.
 
@@ -158,9 +164,9 @@ def _performing(
     Raises:
         UsageError: pinning would forbid more than ``FORBID_LIMIT`` configurations.
     """
-    from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
+    from rosreconf.analysis.choice import choose, shortfall  # imports numpy
 
-    choice = choose(library, schema, fewest, current, dict(weights or {}), failed)
+    choice = choose(library, schema, fewest, current, dict(weights or {}), failed, budget=budget)
     notes: list[str] = []
     if choice.passed_over_performance is not None:
         notes.append(
@@ -169,17 +175,18 @@ def _performing(
         )
     if choice.configuration is None:
         notes.append(
-            f"every one of the {choice.valid} valid configuration(s) fails the schema's "
-            "performance requirements (rosreconf simulate shows by how much)"
+            "every valid configuration fails the schema's performance requirements "
+            f"({choice.tried} simulated to prove it; rosreconf simulate shows by how much)"
         )
         return None, [], notes
     if choice.configuration == fewest:
         return fewest, [], notes
-    others = [c for c in configurations(library, schema, failed) if c != choice.configuration]
+    listed = configurations(library, schema, failed, limit=FORBID_LIMIT + 2)  # streaming
+    others = [c for c in listed if c != choice.configuration]
     if len(others) > FORBID_LIMIT:
         raise UsageError(
-            f"schema '{schema.name}': {len(others)} valid configurations would have to be "
-            f"forbidden to make the planner reach the performing one (limit {FORBID_LIMIT}); "
+            f"schema '{schema.name}': more than {FORBID_LIMIT} valid configurations would have "
+            f"to be forbidden to make the planner reach the performing one (limit {FORBID_LIMIT}); "
             "use rosreconf simulate to choose"
         )
     return choice.configuration, others, notes
@@ -305,6 +312,7 @@ def replan_all(
     weights: Mapping[str, float] | None = None,
     timeout: float = 60.0,
     keep_pddl: Path | None = None,
+    budget: Budget | None = None,
 ) -> list[ReplanResult]:
     """Plan every schema after ``failed`` from what runs (``rosreconf.solve.running``).
 
@@ -320,6 +328,7 @@ def replan_all(
             weights=weights,
             timeout=timeout,
             keep_pddl=keep_pddl,
+            budget=budget,
         )
         for s in schemas
     ]

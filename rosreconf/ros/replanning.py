@@ -17,6 +17,7 @@ from rosreconf.planning.narrative import explain_replan
 from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.sources import lifecycle_steps
 from rosreconf.solve.running import nearest_valid
+from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import why_not
 
 Say = Callable[..., None]
@@ -30,14 +31,19 @@ def replan(
     current: Configuration,
     failed: frozenset[str],
     say: Say,
+    budget: Budget | None = None,
 ) -> tuple[Configuration, list[Change]] | None:
-    """Return the new configuration and its changes, or None when there is none (said)."""
+    """Return the new configuration and its changes, or None when there is none (said).
+
+    ``budget`` bounds the search for one that meets the performance requirements when the
+    fewest-change configuration does not (``rosreconf.analysis.choice``).
+    """
     new = nearest_valid(library, schema, failed, current)
     why = why_not(library, schema, failed) if new is None else ""
     fewest = "the fewest possible (exact optimum)"
     if new is not None and schema.simulation is not None:
         nearest = new
-        new, why = _performing(library, schema, current, new, failed, say)
+        new, why = _performing(library, schema, current, new, failed, say, budget)
         if new is not None and new != nearest:
             fewest = "the fewest among the configurations that meet the performance requirements"
     if new is None:
@@ -72,14 +78,18 @@ def _performing(
     fewest: Configuration,
     failed: frozenset[str],
     say: Say,
+    budget: Budget | None,
 ) -> tuple[Configuration | None, str]:
     """Return the configuration that meets the schema's performance requirements.
 
     Says so when the fewest-change configuration was passed over for failing them.
     """
-    from rosreconf.analysis.simulate import choose, shortfall  # imports numpy
+    from rosreconf.analysis.choice import SearchExhausted, choose, shortfall  # imports numpy
 
-    choice = choose(library, schema, fewest, current.mapping, {}, failed)
+    try:
+        choice = choose(library, schema, fewest, current.mapping, {}, failed, budget=budget)
+    except SearchExhausted as exc:
+        return None, str(exc)
     if choice.passed_over is not None and choice.passed_over_performance is not None:
         say(
             "passed-over",
@@ -89,8 +99,8 @@ def _performing(
         )
     if choice.configuration is None:
         return None, (
-            f"every one of the {choice.valid} valid configuration(s) fails the schema's "
-            "performance requirements"
+            "every valid configuration fails the schema's performance requirements "
+            f"({choice.tried} simulated to prove it)"
         )
     return choice.configuration, ""
 

@@ -2,7 +2,7 @@
 
 "An operating autonomous system needs to self-reconfigure due to changes in own hardware":
 each ``Watcher.step`` reads the master, decides which components have failed, replans with
-the fewest changes (``rosreconf.solve.running.nearest_valid``, current configuration first),
+the fewest changes (``rosreconf.ros.replanning``, current configuration first),
 and with ``apply`` stops the components that must go (their node API's ``shutdown``, as
 ``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.standins``), then
 confirms with ``rosreconf.ros.conformance.compare``.
@@ -13,9 +13,8 @@ alive by this watcher and is gone now. A component never seen is only *missing*:
 ``apply`` it is started (so a watcher can also bring a configuration up); without, it is
 only reported.
 
-A restarted master (new pid or ``/run_id``) lists none of the old nodes, which do not register
-again: that is said, not counted as failures; the graph is checked again (with ``apply``, the
-own roslaunch processes are stopped and the configuration started again).
+A restarted master (new pid or ``/run_id``) is said, not counted as failures, and checked
+again (with ``apply``, the own roslaunch processes are stopped and the configuration restarted).
 
 On ROS 2 (without ``ros2 launch``), ``rosreconf.ros.ros2.control`` acts: a node process of its
 own that exits is a failure at once (no DDS lease to wait for); managed nodes get lifecycle
@@ -52,6 +51,7 @@ from rosreconf.ros.replanning import listed_transitions, replan
 from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.rosmaster import known_identity, restart_event
 from rosreconf.ros.sources import LiveSource
+from rosreconf.solve.search import Budget
 
 __all__ = ["Event", "Watcher"]
 
@@ -78,6 +78,8 @@ class Watcher:
         ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
             node's process (needs a ``ros2`` command).
         stop_requested: polled between steps and while waiting; True ends ``run``.
+        budget: how far to search for a configuration that meets the performance
+            requirements when the fewest-change one does not (``analysis.choice``).
     """
 
     source: LiveSource
@@ -95,6 +97,7 @@ class Watcher:
     standby: bool = False
     ros2_launch: bool = False
     stop_requested: Callable[[], bool] = lambda: False
+    budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
@@ -256,7 +259,7 @@ class Watcher:
         failed = frozenset(self.failed)
         if failed == self._hopeless:
             return False
-        found = replan(self.library, self.schema, self.current, failed, self._say)
+        found = replan(self.library, self.schema, self.current, failed, self._say, self.budget)
         if found is None:
             self._hopeless = failed
             return False

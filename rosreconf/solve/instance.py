@@ -153,6 +153,8 @@ def compile_instance(
     _clashes(inst)
     labels = {i: iface.label for iface, i in ids.items()}
     out_edges: dict[int, list[tuple[Edge, int]]] = {}
+    # wanted options over an edge allowing every interface: once per requirement list
+    wanted_all: dict[tuple[tuple[int, ...], ...], frozenset[int]] = {}
     for e in schema.graph.edges:
         u, v = index[e.consumer], index[e.provider]
         out_edges.setdefault(u, []).append((e, v))
@@ -174,7 +176,13 @@ def compile_instance(
             reqs = options[cu.name]
             mates = by_opts.get(reqs)
             if mates is None:
-                wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                wanted: frozenset[int] | set[int]
+                if e.interfaces:
+                    wanted = {o for group in reqs for o in group if _allows(e, labels[o])}
+                else:
+                    if reqs not in wanted_all:
+                        wanted_all[reqs] = frozenset(o for g in reqs for o in g)
+                    wanted = wanted_all[reqs]
                 mates = by_opts[reqs] = empty_v | (
                     {name for name, p in offered if not p.isdisjoint(wanted)} if wanted else set()
                 )
@@ -183,6 +191,11 @@ def compile_instance(
         inst.partners.append(partners)
     for u in range(len(roles)):
         mine = out_edges.get(u, [])
+        # the edges to a role offering each interface (a fan-in scanned all, per requirement)
+        offering: dict[int, set[int]] = {}
+        for j, (_, v) in enumerate(mine):
+            for o in {o for cv in domains[v] for o in provides[cv.name]}:
+                offering.setdefault(o, set()).add(j)
         # the pairs depend only on the requirement's options: a role's candidates share a
         # few requirements, and one (read-only) list is made for each
         made: dict[tuple[int, ...], list[tuple[int, str]]] = {}
@@ -191,7 +204,8 @@ def compile_instance(
                 pairs = made.get(opts)
                 if pairs is None:
                     pairs = made[opts] = []
-                    for e, v in mine:
+                    near = sorted(set().union(*(offering.get(o, ()) for o in opts)))
+                    for e, v in (mine[j] for j in near):
                         allowed = {o for o in opts if _allows(e, labels[o])}
                         pairs.extend(
                             (v, cv.name)
@@ -369,31 +383,3 @@ def _dead_reason(
         if need not in anywhere:
             return f"{name} needs {need}, which cannot be chosen"
     return ""
-
-
-def explain(inst: Instance) -> str:
-    """Say in plain words why the schema has no configuration (empty if pruning finds none)."""
-    alive, why, emptied = prune(inst)
-    title = inst.schema.display_name
-    for u in emptied[:1]:
-        role = inst.roles[u]
-        label = _article(role.abstraction.replace("_", " "))
-        if not why[u]:
-            return (
-                f"{title} needs {label} (role {role.name}), but no component in the library "
-                f"carries the label '{role.abstraction}'"
-            )
-        reasons = "; ".join(why[u][n] for n in sorted(why[u]))
-        only = len(why[u]) == 1
-        lead = "its only candidate" if only else "every candidate is ruled out"
-        return f"{title} needs {label} (role {role.name}); {lead}: {reasons}"
-    return (
-        f"{title}: every role keeps candidates ("
-        + ", ".join(f"{r.name}: {'/'.join(alive[i])}" for i, r in enumerate(inst.roles))
-        + "), but no combination of them satisfies all edges, requirements and couplings "
-        "together"
-    )
-
-
-def _article(noun: str) -> str:
-    return ("an " if noun[:1] in "aeiou" else "a ") + noun

@@ -13,9 +13,10 @@ from collections.abc import Collection, Iterator
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.solve.counting import CountTooHard, count
 from rosreconf.solve.factors import paused_gc
-from rosreconf.solve.instance import Instance, compile_instance, explain
+from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.objective import Objective
 from rosreconf.solve.solver import ClingoEngine, first_configuration, optimise
+from rosreconf.solve.unfillable import explain
 
 
 class Listing:

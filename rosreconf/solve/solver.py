@@ -24,9 +24,10 @@ from typing import TYPE_CHECKING
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.solve.emptyroles import as_candidate, as_chosen
 from rosreconf.solve.factors import MAX_FACTOR_ROWS, TooHard, paused_gc
-from rosreconf.solve.instance import Instance, compile_instance, explain
+from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.objective import METRIC_SCALE, Objective, scaled_metric, unary_costs
 from rosreconf.solve.optimum import first, minimise
+from rosreconf.solve.unfillable import explain
 
 if TYPE_CHECKING:
     # clingo is imported where it runs: a first configuration or an optimum that elimination

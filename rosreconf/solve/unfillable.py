@@ -1,4 +1,6 @@
-"""Say which schemas a library cannot fill at all, for ``validate``'s warnings.
+"""Say why a schema has no configuration, and which schemas a library cannot fill at all.
+
+``explain`` words it for ``enumerate``, ``plan`` and the solvers; ``validate`` warns with it.
 
 Decided by ``rosreconf.solve.instance``'s pruning (local reasoning, no solver: ``validate``
 stays fast and never loads clingo), and said in ``enumerate``'s words (``explain``). Pruning
@@ -12,7 +14,7 @@ from collections.abc import Iterable
 
 from rosreconf.errors import Problem, Severity
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.solve.instance import compile_instance, explain, prune
+from rosreconf.solve.instance import Instance, compile_instance, prune
 
 
 def schemas_without_configuration(
@@ -34,3 +36,31 @@ def schemas_without_configuration(
             )
         )
     return warnings
+
+
+def explain(inst: Instance) -> str:
+    """Say in plain words why the schema has no configuration (empty if pruning finds none)."""
+    alive, why, emptied = prune(inst)
+    title = inst.schema.display_name
+    for u in emptied[:1]:
+        role = inst.roles[u]
+        label = _article(role.abstraction.replace("_", " "))
+        if not why[u]:
+            return (
+                f"{title} needs {label} (role {role.name}), but no component in the library "
+                f"carries the label '{role.abstraction}'"
+            )
+        reasons = "; ".join(why[u][n] for n in sorted(why[u]))
+        only = len(why[u]) == 1
+        lead = "its only candidate" if only else "every candidate is ruled out"
+        return f"{title} needs {label} (role {role.name}); {lead}: {reasons}"
+    return (
+        f"{title}: every role keeps candidates ("
+        + ", ".join(f"{r.name}: {'/'.join(alive[i])}" for i, r in enumerate(inst.roles))
+        + "), but no combination of them satisfies all edges, requirements and couplings "
+        "together"
+    )
+
+
+def _article(noun: str) -> str:
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun

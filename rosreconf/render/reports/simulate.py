@@ -77,6 +77,11 @@ def table(report: SchemaSimulation, top: int = TOP) -> Table:
         f"{report.distinct_loops} distinct loop(s), {report.loops_simulated} simulated "
         "(each distinct loop once)"
     )
+    if report.limited:
+        caption.append(
+            f"only the first {len(report.configurations)} valid configurations were simulated "
+            "(--limit N; there are more): the ranking is over those"
+        )
     if len(shown) < len(listed):
         caption.append(
             f"the best {len(shown)} of {len(listed)} shown (--top N, --top 0 for all, --json)"
@@ -104,6 +109,7 @@ def document(result: Sweep) -> str:
             "duration": sim.duration,
             "requirements": sim.requirements.limits(),
             "configurations_simulated": len(report.configurations),
+            "limited": report.limited,
             "distinct_loops": report.distinct_loops,
             "loops_simulated": report.loops_simulated,
             "pareto_metrics": list(report.pareto_metrics),

@@ -57,8 +57,9 @@ def document(reports: Sequence[SchemaReport], k: int) -> str:
                         "survives": o.survives,
                         "configuration": list(o.configuration) if o.configuration else None,
                     }
-                    for o in sorted(r.outcomes.values(), key=lambda o: (len(o.failed), o.failed))
+                    for o in r.listed
                 ],
+                "failure_sets_complete": r.listed_all,
             }
         )
     return jsonout.dumps({"max_failures": k, "schemas": out}) + "\n"
