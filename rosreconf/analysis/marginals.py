@@ -69,7 +69,10 @@ class Marginals:
         for m in self.per_role:
             for c, k in m.items():
                 held[c] += k
-        return sorted(c for c, k in held.items() if k and k == self.total)
+        # an optional role's empty choice is no component: never a single point of failure
+        return sorted(
+            c for c, k in held.items() if k and k == self.total and not is_empty_choice(c)
+        )
 
 
 def marginals(inst: Instance, max_rows: int = MAX_FACTOR_ROWS) -> Marginals:
