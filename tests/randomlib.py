@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 from dataclasses import replace
 
 from hypothesis import strategies as st
@@ -98,3 +99,19 @@ def brute_force(
         if is_valid(config, library, schema, failed):
             out.append(config)
     return out
+
+
+def brute_force_probability(configs: list[frozenset[str]], p: dict[str, float]) -> float:
+    """Return the probability that some configuration survives, over every failure state.
+
+    The reference for the exact reliability (``analyse``): each component fails on its own
+    with probability ``p``; a state is counted when one configuration has no failed part.
+    """
+    names = sorted(p)
+    total = 0.0
+    for state in itertools.product([False, True], repeat=len(names)):
+        dead = {n for n, f in zip(names, state, strict=True) if f}
+        weight = math.prod(p[n] if n in dead else 1 - p[n] for n in names)
+        if any(not (cfg & dead) for cfg in configs):
+            total += weight
+    return total

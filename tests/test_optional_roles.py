@@ -27,7 +27,7 @@ import xmlschema
 from conftest import examples
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from randomlib import brute_force, problems
+from randomlib import brute_force, brute_force_probability, problems
 from test_json_outputs import schema_of
 from typer.testing import CliRunner
 
@@ -140,13 +140,7 @@ def test_optional_roles_single_points_of_failure_and_probability(problem: Proble
     expected = sorted(frozenset.intersection(*configs)) if configs else []
     assert result.single_points_of_failure == expected
     p = {c.name: c.failure_probability or 0.0 for c in library}
-    names = sorted(p)
-    total = 0.0
-    for state in itertools.product([False, True], repeat=len(names)):
-        dead = {n for n, f in zip(names, state, strict=True) if f}
-        weight = math.prod(p[n] if n in dead else 1 - p[n] for n in names)
-        if any(not (cfg & dead) for cfg in configs):
-            total += weight
+    total = brute_force_probability(configs, p)
     if configs:
         assert result.reliability is not None
         assert math.isclose(result.reliability.probability, total, abs_tol=1e-12)

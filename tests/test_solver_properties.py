@@ -8,7 +8,7 @@ import math
 from conftest import examples
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from randomlib import IFACES, brute_force, problems
+from randomlib import IFACES, brute_force, brute_force_probability, problems
 
 from rosreconf.analysis import library as library_analysis
 from rosreconf.analysis.library import analyse, exact_probability
@@ -104,13 +104,7 @@ def test_probability_equals_brute_force_over_failure_states(
     library, schema = problem
     configs = [frozenset(c.components) for c in brute_force(library, schema)]
     p = {c.name: c.failure_probability or 0.0 for c in library}
-    names = sorted(p)
-    total = 0.0
-    for state in itertools.product([False, True], repeat=len(names)):
-        dead = {n for n, f in zip(names, state, strict=True) if f}
-        weight = math.prod(p[n] if n in dead else 1 - p[n] for n in names)
-        if any(not (cfg & dead) for cfg in configs):
-            total += weight
+    total = brute_force_probability(configs, p)
     assert math.isclose(exact_probability(configs, p), total, abs_tol=1e-12)
     result = analyse(library, schema)
     if configs:
