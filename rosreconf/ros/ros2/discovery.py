@@ -28,9 +28,8 @@ samples never decode (another Gid layout, a broken writer) is counted as undecod
 ``UNDECODABLE_AFTER`` s and not waited for; the C library's own message about it is said
 once (``cstderr``).
 
-``ros_discovery_info`` is not keyed: each participant rewrites its whole state on every change,
-so it is read KEEP_ALL, the newest sample per participant kept (a session: ``watch`` keeps one
-open). Nothing here prints. DDS details: ``dds``; joining into a ``LiveGraph``: ``graph``."""
+``ros_discovery_info`` is not keyed, so it is read KEEP_ALL, the newest sample per participant
+kept (``watch`` keeps one session open). DDS details: ``dds``; the join: ``graph``."""
 
 from __future__ import annotations
 
@@ -50,16 +49,10 @@ from rosreconf.ros.ros2.dds import (
     info_type,
     load_dds,
     qos_from_dds,
+    read_all,
+    read_new,
+    take_all,
     user_data,
-)
-from rosreconf.ros.ros2.dds import (
-    read_all as _read_all,
-)
-from rosreconf.ros.ros2.dds import (
-    read_new as _read_new,
-)
-from rosreconf.ros.ros2.dds import (
-    take_all as _take_all,
 )
 from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
 from rosreconf.ros.ros2.names import (
@@ -226,16 +219,16 @@ class Ros2Discovery:
         seen = self._seen.setdefault(name, {})
         resync = False
         try:
-            for s in _take_all(reader, condition=gone):
+            for s in take_all(reader, condition=gone):
                 seen.pop(s.key.bytes, None)
         except Exception:
             resync = True  # a sample without data: which instance died is unknown
         for attempt in range(5):
             try:
                 samples = (
-                    _read_all(reader, condition=alive)
+                    read_all(reader, condition=alive)
                     if resync
-                    else _read_new(reader, condition=fresh)
+                    else read_new(reader, condition=fresh)
                 )
             except Exception as exc:
                 # The binding raises a bare Exception on a sample without data; an instance
@@ -243,7 +236,7 @@ class Ros2Discovery:
                 if attempt == 4:
                     raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
                 with suppress(Exception):
-                    _take_all(reader, condition=gone)
+                    take_all(reader, condition=gone)
                 resync = True
                 time.sleep(0.01)
                 continue
@@ -287,7 +280,7 @@ class Ros2Discovery:
     def _take_infos(self) -> None:
         """Take new ``ros_discovery_info`` samples; keep each participant's newest."""
         for size, reader in self._info_readers.items():
-            for sample in _take_all(reader):
+            for sample in take_all(reader):
                 if not hasattr(sample, "gid"):
                     continue  # an InvalidSample: a writer left, no data
                 gid = bytes(sample.gid.data)
