@@ -146,22 +146,31 @@ def start(
     spec = {"domain": domain, "gid_size": gid_size, "nodes": nodes, **extra}
     path = tmp / f"announcer-{len(list(tmp.glob('announcer-*.json')))}.json"
     path.write_text(json.dumps(spec), encoding="utf-8")
+    argv = [sys.executable, str(ANNOUNCER), str(path)]
+    proc = start_ready(argv, tmp / f"{path.stem}.err", dds_env(), "announcer")
+    return Announcer(proc, spec)
+
+
+def start_ready(
+    argv: list[str], err: Path, env: dict[str, str], what: str, timeout: float = START_TIMEOUT
+) -> subprocess.Popen[bytes]:
+    """Start ``argv`` in a session of its own; return once it prints ``ready``, else raise.
+
+    Its stderr goes to ``err``, whose tail the error shows.
+    """
     proc = subprocess.Popen(
-        [sys.executable, str(ANNOUNCER), str(path)],
-        stdout=subprocess.PIPE,
-        stderr=(tmp / f"{path.stem}.err").open("wb"),
-        env=dds_env(),
-        start_new_session=True,
+        argv, stdout=subprocess.PIPE, stderr=err.open("wb"), env=env, start_new_session=True
     )
     assert proc.stdout is not None
-    ready, _, _ = select.select([proc.stdout], [], [], START_TIMEOUT)
+    ready, _, _ = select.select([proc.stdout], [], [], timeout)
     line = proc.stdout.readline() if ready else b""
     if line.strip() != b"ready":
         proc.kill()
         proc.wait(5)
-        err = (tmp / f"{path.stem}.err").read_text(errors="replace")
-        raise RuntimeError(f"announcer did not start: {line!r} {err[-2000:]}")
-    return Announcer(proc, spec)
+        raise RuntimeError(
+            f"{what} did not start: {line!r} {err.read_text(errors='replace')[-2000:]}"
+        )
+    return proc
 
 
 def stop(announcers: Iterable[Announcer]) -> None:

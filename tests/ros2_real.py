@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import os
-import select
 import signal
 import subprocess
 import time
@@ -21,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from ros2_harness import start_ready
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE = Path(__file__).with_name("ros2_node.py")
@@ -67,21 +67,9 @@ class Ros2System:
         n = len(self.processes)
         spec = self.tmp / f"node-{n}.json"
         spec.write_text(json.dumps({"nodes": list(nodes)}), encoding="utf-8")
-        err = self.tmp / f"node-{n}.err"
-        proc = subprocess.Popen(
-            [str(python_of(self.distro)), str(NODE), str(spec)],
-            stdout=subprocess.PIPE,
-            stderr=err.open("wb"),
-            env=node_env(self.domain, self.tmp / "home"),
-            start_new_session=True,
-        )
-        assert proc.stdout is not None
-        ready, _, _ = select.select([proc.stdout], [], [], START_TIMEOUT)
-        line = proc.stdout.readline() if ready else b""
-        if line.strip() != b"ready":
-            proc.kill()
-            proc.wait(5)
-            raise RuntimeError(f"ROS 2 node did not start: {line!r} {err.read_text()[-2000:]}")
+        argv = [str(python_of(self.distro)), str(NODE), str(spec)]
+        env = node_env(self.domain, self.tmp / "home")
+        proc = start_ready(argv, self.tmp / f"node-{n}.err", env, "ROS 2 node", START_TIMEOUT)
         started = Process(proc, list(nodes))
         self.processes.append(started)
         return started
