@@ -180,13 +180,7 @@ def _killed_rosreconf(report: Path, workdir_parent: Path) -> dict[str, Any]:
         "run_program([sys.executable, sys.argv[1]], timeout=60, cwd=w)"
     )
     argv = [PY, "-c", code, fake("fork_ignore_term.py")[1], str(workdir_parent)]
-    parent = subprocess.Popen(argv)
-    deadline = time.monotonic() + 20
-    while not report.exists() and time.monotonic() < deadline:
-        time.sleep(0.02)
-    facts = read_report(report)
-    parent.kill()  # SIGKILL: no finally block, no signal handler runs
-    parent.wait()
+    facts = _sigkill_after_report(argv, report)
     return facts
 
 
@@ -363,12 +357,22 @@ def test_a_background_programs_group_dies_with_rosreconf_even_under_sigkill(
         "time.sleep(60)"
     )
     argv = [PY, "-c", code, fake("fork_ignore_term.py")[1], str(tmp_path / "out.log")]
+    facts = _sigkill_after_report(argv, report)
+    assert len(facts["pids"]) == 2  # the program and the child it forked
+    assert wait_until_gone(facts["pgid"], seconds=5) == []
+
+
+def _sigkill_after_report(argv: list[str], report: Path) -> dict[str, Any]:
+    """Run ``argv``, wait (20 s at most) for the fake's report, SIGKILL it, return the report.
+
+    SIGKILL: no finally block and no signal handler of the parent runs, so what survives it is
+    what the parent-death handling alone left alive.
+    """
     parent = subprocess.Popen(argv)
     deadline = time.monotonic() + 20
     while not report.exists() and time.monotonic() < deadline:
         time.sleep(0.02)
     facts = read_report(report)
-    parent.kill()  # SIGKILL: no finally block, no signal handler runs
+    parent.kill()
     parent.wait()
-    assert len(facts["pids"]) == 2  # the program and the child it forked
-    assert wait_until_gone(facts["pgid"], seconds=5) == []
+    return facts
