@@ -129,17 +129,28 @@ def _posed_class(base: Any, name: str, handle: int, attrs: dict[str, Any]) -> An
     return posed_meta(name, (base,), attrs)
 
 
+def _installed(pkg: str, folder: str, short: str) -> Any:
+    """Return the installed class ``pkg.<folder>.<short>``, or None when no package has it."""
+    try:
+        return getattr(importlib.import_module(f"{pkg}.{folder}"), short)
+    except (ImportError, AttributeError):
+        return None
+
+
+def _posing_base(name: str, base: Any) -> tuple[Any, Any]:
+    """Note that ``name`` is posed; return ``base`` and its type support's raw pointer."""
+    POSING.add(name)
+    check_for_type_support(base)
+    return base, _API.PyCapsule_GetPointer(type(base)._TYPE_SUPPORT, None)
+
+
 def message_class(name: str) -> Any:
     """Return the installed class of ``pkg/msg/Name``, or a String posing as it."""
     pkg, _, short = name.split("/")
-    try:
-        return getattr(importlib.import_module(f"{pkg}.msg"), short)
-    except (ImportError, AttributeError):
-        pass
-    POSING.add(name)
-    base = std_msgs.msg.String
-    check_for_type_support(base)
-    original = _API.PyCapsule_GetPointer(type(base)._TYPE_SUPPORT, None)
+    installed = _installed(pkg, "msg", short)
+    if installed is not None:
+        return installed
+    base, original = _posing_base(name, std_msgs.msg.String)
     handle = _posed_handle(original, _MSG_HANDLE_BYTES, (f"{pkg}::msg", short))
     return _posed_class(base, short, handle, {"__slots__": ()})
 
@@ -147,14 +158,10 @@ def message_class(name: str) -> Any:
 def service_class(name: str) -> Any:
     """Return the installed class of ``pkg/srv/Name``, or a Trigger posing as it."""
     pkg, _, short = name.split("/")
-    try:
-        return getattr(importlib.import_module(f"{pkg}.srv"), short)
-    except (ImportError, AttributeError):
-        pass
-    POSING.add(name)
-    base = std_srvs.srv.Trigger
-    check_for_type_support(base)
-    original = _API.PyCapsule_GetPointer(type(base)._TYPE_SUPPORT, None)
+    installed = _installed(pkg, "srv", short)
+    if installed is not None:
+        return installed
+    base, original = _posing_base(name, std_srvs.srv.Trigger)
     ns = f"{pkg}::srv"
 
     def messages(fields: Any) -> None:  # request_members_, response_members_
