@@ -39,6 +39,9 @@ from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent, Outcome
 from rosreconf.ros.ros2.nodes import NodeProcesses
 
+STANDBY_TRIES = 5
+"""Configure attempts for one standby node before it is left unconfigured (and said so)."""
+
 Say = Callable[..., None]
 """Receives one event: its kind, its message, and its data as keyword arguments."""
 
@@ -61,6 +64,7 @@ class Ros2Control:
         states: component -> the lifecycle state last read back.
         left: the nodes last said to be left for a person to stop.
         unready: standby components started and not yet configured (``tend`` does it).
+        tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
     """
 
     library: ComponentLibrary
@@ -77,6 +81,7 @@ class Ros2Control:
     states: dict[str, str] = field(default_factory=dict)
     left: tuple[str, ...] = ()
     unready: list[str] = field(default_factory=list)
+    tries: dict[str, int] = field(default_factory=dict)
     nodes: NodeProcesses = field(init=False)
     _agent: LifecycleAgent | None = None
     _agent_error: str | None = None
@@ -345,7 +350,17 @@ class Ros2Control:
         ready = self._agent_call(lambda agent: agent.ready(nodes)) or set()
         up = [c for c in self.unready if self._node(c) in ready]
         self.unready = [c for c in self.unready if c not in up]
-        self._transitions([(c, "configure") for c in up])
+        configured = self._transitions([(c, "configure") for c in up])
+        # A configure that timed out on a busy machine (or whose answer was lost while the
+        # node's service was still being matched) is tried again on a later tick, a few times.
+        for component in (c for c, ok in configured.items() if not ok):
+            self.tries[component] = self.tries.get(component, 0) + 1
+            if self.tries[component] < STANDBY_TRIES:
+                self.unready.append(component)
+            else:
+                self.say("lifecycle", f"{self._node(component)}: not a ready standby after "
+                         f"{STANDBY_TRIES} configure attempts; left unconfigured",
+                         component=component, node=self._node(component))  # fmt: skip
 
     def close(self) -> list[str]:
         """Stop every process started here and the lifecycle agent; return the components."""

@@ -7,21 +7,21 @@ stdout (same ``id``)::
 
     {"id": 1, "op": "watch", "nodes": ["/NDC1"]}        clients made now, so later calls are
                                                          not slowed by discovery -> {"ok": true}
-    {"id": 2, "op": "transition", "node": "/NDC1", "transition": "activate", "timeout": 5}
-        -> {"ok": true, "state": "active", "seconds": 0.004}   (change_state, then get_state)
-    {"id": 3, "op": "state", "node": "/NDC1", "timeout": 5}  -> {"ok": true, "state": "inactive"}
-    {"id": 4, "op": "ready", "nodes": ["/NDC1", "/NDC2"]}   -> {"ok": true, "ready": ["/NDC2"]}
+    {"id": 2, "op": "ready", "nodes": ["/NDC1", "/NDC2"]}   -> {"ok": true, "ready": ["/NDC2"]}
                                                          (whose services are matched now)
-    {"id": 5, "op": "batch", "items": [{"node": "/NDC1", "transition": "activate"}, ...]}
+    {"id": 3, "op": "batch", "items": [{"node": "/NDC1", "transition": "activate"}, ...],
+     "timeout": 5}
         -> {"ok": true, "results": [{"node", "transition", "ok", "state", "seconds", "error"}]}
-                                    (all calls in flight at once, then all states read back)
+           (every state read, the transitions asked for at once, every state read back)
 
 ``appear`` (seconds, default ``timeout``) bounds the wait for a service to appear, separately
 from ``timeout``, which bounds each call: a node just started needs seconds to come up.
 
-A failure is {"ok": false, "error": "..."}: the service did not appear, the call timed out,
-the node refused the transition, or the state read back is not the one the transition leads
-to. The node is not left half-way by the agent: it either did the transition or not.
+Each result fails ("ok": false, "error": "...") when a service did not appear, a call timed
+out, the node is in a state the transition does not leave, the node refused, or the state read
+back is not the one the transition leads to. The node is not left half-way by the agent: it
+either did the transition or not. A node already in the state the transition leads to counts
+as done: a retried ``configure`` whose first answer was lost on a busy machine must not fail.
 """
 
 from __future__ import annotations
@@ -42,6 +42,14 @@ IDS = {
     "deactivate": Transition.TRANSITION_DEACTIVATE,
     "shutdown": Transition.TRANSITION_UNCONFIGURED_SHUTDOWN,
 }
+FROM = {
+    "configure": ("unconfigured",),
+    "cleanup": ("inactive",),
+    "activate": ("inactive",),
+    "deactivate": ("active",),
+    "shutdown": ("unconfigured", "inactive", "active"),
+}
+"""The primary states each transition leaves (ROS 2's lifecycle state machine)."""
 GOAL = {
     "configure": "inactive",
     "cleanup": "unconfigured",
@@ -66,70 +74,55 @@ class Agent:
             )
         return self.clients[node]
 
-    def _call(self, client: Any, request: Any, deadline: float, what: str, appear: float) -> Any:
-        if not client.wait_for_service(timeout_sec=max(0.0, appear)):
-            raise TimeoutError(f"{client.srv_name} did not appear within {appear:g} s ({what})")
-        deadline = max(deadline, time.monotonic() + 0.5)
-        future = client.call_async(request)
-        rclpy.spin_until_future_complete(
-            self.node, future, timeout_sec=max(0.0, deadline - time.monotonic())
-        )
-        if not future.done():
-            client.remove_pending_request(future)
-            raise TimeoutError(f"{client.srv_name} did not answer within the timeout ({what})")
-        return future.result()
-
-    def state(self, node: str, timeout: float, appear: float) -> str:
-        """Return the node's current state label (its get_state service)."""
-        _, get = self._clients(node)
-        deadline = time.monotonic() + timeout
-        answer = self._call(get, GetState.Request(), deadline, "get_state", appear)
-        return str(answer.current_state.label)
-
-    def transition(self, node: str, name: str, timeout: float, appear: float) -> dict[str, Any]:
-        """Ask for one transition, then read the state back."""
-        change, get = self._clients(node)
-        start = time.monotonic()
-        request = ChangeState.Request()
-        request.transition.id = IDS[name]
-        answer = self._call(change, request, time.monotonic() + timeout, name, appear)
-        deadline = time.monotonic() + timeout
-        got = self._call(get, GetState.Request(), deadline, "get_state", appear)
-        state = str(got.current_state.label)
-        took = round(time.monotonic() - start, 4)
-        done = {"state": state, "seconds": took}
-        if not answer.success:
-            return {"ok": False, **done, "error": f"{node} refused {name} (it is {state})"}
-        if state != GOAL[name]:
-            why = f"after {name}, {node} is {state}, not {GOAL[name]}"
-            return {"ok": False, **done, "error": why}
-        return {"ok": True, **done}
+    def _states(
+        self, items: list[dict[str, str]], which: list[int], timeout: float
+    ) -> dict[int, Any]:
+        """Read several items' node states at once (None: no answer within the timeout)."""
+        reads = {
+            i: self._clients(items[i]["node"])[1].call_async(GetState.Request()) for i in which
+        }
+        self._spin(list(reads.values()), time.monotonic() + timeout)
+        return {
+            i: str(r.result().current_state.label) if r.done() else None for i, r in reads.items()
+        }
 
     def batch(self, items: list[dict[str, str]], timeout: float, appear: float) -> list[Any]:
-        """Ask for several transitions at once, then read every state back."""
+        """Perform several transitions at once: read each state, ask, read each state back.
+
+        A transition is asked for only from a state it leaves: rclpy's ``LifecycleNode``
+        (Jazzy, Kilted) raises out of its executor on any other, which ends the node's
+        process, where rclcpp answers ``success: false``. A node already in the state the
+        transition leads to counts as done.
+        """
         start = time.monotonic()
-        calls: list[tuple[dict[str, str], Any, str | None]] = []
-        for item in items:
-            change, _ = self._clients(item["node"])
-            if not change.wait_for_service(timeout_sec=appear):
-                calls.append((item, None, f"{change.srv_name} did not appear within {appear:g} s"))
-                continue
-            request = ChangeState.Request()
-            request.transition.id = IDS[item["transition"]]
-            calls.append((item, change.call_async(request), None))
-        self._spin([f for _, f, _ in calls if f is not None], time.monotonic() + timeout)
-        reads = [
-            self._clients(item["node"])[1].call_async(GetState.Request()) if f else None
-            for item, f, _ in calls
-        ]
-        self._spin([r for r in reads if r is not None], time.monotonic() + timeout)
+        errors: dict[int, str] = {}
+        for i, item in enumerate(items):
+            change, get = self._clients(item["node"])
+            for client in (change, get):
+                if i not in errors and not client.wait_for_service(timeout_sec=appear):
+                    errors[i] = f"{client.srv_name} did not appear within {appear:g} s"
+        asking = [i for i in range(len(items)) if i not in errors]
+        before = self._states(items, asking, timeout)
+        calls: dict[int, Any] = {}
+        for i in asking:
+            node, name = items[i]["node"], items[i]["transition"]
+            if before[i] is None:
+                errors[i] = f"{node}/get_state did not answer within {timeout:g} s ({name})"
+            elif before[i] != GOAL[name] and before[i] not in FROM[name]:
+                errors[i] = f"{node} is {before[i]}: {name} is not a transition from it"
+            elif before[i] != GOAL[name]:
+                request = ChangeState.Request()
+                request.transition.id = IDS[name]
+                calls[i] = self._clients(node)[0].call_async(request)
+        self._spin(list(calls.values()), time.monotonic() + timeout)
+        after = self._states(items, list(calls), timeout)
         results = []
-        for (item, future, error), read in zip(calls, reads, strict=True):
+        for i, item in enumerate(items):
             node, name = item["node"], item["transition"]
-            state = read.result().current_state.label if read and read.done() else None
-            if error is None and (future is None or not future.done()):
+            state, future, error = after.get(i, before.get(i)), calls.get(i), errors.get(i)
+            if error is None and future is not None and not future.done():
                 error = f"{node}/change_state did not answer within {timeout:g} s ({name})"
-            elif error is None and not future.result().success:
+            elif error is None and future is not None and not future.result().success:
                 error = f"{node} refused {name} (it is {state})"
             elif error is None and state != GOAL[name]:
                 error = f"after {name}, {node} is {state}, not {GOAL[name]}"
@@ -143,31 +136,21 @@ class Agent:
             rclpy.spin_once(self.node, timeout_sec=max(0.0, min(0.05, deadline - time.monotonic())))
 
     def handle(self, request: dict[str, Any]) -> dict[str, Any]:
+        """Answer one request (see the module docstring)."""
         op = request.get("op")
         timeout = float(request.get("timeout", 5.0))
         appear = float(request.get("appear", timeout))
-        try:
-            if op == "watch":
-                for node in request.get("nodes", []):
-                    self._clients(node)
-                return {"ok": True}
-            if op == "ready":
-                ready = [
-                    n
-                    for n in request.get("nodes", [])
-                    if all(c.service_is_ready() for c in self._clients(n))
-                ]
-                return {"ok": True, "ready": ready}
-            if op == "state":
-                return {"ok": True, "state": self.state(request["node"], timeout, appear)}
-            if op == "batch":
-                return {"ok": True, "results": self.batch(request["items"], timeout, appear)}
-            if op == "transition":
-                node, name = request["node"], request["transition"]
-                return self.transition(node, name, timeout, appear)
-            return {"ok": False, "error": f"unknown op {op!r}"}
-        except TimeoutError as exc:
-            return {"ok": False, "error": str(exc)}
+        if op == "watch":
+            for node in request.get("nodes", []):
+                self._clients(node)
+            return {"ok": True}
+        if op == "ready":
+            nodes = request.get("nodes", [])
+            ready = [n for n in nodes if all(c.service_is_ready() for c in self._clients(n))]
+            return {"ok": True, "ready": ready}
+        if op == "batch":
+            return {"ok": True, "results": self.batch(request["items"], timeout, appear)}
+        return {"ok": False, "error": f"unknown op {op!r}"}
 
 
 def main() -> int:
