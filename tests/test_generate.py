@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -107,3 +108,30 @@ def test_generate_refuses_more_than_its_bound_before_using_memory(
     assert "200,000" in done.stderr or "200000" in done.stderr
     assert "Traceback" not in done.stderr
     assert not out.exists()  # nothing made
+
+
+@settings(max_examples=examples(10), deadline=None)
+@given(
+    roles=st.integers(1, 12),
+    k=st.integers(1, 4),
+    coupling=st.sampled_from([0.0, 0.35, 1.0]),
+    dynamics=st.booleans(),
+    seed=st.integers(0, 10_000),
+)
+def test_whatever_generate_writes_its_own_validate_accepts(
+    tmp_path_factory: pytest.TempPathFactory,
+    roles: int,
+    k: int,
+    coupling: float,
+    dynamics: bool,
+    seed: int,
+) -> None:
+    """Issue 22: ``generate`` must never write files its own ``validate`` refuses or warns on."""
+    out = tmp_path_factory.mktemp("generated")
+    argv = ["generate", "-r", str(roles), "-k", str(k), "--coupling", str(coupling)]
+    argv += ["--seed", str(seed), "-o", str(out), *(["--dynamics"] if dynamics else [])]
+    runner = CliRunner()
+    assert runner.invoke(app, argv).exit_code == 0
+    result = runner.invoke(app, ["validate", str(out), "--json"])
+    report = json.loads(result.stdout)
+    assert (result.exit_code, report["errors"], report["warnings"]) == (0, 0, 0), result.stdout
