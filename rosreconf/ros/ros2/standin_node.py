@@ -279,6 +279,14 @@ def managed_node(spec: dict[str, Any]) -> Any:
     return StandIn()
 
 
+def warm() -> None:
+    """Import and load now what any stand-in needs (``standin_zygote.py`` forks after this)."""
+    import rclpy.lifecycle  # noqa: F401
+
+    check_for_type_support(std_msgs.msg.String)
+    check_for_type_support(std_srvs.srv.Trigger)
+
+
 def main(argv: list[str]) -> int:
     """Create the spec's node and spin until told to stop."""
     args = rclpy.utilities.remove_ros_args(argv)
