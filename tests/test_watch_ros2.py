@@ -371,3 +371,64 @@ def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> N
     assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", "joint:=base"]
     with pytest.raises(ExternalToolError, match="robot_arm_servo was not found"):
         nodes.command(bundle.library, "NSM1", {})
+
+
+def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """Nav2-like servers as stand-ins: actions served and called, posed as nav2_msgs types."""
+    from rosreconf.formats.loader import load_paths
+    from rosreconf.ros.conformance import node_live_name
+    from rosreconf.ros.liveactions import live_actions
+    from rosreconf.ros.livegraph import from_json
+
+    library_file = ROOT / "libraries" / "nav_robot.yaml"
+    files = ["--library", str(library_file), "--schema", str(SCHEMAS / "map_navigation.yaml")]
+    library = load_paths([library_file]).library
+    watch = Watch(tmp_path, ros2_domain, *files)
+    try:
+        chosen = watch.wait("conformant")["configuration"]
+        node = {role: node_live_name(library[c]) for role, c in chosen.items() if c}
+        seen = probe(watch.env, ros2_domain)  # rclpy's own graph API
+        for action, kind in [("/navigate_to_pose", "NavigateToPose"),
+                             ("/compute_path_to_pose", "ComputePathToPose"),
+                             ("/follow_path", "FollowPath")]:  # fmt: skip
+            parts = f"{action}/_action/"
+            assert seen["services"][parts + "send_goal"] == [f"nav2_msgs/action/{kind}_SendGoal"]
+            assert seen["services"][parts + "get_result"] == [f"nav2_msgs/action/{kind}_GetResult"]
+            assert seen["topics"][parts + "feedback"] == [
+                f"nav2_msgs/action/{kind}_FeedbackMessage"
+            ]
+        env = {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)}
+        snapshot = tmp_path / "live.json"
+        taken = subprocess.run(
+            [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain",
+             str(ros2_domain), "-o", str(snapshot)],
+            env=env, capture_output=True, text=True, timeout=120,
+        )  # fmt: skip
+        assert taken.returncode == 0, taken.stderr
+        found = {
+            a.name: (a.type, a.servers, a.clients)
+            for a in live_actions(from_json(snapshot.read_text("utf-8"))).values()
+        }
+        assert found == {
+            "/navigate_to_pose": ("nav2_msgs/action/NavigateToPose", (node["navigator"],), ()),
+            "/compute_path_to_pose": (
+                "nav2_msgs/action/ComputePathToPose",
+                (node["planner"],),
+                (node["navigator"],),
+            ),
+            "/follow_path": (
+                "nav2_msgs/action/FollowPath",
+                (node["controller"],),
+                (node["navigator"],),
+            ),
+        }
+        inspected = subprocess.run(
+            [sys.executable, "-m", "rosreconf", "inspect", "--ros2", "--domain",
+             str(ros2_domain), *files, "--json"],
+            env=env, capture_output=True, text=True, timeout=120,
+        )  # fmt: skip
+        assert inspected.returncode == 0, inspected.stdout + inspected.stderr
+    finally:
+        watch.stop()
