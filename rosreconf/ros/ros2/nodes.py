@@ -32,7 +32,7 @@ from typing import Protocol
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.procs import Background, start_program
+from rosreconf.procs import start_program
 from rosreconf.procs.signals import signal_group
 from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.launchfiles import Remap, ros2_node_arguments, wiring
@@ -168,13 +168,14 @@ class NodeProcesses:
         Raises:
             ExternalToolError: a program is missing or cannot be run (those started stay).
         """
-        started = []
         env = self._node_env()
         remaps = wiring(library, schema, configuration)
-        for name in components:
-            argv = self.command(library, name, remaps)
-            log = self.directory / f"{name}.log"
-            program = self._start(argv, log, env)
+        runs = [
+            (self.command(library, name, remaps), self.directory / f"{name}.log")
+            for name in components
+        ]
+        started = []
+        for name, (argv, _), program in zip(components, runs, self._start(runs, env), strict=True):
             comp = library[name]
             managed = bool(comp.launch is not None and comp.launch.lifecycle)
             own = OwnNode(name, node_live_name(comp), program, managed, tuple(argv))
@@ -182,16 +183,17 @@ class NodeProcesses:
             started.append(own)
         return started
 
-    def _start(self, argv: list[str], log: Path, env: Mapping[str, str]) -> Program:
-        """Start one node's process: forked by the zygote (stand-ins), else on its own."""
+    def _start(self, runs: list[tuple[list[str], Path]], env: Mapping[str, str]) -> list[Program]:
+        """Start one process per (argv, log): forked by the zygote (stand-ins), else each alone."""
         zygote = self._warm(env) if self.stand_ins else None
         if zygote is not None:
             try:
-                return zygote.spawn(argv, log)
-            except ExternalToolError:  # it died: every later stand-in is a process of its own
+                return list(zygote.spawn(runs))
+            except ExternalToolError:  # it died: from now on each stand-in starts alone
                 self._zygote_failed = True
-        program: Background = start_program(argv, log=log, env=env)
-        return program
+                for orphan in zygote.orphans:
+                    orphan.stop(grace=0.0, sig=signal.SIGKILL)
+        return [start_program(argv, log=log, env=env) for argv, log in runs]
 
     def _warm(self, env: Mapping[str, str]) -> Zygote | None:
         """Return the stand-in zygote, started on first use; None when it cannot be had."""

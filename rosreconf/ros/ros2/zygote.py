@@ -96,6 +96,7 @@ class Zygote:
         self._gone = False
         self._changed = threading.Condition()
         self._next = 0
+        self.orphans: list[ForkedProgram] = []
         assert self.process.stdout is not None
         threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
         if "ready" not in self._answer(60.0):
@@ -128,24 +129,40 @@ class Zygote:
             raise ExternalToolError(f"the stand-in zygote has exited (see {self.log})")
         return answer
 
-    def spawn(self, argv: Sequence[str], log: Path, timeout: float = 30.0) -> ForkedProgram:
-        """Fork a stand-in running ``argv`` with its output appended to ``log``.
+    def spawn(
+        self, programs: Sequence[tuple[Sequence[str], Path]], timeout: float = 30.0
+    ) -> list[ForkedProgram]:
+        """Fork one stand-in per (argv, log): all asked for at once, then every pid read.
 
         Raises:
-            ExternalToolError: the zygote has exited, failed to fork, or did not answer.
+            ExternalToolError: the zygote has exited, failed to fork, or did not answer
+                (the stand-ins it did fork are in ``self.orphans``: stop them).
         """
-        self._next += 1
-        request = {"id": self._next, "argv": list(argv), "log": str(log)}
+        first = self._next + 1
+        lines = []
+        for argv, log in programs:
+            self._next += 1
+            lines.append(json.dumps({"id": self._next, "argv": list(argv), "log": str(log)}))
         assert self.process.stdin is not None
         try:
-            self.process.stdin.write((json.dumps(request) + "\n").encode())
+            self.process.stdin.write("".join(f"{line}\n" for line in lines).encode())
             self.process.stdin.flush()
         except OSError:
             raise ExternalToolError(f"the stand-in zygote has exited (see {self.log})") from None
-        answer = self._answer(timeout)
-        if "pid" not in answer:
-            raise ExternalToolError(f"the stand-in zygote cannot fork: {answer.get('error')}")
-        return ForkedProgram(Forked(int(answer["pid"]), self), tuple(argv), log)
+        forked: dict[int, ForkedProgram] = {}
+        failure = None
+        for _ in programs:
+            answer = self._answer(timeout)
+            index = int(answer.get("id", 0)) - first
+            if "pid" not in answer:
+                failure = failure or str(answer.get("error"))
+                continue
+            argv, log = programs[index]
+            forked[index] = ForkedProgram(Forked(int(answer["pid"]), self), tuple(argv), log)
+        if failure is not None:
+            self.orphans = list(forked.values())
+            raise ExternalToolError(f"the stand-in zygote cannot fork: {failure}")
+        return [forked[i] for i in range(len(programs))]
 
     def code(self, pid: int) -> int | None:
         """Return how child ``pid`` ended, or None while it runs."""
