@@ -432,3 +432,38 @@ def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
         assert inspected.returncode == 0, inspected.stdout + inspected.stderr
     finally:
         watch.stop()
+
+
+def _pids_running(pattern: bytes) -> set[int]:
+    """Return the pids whose command line holds ``pattern`` (what ``pgrep -f`` reads)."""
+    found = set()
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and int(entry.name) != os.getpid():
+            try:
+                if pattern in (entry / "cmdline").read_bytes():
+                    found.add(int(entry.name))
+            except OSError:
+                continue
+    return found
+
+
+def test_each_stand_in_is_a_process_of_its_own_named_so_and_dies_with_a_killed_watch(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """Forked from a warm zygote, each stand-in is still one process as if started alone."""
+    watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+    try:
+        watch.wait("conformant")
+        pids = watch.pids()
+        assert sorted(pids) == sorted(NOMINAL) and len(set(pids.values())) == len(NOMINAL)
+        for component, pid in pids.items():
+            assert _pids_running(f"__node:={component}\0".encode()) == {pid}, component
+            assert os.getsid(pid) == pid  # a session and group of its own: signalled alone
+        os.kill(watch.process.pid, signal.SIGKILL)  # no cleanup can run in watch
+        watch.process.wait(10)
+        deadline = time.monotonic() + 30
+        while [p for p in pids.values() if alive(p)] and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not [c for c, p in pids.items() if alive(p)]
+    finally:
+        watch.stop(signal.SIGKILL)
