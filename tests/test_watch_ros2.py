@@ -467,3 +467,27 @@ def test_each_stand_in_is_a_process_of_its_own_named_so_and_dies_with_a_killed_w
         assert not [c for c, p in pids.items() if alive(p)]
     finally:
         watch.stop(signal.SIGKILL)
+
+
+def test_a_stand_in_that_cannot_pose_an_action_type_names_the_component_and_exits_3(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """Without an action type to pose as, a clear error, not a silent exit.
+
+    A fake only to provoke what the Jazzy venv cannot show (it has test_msgs): the stand-in
+    runs with test_msgs and example_interfaces made unimportable.
+    """
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    spec = {"name": "DWB", "component": "DWB_CONTROLLER", "action_serve": [
+        {"action": "/follow_path", "type": "nav2_msgs/action/FollowPath"}]}  # fmt: skip
+    hide = ("import runpy, sys; sys.modules['test_msgs'] = sys.modules['example_interfaces'] "
+            f"= None; sys.argv = [{str(script)!r}, {json.dumps(spec)!r}]; "
+            f"runpy.run_path({str(script)!r}, run_name='__main__')")  # fmt: skip
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
+    out = subprocess.run([str(_ros2_python()), "-c", hide], env=env, capture_output=True,
+                         text=True, timeout=120)  # fmt: skip
+    assert out.returncode == 3
+    assert out.stderr.startswith("stand-in for DWB_CONTROLLER (DWB): cannot act out action "
+                                 "/follow_path: action type nav2_msgs/action/FollowPath is not "
+                                 "installed")  # fmt: skip
+    assert "test-msgs" in out.stderr and "Traceback" not in out.stderr
