@@ -345,8 +345,13 @@ def warm() -> None:
     """Import and load now what any stand-in needs (``standin_zygote.py`` forks after this)."""
     import rclpy.lifecycle  # noqa: F401
 
-    check_for_type_support(std_msgs.msg.String)
-    check_for_type_support(std_srvs.srv.Trigger)
+    for base in (
+        std_msgs.msg.String,
+        std_srvs.srv.Trigger,
+        _installed(POSE_ACTIONS_AS[0], "action", "Fibonacci"),
+    ):
+        if base is not None:  # what posed types are made of
+            check_for_type_support(base)
 
 
 def main(argv: list[str]) -> int:
