@@ -25,9 +25,8 @@ with the declared namespace and name, so rmw_fastrtps announces
 two stand-ins posing as one type talk to each other; a real node with the real type would
 not match. Only the Fast DDS route is posed (the RMW the ROS 2 wheels ship). Actions are
 served and called with rclpy's ``ActionServer`` / ``ActionClient`` (every goal succeeds at
-once); an action type not installed is posed by ``test_msgs/action/Fibonacci`` (or
-``example_interfaces``'): its send_goal, get_result and feedback parts renamed. Without
-either package it exits 3, naming the component, the action and what to install.
+once); one not installed is posed by ``test_msgs`` (or ``example_interfaces``) Fibonacci, its
+send_goal, get_result and feedback renamed; without both, exit 3 naming what to install.
 
 A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode`` that starts
 unconfigured, creates its endpoints on ``configure``, publishes only while active, and
@@ -58,6 +57,7 @@ from rclpy.type_support import check_for_type_support
 POSING: set[str] = set()
 _KEEP: list[Any] = []  # every buffer and callback the posed type supports point to
 _FAST = b"rosidl_typesupport_fastrtps_c"
+_DYNAMIC = b"rosidl_dynamic_typesupport_c"
 _P = ctypes.c_void_p
 _HANDLE_FN = ctypes.CFUNCTYPE(_P, _P, ctypes.c_char_p)
 _API = ctypes.pythonapi
@@ -117,7 +117,9 @@ def _posed_handle(original: int, size: int, names: tuple[str, str], extra: Any =
         extra(fields)
     handle = _copy(fast, size)
 
-    def dispatch(_me: int, identifier: bytes) -> int:
+    def dispatch(_me: int, identifier: bytes) -> int:  # no dynamic one (Kilted asks): the
+        if identifier == _DYNAMIC:  # base's dispatch would fail and leave an rcutils error set
+            return 0
         return ctypes.addressof(handle) if identifier == _FAST else _lookup(original, identifier)
 
     func = _HANDLE_FN(dispatch)
