@@ -38,8 +38,6 @@ from pathlib import Path
 from typing import Any
 
 PR_SET_PDEATHSIG = 1
-TITLE_ROOM = 32768
-"""Bytes of command line reserved for the children's titles (rosreconf pads its argv so)."""
 _HERE = Path(__file__).resolve().parent
 
 
@@ -67,7 +65,11 @@ def _lttng() -> Any:
 
 
 def _set_title(argv: list[str]) -> None:
-    """Rewrite this process's command line (``/proc/self/cmdline``) as ``setproctitle`` does."""
+    """Rewrite this process's command line (``/proc/self/cmdline``) as ``setproctitle`` does.
+
+    The room is the zygote's own command line, which rosreconf pads (``zygote.TITLE_ROOM``);
+    a longer one is cut.
+    """
     with open("/proc/self/stat", encoding="utf-8") as stat:
         fields = stat.read().rsplit(")", 1)[1].split()
     start, end = int(fields[45]), int(fields[46])  # arg_start, arg_end (proc(5) 48, 49)
