@@ -87,7 +87,7 @@ def ros2_standin_spec(component: Component) -> dict[str, Any]:
     calls (a ROS 2 graph shows clients), and whether it is a managed (lifecycle) node.
     """
     publish, serve, subscribe, call = [], [], [], []
-    action_serve, action_call = [], []  # listed; the rclpy stand-in refuses actions for now
+    action_serve, action_call = [], []
     for iface in sorted(component.provides):
         name = interface_live_name(component, iface.label)
         if iface.kind is InterfaceKind.ACTION:
@@ -116,4 +116,5 @@ def ros2_standin_spec(component: Component) -> dict[str, Any]:
         **({"action_serve": action_serve} if action_serve else {}),
         **({"action_call": action_call} if action_call else {}),
         "lifecycle": bool(launch is not None and launch.lifecycle),
+        "component": component.name,
     }

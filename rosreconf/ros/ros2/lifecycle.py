@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import os
 import queue
 import signal
 import subprocess
@@ -27,9 +26,9 @@ from pathlib import Path
 from typing import IO, Any
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
+from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
-from rosreconf.ros.ros2.runtime import ros2_python
+from rosreconf.ros.ros2.runtime import ros2_python, start_helper
 
 AGENT_SCRIPT = Path(__file__).with_name("lifecycle_agent.py")
 TIMEOUT = 5.0
@@ -61,23 +60,7 @@ class LifecycleAgent:
     def __init__(self, env: Mapping[str, str], log: Path, timeout: float = TIMEOUT) -> None:
         self.timeout = timeout
         python = ros2_python(env)
-        alive_read, self._alive = os.pipe() if LINUX else (-1, -1)
-        with log.open("ab") as err:
-            try:
-                self.process = subprocess.Popen(
-                    [python, str(AGENT_SCRIPT)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                    stderr=err, env=dict(env), start_new_session=True,
-                    pass_fds=(alive_read,) if LINUX else (),
-                    preexec_fn=preexec(None, None, alive_read),
-                )  # fmt: skip
-            except OSError as exc:
-                release(self._alive)
-                raise ExternalToolError(f"cannot run {python}: {exc.strerror or exc}") from exc
-            finally:
-                if LINUX:
-                    os.close(alive_read)
-        if LINUX:
-            ALIVE_PIPES.append(self._alive)
+        self.process, self._alive = start_helper([python, str(AGENT_SCRIPT)], env, log)
         self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
         self._next = 0
         assert self.process.stdout is not None

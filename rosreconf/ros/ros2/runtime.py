@@ -16,11 +16,13 @@ from __future__ import annotations
 
 import os
 import shutil
-from collections.abc import Mapping
+import subprocess
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.procs import run_program
+from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
 
 PYTHON_ENV = "ROSRECONF_ROS2_PYTHON"
 HOW_TO_GET_ONE = (
@@ -66,6 +68,38 @@ def _imports_rclpy(python: str, env: Mapping[str, str]) -> bool:
     """Tell whether ``python`` can import rclpy (one short run of it)."""
     result = run_program([python, "-c", FIND_RCLPY], timeout=60, env=env)
     return result.ok
+
+
+def start_helper(
+    argv: Sequence[str], env: Mapping[str, str], log: Path
+) -> tuple[subprocess.Popen[bytes], int]:
+    """Start one of rosreconf's ROS 2 helpers: JSON lines on its stdin and stdout.
+
+    Its stderr goes to ``log``. It gets a new session, a parent-death signal and a group
+    watchdog (``rosreconf.procs.child``), so it dies with rosreconf even on SIGKILL. Returns
+    the process and the watchdog pipe's write end (``release`` it once the helper is dead).
+
+    Raises:
+        ExternalToolError: the program cannot be run.
+    """
+    alive_read, alive = os.pipe() if LINUX else (-1, -1)
+    with log.open("ab") as err:
+        try:
+            process = subprocess.Popen(
+                list(argv), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=err,
+                env=dict(env), start_new_session=True,
+                pass_fds=(alive_read,) if LINUX else (),
+                preexec_fn=preexec(None, None, alive_read),
+            )  # fmt: skip
+        except OSError as exc:
+            release(alive)
+            raise ExternalToolError(f"cannot run {argv[0]}: {exc.strerror or exc}") from exc
+        finally:
+            if LINUX:
+                os.close(alive_read)
+    if LINUX:
+        ALIVE_PIPES.append(alive)
+    return process, alive
 
 
 def ament_executable(package: str, executable: str, env: Mapping[str, str]) -> Path:

@@ -12,7 +12,8 @@ venv has none). The one argument is a JSON spec, inline or as a file path
      "subscribe": [{"topic": "/b", "type": "robot_arm_msgs/msg/DcServoCommand"}],
      "serve":     [{"service": "/s", "type": "robot_arm_msgs/srv/DigitalServoCommand"}],
      "call":      [{"service": "/t", "type": "std_srvs/srv/Trigger"}],
-     "lifecycle": false, "rate_hz": 1.0}
+     "action_serve": [{"action": "/follow_path", "type": "nav2_msgs/action/FollowPath"}],
+     "action_call": [...], "lifecycle": false, "rate_hz": 1.0, "component": "NCTRL"}
 
 Types: an installed type (``std_msgs/msg/String``) is used as it is. Any other name (the
 example library's invented ``robot_arm_msgs/msg/DcServoCommand``) is *posed*, as the ROS 1
@@ -22,12 +23,14 @@ with the declared namespace and name, so rmw_fastrtps announces
 ``robot_arm_msgs::msg::dds_::DcServoCommand_`` over DDS and rclpy's graph API says
 ``robot_arm_msgs/msg/DcServoCommand``. The wire format and type hash are String's (Trigger's):
 two stand-ins posing as one type talk to each other; a real node with the real type would
-not match. Only the Fast DDS route is posed (the RMW the ROS 2 wheels ship).
+not match. Only the Fast DDS route is posed (the RMW the ROS 2 wheels ship). Actions are
+served and called with rclpy's ``ActionServer`` / ``ActionClient`` (every goal succeeds at
+once); one not installed is posed by ``test_msgs`` (or ``example_interfaces``) Fibonacci, its
+send_goal, get_result and feedback renamed; without both, exit 3 naming what to install.
 
 A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode`` that starts
 unconfigured, creates its endpoints on ``configure``, publishes only while active, and
-destroys them on ``cleanup``. Actions (``action_serve`` / ``action_call`` in the spec) are
-the seam for ACTION interfaces: refused here until the library format has them.
+destroys them on ``cleanup``.
 
 Stops cleanly on SIGINT/SIGTERM (its participant says goodbye). Writes one JSON line to stdout
 once its node exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
@@ -36,6 +39,7 @@ once its node exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
 from __future__ import annotations
 
 import ctypes
+import functools
 import importlib
 import json
 import os
@@ -46,12 +50,14 @@ from typing import Any
 import rclpy
 import std_msgs.msg
 import std_srvs.srv
+from rclpy.action import ActionClient, ActionServer
 from rclpy.executors import ExternalShutdownException
 from rclpy.type_support import check_for_type_support
 
 POSING: set[str] = set()
 _KEEP: list[Any] = []  # every buffer and callback the posed type supports point to
 _FAST = b"rosidl_typesupport_fastrtps_c"
+_DYNAMIC = b"rosidl_dynamic_typesupport_c"
 _P = ctypes.c_void_p
 _HANDLE_FN = ctypes.CFUNCTYPE(_P, _P, ctypes.c_char_p)
 _API = ctypes.pythonapi
@@ -65,6 +71,10 @@ _SRV_HANDLE_BYTES = 11 * 8
 """rosidl_service_type_support_t (Iron+): identifier, data, func, 3 message handles, 5 hooks."""
 _MSG_CALLBACKS_BYTES = 16 * 8
 """More than message_type_support_callbacks_t holds; only the first two fields are changed."""
+_ACTION_HANDLE_BYTES = 8 * 8
+"""rosidl_action_type_support_t (Iron+): five part type supports, three type-description hooks."""
+POSE_ACTIONS_AS = ("test_msgs", "example_interfaces")
+"""Packages whose ``action/Fibonacci`` poses as an action type that is not installed."""
 _SRV_CALLBACKS_BYTES = 4 * 8
 """service_type_support_callbacks_t: namespace, name, request and response handles."""
 
@@ -107,7 +117,9 @@ def _posed_handle(original: int, size: int, names: tuple[str, str], extra: Any =
         extra(fields)
     handle = _copy(fast, size)
 
-    def dispatch(_me: int, identifier: bytes) -> int:
+    def dispatch(_me: int, identifier: bytes) -> int:  # no dynamic one (Kilted asks): the
+        if identifier == _DYNAMIC:  # base's dispatch would fail and leave an rcutils error set
+            return 0
         return ctypes.addressof(handle) if identifier == _FAST else _lookup(original, identifier)
 
     func = _HANDLE_FN(dispatch)
@@ -155,6 +167,16 @@ def message_class(name: str) -> Any:
     return _posed_class(base, short, handle, {"__slots__": ()})
 
 
+def _posed_service(original: int, ns: str, short: str) -> int:
+    """Copy a service's Fast DDS type support, and its two messages', with other names."""
+
+    def messages(fields: Any) -> None:  # request_members_, response_members_
+        fields[2] = _posed_handle(fields[2], _MSG_HANDLE_BYTES, (ns, f"{short}_Request"))
+        fields[3] = _posed_handle(fields[3], _MSG_HANDLE_BYTES, (ns, f"{short}_Response"))
+
+    return _posed_handle(original, _SRV_HANDLE_BYTES, (ns, short), messages)
+
+
 def service_class(name: str) -> Any:
     """Return the installed class of ``pkg/srv/Name``, or a Trigger posing as it."""
     pkg, _, short = name.split("/")
@@ -162,14 +184,41 @@ def service_class(name: str) -> Any:
     if installed is not None:
         return installed
     base, original = _posing_base(name, std_srvs.srv.Trigger)
-    ns = f"{pkg}::srv"
+    return _posed_class(base, short, _posed_service(original, f"{pkg}::srv", short), {})
 
-    def messages(fields: Any) -> None:  # request_members_, response_members_
-        fields[2] = _posed_handle(fields[2], _MSG_HANDLE_BYTES, (ns, f"{short}_Request"))
-        fields[3] = _posed_handle(fields[3], _MSG_HANDLE_BYTES, (ns, f"{short}_Response"))
 
-    handle = _posed_handle(original, _SRV_HANDLE_BYTES, (ns, short), messages)
-    return _posed_class(base, short, handle, {})
+class CannotPose(Exception):
+    """An action type is not installed and no installed action type can pose as it."""
+
+
+@functools.cache
+def action_class(name: str) -> Any:
+    """Return the installed class of ``pkg/action/Name``, or a Fibonacci posing as it.
+
+    rcl_action builds an action from five parts of ``rosidl_action_type_support_t``: the
+    send_goal and get_result services, the feedback message (these three carry the action's
+    name, so they are posed: ``pkg::action::dds_::Name_SendGoal_Request_`` ...), and
+    action_msgs' cancel service and status message (the same for every action; kept).
+    """
+    pkg, _, short = name.split("/")
+    installed = _installed(pkg, "action", short)
+    if installed is not None:
+        return installed
+    base = next(filter(None, (_installed(p, "action", "Fibonacci") for p in POSE_ACTIONS_AS)), None)
+    if base is None:
+        raise CannotPose(
+            f"action type {name} is not installed, and no action type to pose as is "
+            f"({' or '.join(f'{p}/action/Fibonacci' for p in POSE_ACTIONS_AS)}: install "
+            "ros-<distro>-test-msgs or ros-<distro>-example-interfaces beside rclpy)"
+        )
+    base, original = _posing_base(name, base)
+    ns = f"{pkg}::action"
+    parts = _copy(original, _ACTION_HANDLE_BYTES)
+    fields: Any = (_P * 8).from_buffer(parts)
+    fields[0] = _posed_service(fields[0], ns, f"{short}_SendGoal")
+    fields[1] = _posed_service(fields[1], ns, f"{short}_GetResult")
+    fields[3] = _posed_handle(fields[3], _MSG_HANDLE_BYTES, (ns, f"{short}_FeedbackMessage"))
+    return _posed_class(base, short, ctypes.addressof(parts), {})
 
 
 class Endpoints:
@@ -179,8 +228,7 @@ class Endpoints:
         self.node = node
         self.made: list[Any] = []
         self.pubs: list[tuple[Any, Any]] = []
-        if spec.get("action_serve") or spec.get("action_call"):
-            raise SystemExit("stand-in: actions are not acted out yet")
+        self.actions: list[Any] = []
         for p in spec.get("publish", []):
             cls = message_class(p["type"])
             pub = node.create_publisher(cls, p["topic"], 10)
@@ -195,6 +243,11 @@ class Endpoints:
             self.made.append(node.create_service(cls, s["service"], _answer(node)))
         for c in spec.get("call", []):
             self.made.append(node.create_client(service_class(c["type"]), c["service"]))
+        for a in spec.get("action_serve", []):
+            cls = action_class(a["type"])
+            self.actions.append(ActionServer(node, cls, a["action"], _succeed(cls)))
+        for a in spec.get("action_call", []):
+            self.actions.append(ActionClient(node, action_class(a["type"]), a["action"]))
 
     def publish(self) -> None:
         """Publish one message on every topic (posed types carry the node's name)."""
@@ -214,12 +267,23 @@ class Endpoints:
                     break
                 except Exception:  # not this kind
                     continue
+        for action in self.actions:
+            action.destroy()
         self.made.clear()
         self.pubs.clear()
+        self.actions.clear()
 
 
 def _ignore(_msg: Any) -> None:
     return None
+
+
+def _succeed(cls: Any) -> Any:
+    def execute(goal: Any) -> Any:  # every goal succeeds at once, with an empty result
+        goal.succeed()
+        return cls.Result()
+
+    return execute
 
 
 def _answer(node: Any) -> Any:
@@ -279,6 +343,19 @@ def managed_node(spec: dict[str, Any]) -> Any:
     return StandIn()
 
 
+def warm() -> None:
+    """Import and load now what any stand-in needs (``standin_zygote.py`` forks after this)."""
+    import rclpy.lifecycle  # noqa: F401
+
+    for base in (
+        std_msgs.msg.String,
+        std_srvs.srv.Trigger,
+        _installed(POSE_ACTIONS_AS[0], "action", "Fibonacci"),
+    ):
+        if base is not None:  # what posed types are made of
+            check_for_type_support(base)
+
+
 def main(argv: list[str]) -> int:
     """Create the spec's node and spin until told to stop."""
     args = rclpy.utilities.remove_ros_args(argv)
@@ -287,6 +364,14 @@ def main(argv: list[str]) -> int:
         return 2
     text = args[1] if args[1].lstrip().startswith("{") else Path(args[1]).read_text()
     spec = json.loads(text)
+    for action in spec.get("action_serve", []) + spec.get("action_call", []):
+        try:
+            action_class(action["type"])
+        except CannotPose as exc:
+            who = f"{spec.get('component', spec['name'])} ({spec['name']})"
+            print(f"stand-in for {who}: cannot act out action {action['action']}: {exc}",
+                  file=sys.stderr)  # fmt: skip
+            return 3
     rclpy.init(args=argv)
     node = None
     try:
