@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
-from rosreconf.formats.generate import generate, write
+from rosreconf.synthetic import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import Configuration
 from rosreconf.model.validity import is_valid

@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import problems
 
-from rosreconf.formats.generate import generate, write
+from rosreconf.synthetic import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.model.validity import edge_interfaces

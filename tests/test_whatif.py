@@ -12,7 +12,7 @@ from typer.testing import CliRunner
 
 from rosreconf.analysis.whatif import analyse, sweep
 from rosreconf.cli.app import app
-from rosreconf.formats.generate import generate, write
+from rosreconf.synthetic import generate, write
 from rosreconf.formats.loader import load_bundled, load_paths
 from rosreconf.model import Configuration
 from rosreconf.model.validity import is_valid
