@@ -15,8 +15,7 @@ numbers resolved with YAML 1.2.
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
@@ -206,20 +205,6 @@ def _simulation(node: Node, where: dict[str, Span]) -> Simulation:
     )
 
 
-_LIST_KEYS = {
-    key: [sys.intern(f"{key}.{i}") for i in range(64)] for key in ("provides", "requires")
-}
-"""The ``where`` keys of a component's first provisions and requirements: one string per key
-for the whole library, not one per component."""
-
-
-def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[YNode]) -> None:
-    """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
-    names = _LIST_KEYS[kind]
-    for i, n in enumerate(listed):
-        where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = span_of(n)
-
-
 def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
     get = item.get
     qos: dict[str, QosProfile] = {}
@@ -254,8 +239,8 @@ def component_where(node: Node) -> dict[str, Span]:
         for n in seq_of(get(key)):
             where[f"{key}.{text_of(n)}"] = span_of(n)
     provides, requires = seq_of(get("provides")), seq_of(get("requires"))
-    _where_listed(where, "provides", provides)
-    _where_listed(where, "requires", requires)
+    for kind, listed in (("provides", provides), ("requires", requires)):
+        where.update((f"{kind}.{i}", span_of(n)) for i, n in enumerate(listed))
     for n in provides:  # the first of an interface provided twice
         entry = map_of(n)
         kind = _kind(entry)
