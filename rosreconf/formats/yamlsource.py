@@ -170,17 +170,28 @@ infinite, yaml-rs as integers)."""
 
 
 def _numbers_agree(data: bytes) -> bool:
-    """Tell whether every word of ``data`` that yaml-rs may read as a number is one in YAML 1.2.
+    """Tell whether yaml-rs reads every word of ``data`` that may be a number as YAML 1.2 does.
 
     yaml-rs also reads ``1_000``, ``0b1``, ``+0x1F`` or ``.iNf`` as numbers, which YAML 1.2
     (``resolve_plain``) reads as text; a file with such a word, even in a comment or a quoted
-    value, is left to ``read``.
+    value, is left to ``read``. A word YAML 1.2 reads as text (``640x480``, ``5-dof``) is
+    asked of yaml-rs alone: a scalar's reading does not depend on where it is written.
     """
+    import yaml_rs
+
     for word in set(data.translate(_WORDS).split()):
         if word[0] not in _NUMBER_START or not _MAY_BE_NUMBER.search(word):
             continue
-        if len(word) > _LONGEST_NUMBER or type(resolve_plain(word.decode())) not in NUMBER:
+        text = word.decode("utf-8", "replace")
+        if len(word) > _LONGEST_NUMBER:
             return False
+        if type(resolve_plain(text)) not in NUMBER:
+            try:
+                alone: Any = yaml_rs.loads(f"k: {text}", parse_datetime=False)
+                if type(alone["k"]) is not str:
+                    return False
+            except (ValueError, TypeError, KeyError):  # not a plain scalar alone: unsure
+                return False
     return True
 
 
@@ -204,7 +215,7 @@ def read_plain(data: bytes) -> Plain | None:
         return None
     if not _numbers_agree(data):
         return None
-    import yaml_rs  # imported by the commands that read files, when they read one
+    import yaml_rs  # imported by the commands that read files, when they read one (cached)
 
     try:
         BASE_LOADER(data).raw_parse()  # libyaml must accept the text, as ``read`` would
