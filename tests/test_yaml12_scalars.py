@@ -169,3 +169,34 @@ def test_a_number_only_yaml_rs_reads_so_is_refused_as_yaml_1_2_reads_it(
     problems = problems_of(load_paths([library]))
     expected = "not-finite" if spelling.startswith("1111") else "wrong-type"
     assert [(p.code, p.span.line, p.span.column) for p in problems] == [(expected, 8, 13)]
+
+
+def _metric_library(tmp_path: Path, key: str) -> Path:
+    library = tmp_path / "lib.yaml"
+    library.write_text(
+        "format: rosreconf/component-library\nversion: 1\nname: lib\ncomponents:\n"
+        f"  - name: A\n    abstraction: a\n    metrics:\n      {key}: 5.0\n"
+    )
+    return library
+
+
+@pytest.mark.parametrize("key", ["1", "0x1F"])
+def test_a_key_yaml_reads_as_a_number_is_refused_at_its_line_as_written(
+    tmp_path: Path, key: str
+) -> None:
+    """A metric named ``1`` is the text '1' to rosreconf, refused by the name pattern at 8:7.
+
+    yaml-rs reads such a key as a number; the file is then read by the reader of record.
+    """
+    problems = problems_of(load_paths([_metric_library(tmp_path, key)]))
+    assert [(p.code, p.span.line, p.span.column) for p in problems] == [("bad-name", 8, 7)]
+
+
+@pytest.mark.parametrize("key", ["true", "null", "no"])
+def test_a_key_yaml_reads_as_a_boolean_or_null_is_a_name_as_written(
+    tmp_path: Path, key: str
+) -> None:
+    """A metric named ``true`` or ``null`` is named so, as written (keys are never resolved)."""
+    loaded = load_paths([_metric_library(tmp_path, key)])
+    assert problems_of(loaded) == []
+    assert dict(loaded.library.components[0].metrics) == {key: 5.0}
