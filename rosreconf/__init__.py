@@ -5,9 +5,10 @@ Robot Operating System", IFAC 2014. The data flows one way, down the stages (fol
 package; docs/architecture.md)::
 
     YAML files -> formats (read, JSON Schema, value and semantic checks, model; positions
-                  looked up when a problem is reported) -> solve (count, enumerate, optimise) / analysis (reliability,
-                  performance) / planning (PDDL, planners) -> ros (launch files, live
-                  graphs) -> render (text, JSON, DOT reports) -> cli
+                  looked up when a problem is reported) -> solve (count, enumerate,
+                  optimise) / analysis (reliability, performance) / planning (PDDL,
+                  planners) -> ros (launch files, live graphs) -> render (text, JSON, DOT
+                  reports) -> cli
 """
 
 __version__ = "0.1.0"
