@@ -3,9 +3,10 @@
 Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read and checked in
 at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
 that process (``time.process_time``), every stage the loader runs (``loader.load_sources``,
-what every command takes): YAML into the positioned tree and plain data (PyYAML's composer
-over libyaml), the JSON Schema check (jsonschema-rs), the value checks, model building, the
-semantic checks. Imports are excluded (the whole-process rows of ``run.py`` include them).
+what every command takes): YAML into plain data (a library: yaml-rs, checked by libyaml;
+a schema: PyYAML's composer over libyaml, with positions), the JSON Schema check
+(jsonschema-rs), the value checks, model building, the semantic checks. Imports are excluded
+(the whole-process rows of ``run.py`` include them).
 
 ``python benchmarks/loading.py --json benchmarks/results.json`` measures and replaces the
 ``loading`` entry of the results; ``run.py`` calls ``loading`` in a full run.
@@ -28,14 +29,19 @@ STAGES = ("read", "parse", "structure", "values", "build", "check")
 
 
 def child(folder: str) -> dict[str, float]:
-    """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU)."""
+    """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU).
+
+    As the loader does (``loader._load_one``): a library through ``read_plain`` (yaml-rs),
+    its positioned tree never composed (the files are clean); a schema composed first.
+    """
+    import functools
     import gc
 
     from rosreconf.formats import loader
     from rosreconf.formats import yamlsource as ys
     from rosreconf.formats.build import build_library, build_schema
     from rosreconf.formats.checks import check
-    from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+    from rosreconf.formats.structure import DocumentKind, kind_of, named_kind, structure_problems
     from rosreconf.formats.values import duplicate_edges, value_problems
 
     d = Path(folder)
@@ -47,31 +53,38 @@ def child(folder: str) -> dict[str, float]:
     seconds["read"] = clock() - t
     libraries, schemas = [], []
     interfaces: dict[Any, Any] = {}  # shared by the library files, as the loader shares it
+    trees: list[Any] = []
     for src in sources:
         t = clock()
-        tree, plain = ys.read(src.data, src.name)
+        plain = ys.read_plain(src.data)
+        library = named_kind(plain) is DocumentKind.LIBRARY
+        if not library:
+            node, plain = ys.read(src.data, src.name)
         seconds["parse"] += clock() - t
+        tree = functools.cache(lambda src=src: ys.read(src.data, src.name)[0])
+        trees.append(tree)
         t = clock()
-        kind, _ = kind_of(tree, src.name)
-        assert kind is not None and tree is not None, f"{src.name}: format"
-        assert not list(structure_problems(tree, kind, plain)), f"{src.name}: structure"
+        kind = DocumentKind.LIBRARY if library else kind_of(node, src.name)[0]
+        assert kind is not None, f"{src.name}: format"
+        assert not structure_problems(tree, kind, plain), f"{src.name}: structure"
         seconds["structure"] += clock() - t
         t = clock()
-        library = kind is DocumentKind.LIBRARY
-        found = value_problems(tree, plain) if library else duplicate_edges(tree, plain)
+        found = value_problems(tree, plain) if library else duplicate_edges(node, plain)
         assert not found, f"{src.name}: a value problem"
         seconds["values"] += clock() - t
         t = clock()
         if library:
-            libraries.append(build_library(tree, src.name, interfaces))
+            libraries.append(build_library(plain, src.name, tree, interfaces))
         else:
-            schemas.append(build_schema(tree, src.name))
+            assert node is not None
+            schemas.append(build_schema(node, src.name))
         seconds["build"] += clock() - t
     t = clock()
     problems = check(libraries, schemas, library_complete=True)
     seconds["check"] = clock() - t
     assert not problems, problems[:3]
     seconds["total"] = sum(seconds[s] for s in STAGES)
+    assert not any(t.cache_info().currsize for t in trees), "a clean file was composed"
 
     seconds["bytes"] = float(sum(len(s.data) for s in sources))
     seconds["libyaml_reader"] = float(ys.BASE_LOADER.__name__ == "CSafeLoader")
@@ -79,17 +92,19 @@ def child(folder: str) -> dict[str, float]:
     return seconds
 
 
-FLOORS = ("libyaml", "compose")
+FLOORS = ("libyaml", "yaml_rs", "compose")
 
 
 def floors(texts: list[bytes]) -> dict[str, float]:
     """Time what a reader over PyYAML's C binding pays before rosreconf's own work.
 
     ``libyaml``: libyaml parsing the texts with no Python object per event
-    (``CParser.raw_parse``); ``compose``: PyYAML's ``yaml.compose`` over libyaml with its own
-    (YAML 1.1) resolver, the node tree rosreconf's reader builds on.
+    (``CParser.raw_parse``); ``yaml_rs``: yaml-rs's plain data alone (``read_plain`` adds
+    libyaml's parse and its guards); ``compose``: PyYAML's ``yaml.compose`` over libyaml with
+    its own (YAML 1.1) resolver, the positioned tree a file with a problem is composed into.
     """
     import yaml
+    import yaml_rs
 
     clock = time.process_time
     t = clock()
@@ -98,8 +113,12 @@ def floors(texts: list[bytes]) -> dict[str, float]:
     raw = clock() - t
     t = clock()
     for text in texts:
+        yaml_rs.loads(text.decode(), parse_datetime=False)
+    rust = clock() - t
+    t = clock()
+    for text in texts:
         yaml.compose(text, Loader=yaml.CSafeLoader)
-    return {"libyaml": raw, "compose": clock() - t}
+    return {"libyaml": raw, "yaml_rs": rust, "compose": clock() - t}
 
 
 def loading(folder: Path, runs: int) -> dict[str, Any]:
@@ -118,8 +137,12 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "bytes": int(results[0]["bytes"]),
         "seconds": medians,
         "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
-        "floors": "libyaml: CParser.raw_parse (no Python objects); compose: yaml.compose",
+        "floors": (
+            "libyaml: CParser.raw_parse (no Python objects); yaml_rs: yaml_rs.loads alone; "
+            "compose: yaml.compose"
+        ),
         "reader": (
+            "libraries: yaml-rs's plain data, checked by libyaml (read_plain); schemas: "
             "PyYAML's composer over libyaml (yaml.CSafeLoader)"
             if all(r["libyaml_reader"] for r in results)
             else "PyYAML's pure-Python composer (no libyaml)"

@@ -309,7 +309,7 @@ def write_in_child(roles: int, candidates: int, folder: Path) -> None:
 
 def split_write(roles: int, candidates: int, folder: Path, per: int = 1000) -> None:
     """Write a generated library in files of ``per`` components (each under the 4 MiB limit)."""
-    from rosreconf.formats.generate import generate
+    from rosreconf.synthetic import generate
 
     gen = generate(roles, candidates, 0.2, seed=1)
     lines = gen.library.splitlines(keepends=True)
@@ -664,7 +664,7 @@ def main() -> None:
         flat = {n: measure(f"list{n}", stream, 1, args.timeout) for n in counts}
         r, k = (8, 2) if args.quick else SIMULATE_SIZE
         sim_folder = Path(tmp) / f"sim{r}x{k}"
-        from rosreconf.formats.generate import generate, write
+        from rosreconf.synthetic import generate, write
 
         write(generate(r, k, 0.2, seed=1, dynamics=True), sim_folder)
         simulate = simulate_sweep(sim_folder, 1 if args.quick else 3, args.timeout)
@@ -893,7 +893,7 @@ def simulate_sweep(folder: Path, runs: int, timeout: float) -> dict[str, Any]:
 
 def update_simulate(path: Path, timeout: float) -> None:
     """Measure only the simulate sweep and replace its entry in the results at ``path``."""
-    from rosreconf.formats.generate import generate, write
+    from rosreconf.synthetic import generate, write
 
     r, k = SIMULATE_SIZE
     with tempfile.TemporaryDirectory() as tmp:

@@ -14,7 +14,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.model.validity import is_valid
@@ -22,6 +21,7 @@ from rosreconf.solve.factors import TooHard
 from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.optimum import first
 from rosreconf.solve.solver import ClingoEngine, first_configuration
+from rosreconf.synthetic import generate, write
 
 
 def _lex_key(inst: Instance, assignment: dict[str, str]) -> list[int]:

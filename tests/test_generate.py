@@ -12,13 +12,13 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import Configuration
 from rosreconf.model.validity import is_valid
 from rosreconf.solve.counting import count
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.solver import ClingoEngine
+from rosreconf.synthetic import generate, write
 
 
 def test_same_seed_same_bytes() -> None:

@@ -18,9 +18,9 @@ from typer.testing import CliRunner
 from rosreconf import jsonout
 from rosreconf.cli.app import app
 from rosreconf.formats import yamlsource
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.render.reports import enumerate as enumerate_report
+from rosreconf.synthetic import generate, write
 
 CASES = Path(__file__).parent / "cases"
 REPO = Path(__file__).resolve().parent.parent

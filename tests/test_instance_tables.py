@@ -18,12 +18,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import problems
 
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.model.validity import edge_interfaces
 from rosreconf.solve.factors import constraint_factors
 from rosreconf.solve.instance import Instance, compile_instance, interchangeable, prune
+from rosreconf.synthetic import generate, write
 
 
 def _instance(

@@ -11,7 +11,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from randomlib import brute_force, problems
 
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.model.validity import is_valid
@@ -19,6 +18,7 @@ from rosreconf.solve.factors import TooHard
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.optimum import minimise
 from rosreconf.solve.solver import ClingoEngine, EliminationEngine, Objective, optimise, unary_costs
+from rosreconf.synthetic import generate, write
 
 PROPS = settings(max_examples=examples(150))
 

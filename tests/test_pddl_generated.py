@@ -1,4 +1,4 @@
-"""Cross-check the PDDL encoding against clingo on generated libraries (rosreconf.formats.generate).
+"""Cross-check the PDDL encoding against clingo on generated libraries (rosreconf.synthetic).
 
 Two checks: enumerating by planning (forbid each configuration found) yields exactly
 clingo's set; and every Fast Downward plan on a random small instance, with random failures,
@@ -17,7 +17,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from pddlcheck import chosen, plan_all
 
-from rosreconf.formats.generate import generate, write
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.model.validity import is_valid
@@ -25,6 +24,7 @@ from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.planners import FastDownward, PlanResult, PlanStatus, solve
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.solver import Objective, configurations
+from rosreconf.synthetic import generate, write
 
 pytestmark = pytest.mark.planner
 

@@ -9,8 +9,8 @@ import typer
 from rosreconf.cli.common import finite
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
-from rosreconf.formats.generate import MAX_COMPONENTS, check_sizes, generate, write
 from rosreconf.outfiles import output_folder
+from rosreconf.synthetic import MAX_COMPONENTS, check_sizes, generate, write
 
 
 def generate_command(

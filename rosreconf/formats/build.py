@@ -4,27 +4,22 @@ The loader calls these only after a file passed its JSON Schema and value checks
 key the Schema requires is present and every value has its type; what is left here is to
 turn YAML's shapes into the model (components, requirements, launch data, dynamics, system
 graphs) and to record where each value was written (``span``, ``where``), so that the
-semantic checks can point at ``file:line:column``. It reads the positioned tree
-(``yamlsource.read``) through ``nodes``: names as the text written, numbers resolved with
-YAML 1.2.
+semantic checks can point at ``file:line:column``.
+
+A library is built from its plain data (``yamlsource.read_plain`` or ``read``), and where
+its values are written is looked up in the positioned tree only when a check asks
+(``_Where``: a clean library never composes one). A schema, a small file, is built from its
+positioned tree (``yamlsource.read``) through ``nodes``: names as the text written,
+numbers resolved with YAML 1.2.
 """
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping
 from types import MappingProxyType
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
-from rosreconf.formats.nodes import (
-    NUMBER,
-    SCALAR,
-    MappingNode,
-    field_text,
-    scalars_of,
-    seq_of,
-    text_of,
-)
+from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, field_text, lookup, seq_of, text_of
 from rosreconf.formats.nodes import Node as YNode
 from rosreconf.formats.nodes import fields as map_of
 from rosreconf.formats.nodes import span as span_of
@@ -56,15 +51,12 @@ __all__ = ["Interfaces", "Node", "build_library", "build_schema", "provision_key
 Node: TypeAlias = "YNode | None"
 """What the builder reads: a node of the positioned tree, or None for an absent key."""
 
+Doc: TypeAlias = dict[str, Any]
+"""A mapping of plain data that passed its JSON Schema: its keys and value types are known."""
+
 _NO_NAMES: frozenset[str] = frozenset()
 """One empty set for every component without needs, excludes or schemas: each empty
 frozenset is a 216-byte object of its own, 60 MB over a 10,000-role library."""
-
-
-def _names(node: Node) -> frozenset[str]:
-    """Return a list of names as a set (the shared empty set when there are none)."""
-    items = seq_of(node)
-    return frozenset(text_of(n) for n in items) if items else _NO_NAMES
 
 
 Interfaces: TypeAlias = dict[tuple[str, str, str], Interface]
@@ -73,20 +65,26 @@ library writes each of its few distinct interfaces many times, and one shared, e
 (frozen) object per distinct interface saves building and hashing a new one each time."""
 
 
-def _interface(node: Node, seen: Interfaces, found: _Found) -> Interface:
-    """Return the (shared) interface ``node`` describes; record its QoS in ``found``."""
-    items = map_of(node)
-    kind = "service" if "service" in items else "action" if "action" in items else "topic"
-    label = text_of(items[kind])
-    key = (kind, label, text_of(items["type"]))
+def _interface(item: Doc, seen: Interfaces, qos: dict[str, QosProfile]) -> Interface:
+    """Return the (shared) interface ``item`` describes; record its QoS in ``qos``."""
+    kind = _kind(item)
+    label = item[kind]
+    key = (kind, label, item["type"])
     interface = seen.get(key)
     if interface is None:
         interface = seen[key] = Interface(InterfaceKind(kind), label, key[2])
-    if "qos" in items:
-        spec = items["qos"]
-        found.qos[label] = QosProfile.from_dict(scalars_of(spec))
-        found.where[f"qos.{label}"] = span_of(spec)
+    if "qos" in item:
+        spec = item["qos"].items()
+        qos[label] = QosProfile.from_dict({k: v for k, v in spec if type(v) not in _NESTED})
     return interface
+
+
+_NESTED = (dict, list)
+
+
+def _kind(keys: Mapping[str, object]) -> str:
+    """Return which kind of interface a mapping describes (the JSON Schema allows one)."""
+    return "service" if "service" in keys else "action" if "action" in keys else "topic"
 
 
 def provision_key(iface: Interface) -> str:
@@ -94,49 +92,44 @@ def provision_key(iface: Interface) -> str:
     return f"provides.{iface.kind}:{iface.label}:{iface.written}"
 
 
-def _requirement(node: Node, seen: Interfaces, found: _Found) -> Requirement:
-    items = map_of(node)
-    if "any_of" in items:
-        options = tuple([_interface(o, seen, found) for o in seq_of(items["any_of"])])
-        return Requirement(options, span_of(node))
-    return Requirement((_interface(node, seen, found),), span_of(node))
+def _requirement(item: Doc, seen: Interfaces, qos: dict[str, QosProfile]) -> Requirement:
+    """Return a requirement; where it is written is its component's ``requires.<i>``."""
+    if "any_of" in item:
+        return Requirement(tuple([_interface(o, seen, qos) for o in item["any_of"]]))
+    return Requirement((_interface(item, seen, qos),))
 
 
-class _Found:
-    """What building a component's interfaces finds on the way: QoS profiles and positions.
-
-    Interfaces, their QoS and the positions of both are collected in one walk over a
-    component's provisions and requirements (a large library has 35,000 of them).
-    """
-
-    __slots__ = ("qos", "where")
-
-    def __init__(self, where: dict[str, Span]) -> None:
-        self.qos: dict[str, QosProfile] = {}
-        self.where = where
-
-
-def _launch(node: Node) -> RosLaunch | None:
-    items = map_of(node)
+def _launch(item: Doc) -> RosLaunch:
     params: dict[str, str | int | float | bool] = {}
-    for key, value in map_of(items.get("parameters")).items():
-        if type(value) is MappingNode:  # {substitution: ...}, marked by the user
-            params[key] = Substitution(text_of(map_of(value)["substitution"]))
-            continue
-        scalar = value_of(value)
-        assert isinstance(scalar, SCALAR)
-        params[key] = scalar
-    remaps = {k: text_of(v) for k, v in map_of(items.get("remappings")).items()}
+    for key, value in item.get("parameters", {}).items():
+        marked = type(value) is dict  # {substitution: ...}, marked by the user
+        params[key] = Substitution(value["substitution"]) if marked else value
     return RosLaunch(
-        package=text_of(items["package"]),
-        executable=text_of(items["executable"]),
+        package=item["package"],
+        executable=item["executable"],
         parameters=MappingProxyType(params),
-        remappings=MappingProxyType(remaps),
-        namespace=text_of(items["namespace"]) if "namespace" in items else None,
-        lifecycle=value_of(items.get("lifecycle")) is True,
-        node=text_of(items["node"]) if "node" in items else None,
-        args=tuple(text_of(a) for a in seq_of(items.get("args"))),
+        remappings=MappingProxyType(dict(item.get("remappings", {}))),
+        namespace=item.get("namespace"),
+        lifecycle=item.get("lifecycle") is True,
+        node=item.get("node"),
+        args=tuple(item.get("args", ())),
     )
+
+
+def _numbers(values: list[Any]) -> tuple[float, ...]:
+    return tuple(float(v) if isinstance(v, NUMBER) else 0.0 for v in values)
+
+
+def _component_dynamics(item: Doc) -> Dynamics:
+    """Build a component's transfer function or state-space model from its plain data."""
+    delay = item.get("delay")
+    delay = float(delay) if isinstance(delay, NUMBER) else 0.0
+    if "state_space" in item:
+        ss = item["state_space"]
+        a, b, c, d = (tuple(_numbers(row) for row in ss[part]) for part in "ABCD")
+        return StateSpace(a, b, c, d, delay)
+    tf = item["transfer_function"]
+    return TransferFunction(_numbers(tf["num"]), _numbers(tf["den"]), delay)
 
 
 def _number(node: Node, default: float) -> float:
@@ -212,78 +205,107 @@ def _simulation(node: Node, where: dict[str, Span]) -> Simulation:
     )
 
 
-_LIST_KEYS = {
-    key: [sys.intern(f"{key}.{i}") for i in range(64)] for key in ("provides", "requires")
-}
-"""The ``where`` keys of a component's first provisions and requirements: one string per key
-for the whole library, not one per component."""
-
-
-def _where_listed(where: dict[str, Span], kind: str, listed: Sequence[YNode]) -> None:
-    """Record where each provision or requirement is (``provides.<i>``, ``requires.<i>``)."""
-    names = _LIST_KEYS[kind]
-    for i, n in enumerate(listed):
-        where[names[i] if i < len(names) else sys.intern(f"{kind}.{i}")] = span_of(n)
-
-
-def _component(node: Node, seen: Interfaces) -> Component:
-    items = map_of(node)
-    get = items.get
-    metrics: dict[str, float] = {}
-    for key, value in map_of(get("metrics")).items():
-        metric = value_of(value)
-        assert isinstance(metric, NUMBER)
-        metrics[key] = float(metric)
-    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
-    where = {"name": span_of(items["name"]), "abstraction": span_of(items["abstraction"])}
-    for key in ("needs", "excludes", "schemas"):
-        for n in seq_of(get(key)):
-            where[f"{key}.{text_of(n)}"] = span_of(n)
-    found = _Found(where)
-    _where_listed(where, "provides", provides)
-    listed = [_interface(n, seen, found) for n in provides]
-    provided = frozenset(listed)
-    for n, iface in zip(provides, listed, strict=True):  # the set keeps no file order
-        where.setdefault(provision_key(iface), span_of(n))
-    _where_listed(where, "requires", requires)
-    required = tuple([_requirement(n, seen, found) for n in requires])
-    for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
-        where[f"ros.args.{i}"] = span_of(n)
-    fp = value_of(get("failure_probability"))
+def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
+    get = item.get
+    qos: dict[str, QosProfile] = {}
+    provided = frozenset([_interface(p, seen, qos) for p in get("provides", ())])
+    required = tuple([_requirement(r, seen, qos) for r in get("requires", ())])
+    fp = get("failure_probability")
     return Component(
-        name=text_of(items["name"]),
-        abstraction=text_of(items["abstraction"]),
+        name=item["name"],
+        abstraction=item["abstraction"],
         provides=provided,
         requires=required,
         failure_probability=float(fp) if isinstance(fp, NUMBER) else None,
-        needs=_names(get("needs")) if "needs" in items else _NO_NAMES,
-        excludes=_names(get("excludes")) if "excludes" in items else _NO_NAMES,
-        schemas=_names(get("schemas")) if "schemas" in items else _NO_NAMES,
-        launch=_launch(items["ros"]) if "ros" in items else None,
-        metrics=MappingProxyType(metrics),
-        qos=MappingProxyType(found.qos),
-        dynamics=_dynamics(items["dynamics"], "dynamics", where) if "dynamics" in items else None,
-        description=field_text(items, "description"),
-        span=span_of(node),
-        where=MappingProxyType(where),
+        needs=frozenset(item["needs"]) if get("needs") else _NO_NAMES,
+        excludes=frozenset(item["excludes"]) if get("excludes") else _NO_NAMES,
+        schemas=frozenset(item["schemas"]) if get("schemas") else _NO_NAMES,
+        launch=_launch(item["ros"]) if "ros" in item else None,
+        metrics=MappingProxyType({k: float(v) for k, v in get("metrics", {}).items()}),
+        qos=MappingProxyType(qos),
+        dynamics=_component_dynamics(item["dynamics"]) if "dynamics" in item else None,
+        description=get("description", ""),
+        where=where,
     )
 
 
-def build_library(tree: Node, name: str, seen: Interfaces | None = None) -> ComponentLibrary:
-    """Build a library file's model; ``seen`` shares interfaces with files built before.
+def component_where(node: Node) -> dict[str, Span]:
+    """Return where a component's values are written (``Component.where``), from its node."""
+    items = map_of(node)
+    get = items.get
+    where = {"": span_of(node), "name": span_of(items["name"])}
+    where["abstraction"] = span_of(items["abstraction"])
+    for key in ("needs", "excludes", "schemas"):
+        for n in seq_of(get(key)):
+            where[f"{key}.{text_of(n)}"] = span_of(n)
+    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
+    for kind, listed in (("provides", provides), ("requires", requires)):
+        where.update((f"{kind}.{i}", span_of(n)) for i, n in enumerate(listed))
+    for n in provides:  # the first of an interface provided twice
+        entry = map_of(n)
+        kind = _kind(entry)
+        written = f"{kind}:{text_of(entry[kind])}:{text_of(entry['type'])}"
+        where.setdefault(f"provides.{written}", span_of(n))
+    for n in (*provides, *requires):  # in build order: the last QoS of a label wins
+        for iface in seq_of(map_of(n).get("any_of")) or [n]:
+            entry = map_of(iface)
+            if "qos" in entry:
+                where[f"qos.{text_of(entry[_kind(entry)])}"] = span_of(entry["qos"])
+    for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
+        where[f"ros.args.{i}"] = span_of(n)
+    if "dynamics" in items:
+        _dynamics(items["dynamics"], "dynamics", where)
+    return where
 
-    ``tree`` is the file's positioned tree (see the module doc). One ``seen`` for all the
+
+class _Where(Mapping[str, Span]):
+    """A component's ``where``, looked up in its file's tree when first read.
+
+    The tree (``TreeOf``) is composed then, so positions cost nothing until a problem is
+    reported (``loader``); ``""`` is where the component itself is (``Component.at``).
+    """
+
+    __slots__ = ("_found", "_index", "_tree")
+
+    def __init__(self, tree: TreeOf, index: int) -> None:
+        self._tree, self._index = tree, index
+        self._found: dict[str, Span] | None = None
+
+    def _spans(self) -> dict[str, Span]:
+        if self._found is None:
+            self._found = component_where(lookup(self._tree(), ["components", self._index]))
+        return self._found
+
+    def __getitem__(self, key: str) -> Span:
+        return self._spans()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._spans())
+
+    def __len__(self) -> int:
+        return len(self._spans())
+
+
+def build_library(
+    plain: Plain, name: str, tree: TreeOf, seen: Interfaces | None = None
+) -> ComponentLibrary:
+    """Build a library file's model from its plain data; ``seen`` shares interfaces.
+
+    ``plain`` passed the JSON Schema and value checks; ``tree`` gives the file's positioned
+    tree, asked for only when a position is (see ``_Where``). One ``seen`` for all the
     library files of a load makes every use of an interface, in any file, the same object:
     a requirement in one file and the provision meeting it in another then match by
     identity in every set and dict, without a comparison.
     """
-    items = map_of(tree)
+    assert isinstance(plain, dict), "a library that passed its JSON Schema is a mapping"
+    doc: Doc = plain
     if seen is None:
         seen = {}
+    items = doc["components"]
     return ComponentLibrary(
-        name=text_of(items["name"]),
-        components=tuple([_component(n, seen) for n in seq_of(items["components"])]),
-        description=field_text(items, "description"),
+        name=doc["name"],
+        components=tuple([_component(c, seen, _Where(tree, i)) for i, c in enumerate(items)]),
+        description=doc.get("description", ""),
         source=(name,),
     )
 

@@ -158,17 +158,16 @@ def _couplings(index: _Index) -> Iterator[Problem]:
     for c in index.coupled:  # most components have no needs or excludes
         for key, names in (("needs", c.needs), ("excludes", c.excludes)):
             for name in sorted(names):
-                span = c.at(f"{key}.{name}")
                 if name == c.name:
                     yield Problem(
-                        span,
+                        c.at(f"{key}.{name}"),
                         f"{c.name} {key} itself",
                         f"remove '{name}' from {key}",
                         code="self-coupling",
                     )
                 elif name not in index.known:
                     yield Problem(
-                        span,
+                        c.at(f"{key}.{name}"),
                         f"{c.name} {key} '{name}', which is not a component of the library",
                         "name a component defined in a library file, or remove it",
                         code="unknown-component",

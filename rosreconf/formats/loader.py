@@ -1,17 +1,20 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file goes through three steps, once: YAML -> positioned tree and plain data
-(``yamlsource``), the plain data checked against the shipped JSON Schema (``structure``) and
-its values checked (``values``), each problem placed by looking its path up in the tree;
-then model objects (``build``), which keep where each value was written. Problems are
-collected per file and across files; the caller gets the model of every well-formed file
-*and* the list of problems, so ``validate`` can report everything in one run while
-``enumerate`` can refuse to work on invalid input.
+Each file goes through three steps, once: YAML -> plain data (``yamlsource``), the plain data
+checked against the shipped JSON Schema (``structure``) and its values checked (``values``);
+then model objects (``build``), which know where each value was written. Positions are looked
+up when a problem is reported: a library that yaml-rs reads with certainty
+(``yamlsource.read_plain``) has its positioned tree composed only when a problem needs a
+``file:line:column``; every other file is composed first (``yamlsource.read``), which also
+says what is wrong with its YAML. Problems are collected per file and across files; the
+caller gets the model of every well-formed file *and* the list of problems, so ``validate``
+can report everything in one run while ``enumerate`` can refuse to work on invalid input.
 """
 
 from __future__ import annotations
 
 import contextlib
+import functools
 import gc
 import re
 from collections.abc import Iterable, Iterator, Sequence
@@ -22,8 +25,9 @@ from rosreconf.errors import InvalidInputError, Problem, Severity
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
+from rosreconf.formats.nodes import Node
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
-from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
+from rosreconf.formats.structure import DocumentKind, kind_of, named_kind, structure_problems
 from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
@@ -96,32 +100,51 @@ def _load_sources(sources: Iterable[Source]) -> Loaded:
             loaded.library_complete = False
             continue
         try:
-            tree, plain = ys.read(src.data, src.name)
+            _load_one(src, loaded, interfaces)
         except InvalidInputError as exc:
             loaded.problems.extend(exc.problems)
             loaded.library_complete = False
-            continue
-        kind, problems = kind_of(tree, src.name)
-        if kind is None or tree is None:
-            loaded.problems.extend(problems)
-            loaded.library_complete = False
-            continue
-        loaded.problems.extend(todo_marks(src))
-        structural = list(structure_problems(tree, kind, plain))
-        if not structural and kind is DocumentKind.LIBRARY:
-            structural = value_problems(tree, plain)
-        elif not structural:
-            structural = schema_value_problems(tree, plain)
-        if structural:
-            loaded.problems.extend(structural)
-            loaded.library_complete &= kind is not DocumentKind.LIBRARY
-            continue
-        if kind is DocumentKind.LIBRARY:
-            loaded.libraries.append(build_library(tree, src.name, interfaces))
-        else:
-            loaded.problems.extend(duplicate_edges(tree, plain))
-            loaded.schemas.append(build_schema(tree, src.name))
     return loaded
+
+
+def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
+    """Read, check and build one file into ``loaded`` (see the module docstring).
+
+    Raises:
+        InvalidInputError: the file is not YAML rosreconf reads, or names no known format.
+    """
+    composed = functools.cache(lambda: ys.read(src.data, src.name))  # once, when needed
+
+    def tree() -> Node:
+        found = composed()[0]
+        assert found is not None, "asked only of a document that names its format"
+        return found
+
+    plain = ys.read_plain(src.data)
+    kind = named_kind(plain)
+    structural = None
+    if kind is DocumentKind.LIBRARY:  # a schema is built from its tree: compose it first
+        with contextlib.suppress(ValueError):  # a key yaml-rs read as a number: ``read`` says
+            structural = structure_problems(tree, kind, plain)
+    if structural is None:
+        plain = composed()[1]
+        kind, problems = kind_of(composed()[0], src.name)
+        if kind is None:
+            raise InvalidInputError(problems)
+        structural = structure_problems(tree, kind, plain)
+    loaded.problems.extend(todo_marks(src))
+    if not structural and kind is DocumentKind.LIBRARY:
+        structural = value_problems(tree, plain)
+    elif not structural:
+        structural = schema_value_problems(tree(), plain)
+    if structural:
+        loaded.problems.extend(structural)
+        loaded.library_complete &= kind is not DocumentKind.LIBRARY
+    elif kind is DocumentKind.LIBRARY:
+        loaded.libraries.append(build_library(plain, src.name, tree, interfaces))
+    else:
+        loaded.problems.extend(duplicate_edges(tree(), plain))
+        loaded.schemas.append(build_schema(tree(), src.name))
 
 
 TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")

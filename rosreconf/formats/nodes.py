@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TypeAlias
 
 from yaml.nodes import MappingNode as MappingNode
@@ -23,10 +23,12 @@ from rosreconf.model import Span
 
 Scalar: TypeAlias = str | int | float | bool | None
 Plain: TypeAlias = "Scalar | dict[str, Plain] | list[Plain]"
+TreeOf: TypeAlias = Callable[[], "Node"]
+"""A file's positioned tree, composed when first asked for (``loader``): positions are looked
+up when a problem is reported."""
 
 NUMBER = (int, float)
-SCALAR = (str, int, float, bool)
-"""Tuples for isinstance: ``int | float`` in a test builds a union each time it runs."""
+"""A tuple for isinstance: ``int | float`` in a test builds a union each time it runs."""
 
 
 _new_span = tuple.__new__
@@ -114,11 +116,6 @@ def seq_of(node: Node | None) -> list[Node]:
 def field_text(items: dict[str, Node], key: str, default: str = "") -> str:
     """Return the text of ``items[key]`` as written, or ``default`` when the key is absent."""
     return text_of(items[key]) if key in items else default
-
-
-def scalars_of(node: Node | None) -> dict[str, object]:
-    """Return a (schema-checked) mapping of scalars as plain Python values."""
-    return {k: value(v) for k, v in fields(node).items() if type(v) is ScalarNode}
 
 
 _INT = re.compile(r"[-+]?[0-9]+\Z")

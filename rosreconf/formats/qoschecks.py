@@ -55,7 +55,7 @@ def _qos_pair(
     chosen: bool,
 ) -> Iterator[Problem]:
     """Check the topics ``consumer`` subscribes that ``provider`` publishes."""
-    for req in consumer.requires:
+    for i, req in enumerate(consumer.requires):
         for option in req.options:
             if option.kind is not InterfaceKind.TOPIC or option not in provider.provides:
                 continue
@@ -67,7 +67,7 @@ def _qos_pair(
             why = incompatibilities(offered, requested)
             if not why:
                 continue
-            where = consumer.at(f"qos.{label}") if label in consumer.qos else req.span
+            where = consumer.at(f"qos.{label}" if label in consumer.qos else f"requires.{i}")
             if chosen:
                 scope = f"the nominal configuration of {schema.name}"
             else:

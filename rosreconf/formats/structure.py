@@ -15,7 +15,7 @@ import difflib
 import enum
 import json
 import math
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from functools import cache
 from typing import Any
 
@@ -97,22 +97,31 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def structure_problems(
-    tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain
-) -> Iterator[Problem]:
-    """Yield every structural problem of ``plain`` against ``kind``'s JSON Schema.
+def named_kind(plain: nodes.Plain) -> DocumentKind | None:
+    """Return the format a document's plain data names exactly, else None (``kind_of`` says)."""
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    return DocumentKind(fmt) if isinstance(fmt, str) and fmt in _KINDS else None
+
+
+_KINDS = frozenset(DocumentKind)
+
+
+def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
+    """Return every structural problem of ``plain`` against ``kind``'s JSON Schema.
 
     jsonschema-rs gives the verdict and the errors in one pass; each error's instance path
-    is looked up in ``tree`` (the positioned tree ``plain`` was read from) for its position.
+    is looked up in ``tree()`` (the positioned tree ``plain`` was read from) for its position.
+
+    Raises:
+        ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).
     """
     errors = list(validator(kind).iter_errors(plain))
     if not errors:
-        return
+        return []
     root = json_schema(kind)
-    for error in sorted(errors, key=lambda e: list(map(str, e.instance_path))):
-        found = _Error(error, root).as_number(plain)
-        if found is not None:
-            yield _problem_of(found, tree)
+    found = [_Error(e, root).as_number(plain) for e in errors]
+    ordered = sorted((f for f in found if f is not None), key=lambda e: list(map(str, e.path)))
+    return [_problem_of(f, tree()) for f in ordered]
 
 
 class _Error:

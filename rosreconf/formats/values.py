@@ -17,8 +17,9 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   simulation computes correctly within are ``simchecks``'s, on the built model.
 
 These checks run on the plain data once its JSON Schema check passed, before model objects
-are built; a value found wrong is looked up in the positioned tree for its ``file:line:column``
-and its text as written, so nothing downstream ever sees such a value.
+are built; a value found wrong is looked up in the positioned tree (composed then, when the
+loader read the file without one) for its ``file:line:column`` and its text as written, so
+nothing downstream ever sees such a value.
 """
 
 from __future__ import annotations
@@ -50,10 +51,10 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
+def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
     """Return the problems of a structurally valid component library's numbers and launch values.
 
-    ``plain`` is the library's plain data and ``tree`` the positioned tree it was read from,
+    ``plain`` is the library's plain data and ``tree()`` the positioned tree it was read from,
     where each value found wrong is looked up (by its path) for its position and text.
     """
     problems: list[Problem] = []
@@ -63,7 +64,7 @@ def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
             continue
 
         def at(*path: str, i: int = i) -> nodes.Node | None:
-            return nodes.lookup(tree, ["components", i, *path])
+            return nodes.lookup(tree(), ["components", i, *path])
 
         if not _within(component.get("failure_probability"), 1.0):
             problems.extend(_number(at("failure_probability"), "failure_probability", 0.0, 1.0))
@@ -79,7 +80,7 @@ def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
         if not clean_numbers(component.get("dynamics")):
             problems.extend(_huge(at("dynamics"), f"components[{i}].dynamics"))
         if not _clean_qos(component):
-            problems.extend(_qos_numbers(nodes.lookup(tree, ["components", i])))
+            problems.extend(_qos_numbers(nodes.lookup(tree(), ["components", i])))
     return problems
 
 

@@ -212,7 +212,9 @@ class Component:
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``.
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``;
+            ``""`` is the component itself, when the loader looks positions up only when asked
+            (then ``span`` is not given). Positions never take part in comparisons.
     """
 
     name: str
@@ -233,7 +235,8 @@ class Component:
 
     def at(self, key: str) -> Span:
         """Return where the value ``key`` (see ``where``) is written, else the component."""
-        return self.where.get(key, self.span)
+        found = self.where.get(key)
+        return found if found is not None else self.where.get("", self.span)
 
     @property
     def node_name(self) -> str:
