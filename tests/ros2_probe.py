@@ -1,28 +1,55 @@
 #!/usr/bin/env python3
 """Read a ROS 2 graph with rclpy itself, the tests' independent reference (run under rclpy).
 
-Usage: ros2_probe.py SECONDS [NODE ...]. After SECONDS of discovery, prints one JSON document:
+Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [NODE ...]. Prints one JSON document:
 {"nodes": [full names], "topics": {name: [types]}, "services": {name: [types]},
  "states": {node: lifecycle state label, via its get_state service}}.
+
+It reads once every ``--wait-for`` name (a node, topic or service) is seen and the graph has
+then not changed for 1 s, or after SECONDS at most: discovery takes longer on a busy machine,
+so a fixed sleep would make the tests that read it fail by chance.
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 import time
+from typing import Any
 
 import rclpy
 from lifecycle_msgs.srv import GetState
 
 
+def _graph(node: Any) -> tuple[list[str], dict[str, Any], dict[str, Any]]:
+    names = sorted((ns.rstrip("/") + "/" + n) for n, ns in node.get_node_names_and_namespaces())
+    topics = {k: sorted(v) for k, v in node.get_topic_names_and_types()}
+    services = {k: sorted(v) for k, v in node.get_service_names_and_types()}
+    return names, topics, services
+
+
 def main() -> int:
     """Print what rclpy's graph API and the nodes' get_state services say."""
-    seconds, nodes = float(sys.argv[1]), sys.argv[2:]
+    ap = argparse.ArgumentParser()
+    ap.add_argument("seconds", type=float)
+    ap.add_argument("--wait-for", action="append", default=[])
+    ap.add_argument("nodes", nargs="*")
+    args = ap.parse_intermixed_args()
+    nodes = args.nodes
     rclpy.init()
     node = rclpy.create_node("_rosreconf_probe")
-    time.sleep(seconds)
-    names = sorted((ns.rstrip("/") + "/" + n) for n, ns in node.get_node_names_and_namespaces())
+    deadline = time.monotonic() + args.seconds
+    last, since = None, time.monotonic()
+    while time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.2)
+        graph = _graph(node)
+        if graph != last:
+            last, since = graph, time.monotonic()
+        seen = {*graph[0], *graph[1], *graph[2]}
+        if set(args.wait_for) <= seen and time.monotonic() - since >= 1.0:
+            break
+    names, topics, services = _graph(node)
     states = {}
     for name in nodes:
         client = node.create_client(GetState, f"{name}/get_state")
@@ -32,16 +59,7 @@ def main() -> int:
         future = client.call_async(GetState.Request())
         rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
         states[name] = future.result().current_state.label if future.done() else None
-    print(
-        json.dumps(
-            {
-                "nodes": names,
-                "topics": dict(node.get_topic_names_and_types()),
-                "services": dict(node.get_service_names_and_types()),
-                "states": states,
-            }
-        )
-    )
+    print(json.dumps({"nodes": names, "topics": topics, "services": services, "states": states}))
     rclpy.shutdown()
     return 0
 

@@ -15,6 +15,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +25,8 @@ import ros2_harness
 ROOT = Path(__file__).resolve().parent.parent
 JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
 PROBE = Path(__file__).with_name("ros2_probe.py")
+PROBE_SECONDS = 60.0
+"""Seconds rclpy's graph may take to show what a test waits for (a still graph ends it sooner)."""
 SCHEMAS = ROOT / "schemas"
 UP_TIMEOUT = 120.0
 """Seconds for 13 to 25 rclpy processes to come up on a busy 2-core machine."""
@@ -104,11 +107,23 @@ class Watch:
             raise
 
 
-def probe(env: dict[str, str], domain: int, *nodes: str) -> dict[str, Any]:
-    """Return rclpy's own view of the domain (tests/ros2_probe.py)."""
+def probe(
+    env: dict[str, str],
+    domain: int,
+    *nodes: str,
+    wait_for: Iterable[str] = (),
+    python: Path | None = None,
+) -> dict[str, Any]:
+    """Return rclpy's own view of the domain (tests/ros2_probe.py).
+
+    It reads once every name of ``wait_for`` and ``nodes`` is seen and the graph is still,
+    or after PROBE_SECONDS: a busy machine discovers slowly.
+    """
+    waits = [arg for name in {*wait_for, *nodes} for arg in ("--wait-for", name)]
     out = subprocess.run(
-        [str(_ros2_python()), str(PROBE), "3", *nodes],
-        env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True, timeout=120, check=True,
+        [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *nodes],
+        env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
+        timeout=PROBE_SECONDS + 60, check=True,
     )  # fmt: skip
     return dict(json.loads(out.stdout))
 
@@ -145,8 +160,8 @@ def test_kill_nsm3_replans_onto_the_dc_arm_stops_the_replaced_and_confirms(
         assert kinds.index("failed") < kinds.index("replanned") < kinds.index("conformant")
         for name in REPLACED:
             assert not alive(pids[name]), name
-        seen = probe(watch.env, ros2_domain)
         expected = {f"/{c}" for c in [*DC_ARM, "NCA1", "NCO1", "NVP1", "NREA"]}
+        seen = probe(watch.env, ros2_domain, wait_for=[*expected, "/arm_dc/elbow/servo_command"])
         assert expected <= set(seen["nodes"]), seen["nodes"]
         assert not {f"/{c}" for c in [*REPLACED, "NSM3"]} & set(seen["nodes"])
         types = seen["services"]["/arm_dc/elbow/servo_command"]
@@ -284,12 +299,10 @@ def test_a_stand_in_announces_the_librarys_invented_types(
         assert node.stdout is not None
         ready = json.loads(node.stdout.readline())
         assert ready["ready"] == "/NFB21"
-        out = subprocess.run([str(python), str(PROBE), "3"], env=env, capture_output=True,
-                             timeout=120, check=True)  # fmt: skip
-        seen = json.loads(out.stdout)
+        declared = {s["service"]: [s["type"]] for s in [*spec["serve"], *spec["call"]]}
+        seen = probe(env, ros2_domain, wait_for=declared, python=python)
         served = seen["services"]["/control/position_arm"]  # the library's remapping
         assert served == ["robot_arm_msgs/srv/PositionArm"]
-        declared = {s["service"]: [s["type"]] for s in [*spec["serve"], *spec["call"]]}
         assert len(declared) == 8  # 1 served, 7 called: all in the library's own names
         assert {n: seen["services"].get(n) for n in declared} == declared
         if distro == "jazzy":  # rosreconf's own reader (Kilted's needs issue 21's reader fix)
@@ -393,10 +406,12 @@ def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
     try:
         chosen = watch.wait("conformant")["configuration"]
         node = {role: node_live_name(library[c]) for role, c in chosen.items() if c}
-        seen = probe(watch.env, ros2_domain)  # rclpy's own graph API
-        for action, kind in [("/navigate_to_pose", "NavigateToPose"),
-                             ("/compute_path_to_pose", "ComputePathToPose"),
-                             ("/follow_path", "FollowPath")]:  # fmt: skip
+        actions = [("/navigate_to_pose", "NavigateToPose"),
+                   ("/compute_path_to_pose", "ComputePathToPose"),
+                   ("/follow_path", "FollowPath")]  # fmt: skip
+        parts = [f"{a}/_action/{p}" for a, _ in actions for p in ("send_goal", "feedback")]
+        seen = probe(watch.env, ros2_domain, wait_for=parts)  # rclpy's own graph API
+        for action, kind in actions:
             parts = f"{action}/_action/"
             assert seen["services"][parts + "send_goal"] == [f"nav2_msgs/action/{kind}_SendGoal"]
             assert seen["services"][parts + "get_result"] == [f"nav2_msgs/action/{kind}_GetResult"]
