@@ -30,7 +30,8 @@ from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.emptyroles import as_chosen
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import PROGRAM, _facts, first_configuration
+from rosreconf.solve.solver import PROGRAM, ClingoEngine, _facts, first_configuration
+from rosreconf.solve.swaps import Swapped, Swaps
 
 
 @dataclass(frozen=True)
@@ -67,12 +68,13 @@ class Outcome:
     Attributes:
         failed: the failed components, in library order.
         configuration: the surviving configuration's components in role order, or None
-            when the schema has no configuration under these failures.
+            when the schema has no configuration under these failures (a ``Swapped`` view
+            of the first configuration when twins were swapped in: ``solve.swaps``).
         solved: True when the solver decided it, False when pruning did.
     """
 
     failed: tuple[str, ...]
-    configuration: tuple[str, ...] | None
+    configuration: Sequence[str] | None
     solved: bool = True
 
     @property
@@ -266,17 +268,18 @@ def analyse(
     if marg is None:
         task = make_task(library, schema)
         relevant = relevant_components(task)
-        base = evaluate(task, ())
+        first = ClingoEngine().first(inst)
     else:
         relevant = frozenset(marg.usable())
         first = first_configuration(inst) if marg.total else None
-        base = Outcome((), None if first is None else first.components)
+    swaps = None if first is None else Swaps(inst, first)
+    base = Outcome((), None if swaps is None else swaps.whole)
     in_every = frozenset(marg.in_every()) if marg is not None else frozenset()
     order = tuple(c.name for c in library.components if c.name in relevant)
     report = SchemaReport(schema.name, len(library), order)
     report.note(base, keep=True)
     report.solver_calls = 1
-    if not base.survives:
+    if swaps is None:
         report.finish()
         return report
     for k in range(1, max_failures + 1):
@@ -289,6 +292,8 @@ def analyse(
                 decided = _prune(report.outcomes, failed)
                 if decided is None and k == 1 and failed[0] in in_every:
                     decided = Outcome(failed, None, solved=False)
+                if decided is None and (twins := swaps.avoiding(failed)) is not None:
+                    decided = Outcome(failed, twins, solved=False)
                 if decided is None:
                     yield failed
                 else:
@@ -365,8 +370,10 @@ def _prune(known: dict[frozenset[str], Outcome], failed: tuple[str, ...]) -> Out
         if sub.configuration is None:
             return Outcome(failed, None, solved=False)
         witnesses.append(sub.configuration)
-    for config in witnesses:
-        if as_set.isdisjoint(config):
+    for config in witnesses:  # a swapped view answers ``in`` in O(1), a tuple in O(roles)
+        if isinstance(config, Swapped) and not any(f in config for f in failed):
+            return Outcome(failed, config, solved=False)
+        if not isinstance(config, Swapped) and as_set.isdisjoint(config):
             return Outcome(failed, config, solved=False)
     return None
 
