@@ -120,3 +120,20 @@ def test_whatif_k2_on_a_generated_library_with_twins_and_couplings_equals_a_coun
                 if survives:
                     assert _valid(outcome, library, schema), failed
         assert report.survived(k) == (alive, len(list(itertools.combinations(names, k))))
+
+
+def test_whatif_configurations_do_not_depend_on_which_sets_a_worker_solved_before(
+    tmp_path: Path,
+) -> None:
+    """A worker keeps its ground program between chunks: each set's answer stays its own."""
+    write(generate(14, 4, 0.4, seed=11), tmp_path)
+    library, schema = _load(tmp_path)
+    task = make_task(library, schema)
+    names = [c.name for c in library]
+    sets = tuple(itertools.combinations(names, 2))
+    forward = evaluate_chunk(Chunk(task, sets))
+    backward = evaluate_chunk(Chunk(task, sets[::-1]))[::-1]
+    alone = [evaluate_chunk(Chunk(make_task(library, schema), (s,)))[0] for s in sets[:40]]
+    assert [o.configuration for o in forward] == [o.configuration for o in backward]
+    assert [o.configuration for o in forward[:40]] == [o.configuration for o in alone]
+    assert any(o.survives for o in forward) and any(not o.survives for o in forward)

@@ -8,7 +8,7 @@ all k-failure sets are computed.
 Two facts keep solver calls rare. A superset of a killing set kills (failures only remove
 candidates), and a set that misses every component of a known surviving configuration (the
 witness of one of its subsets) survives with that configuration. Only the remaining sets go
-to the solver, in chunks, through ``evaluate_chunk``: a pure function of a picklable
+to the solver, in chunks, through ``evaluate_chunk`` (``failsolve``): a pure function of a picklable
 ``Chunk`` that grounds the schema once and solves each set under assumptions, so it can run
 in a process pool here or on Dask/Ray workers unchanged (docs/whatif.md).
 """
@@ -18,136 +18,40 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, as_completed, wait
 from dataclasses import dataclass, field
 
-import clingo
-
+from rosreconf.analysis.failsolve import (
+    Chunk,
+    Outcome,
+    Task,
+    evaluate,
+    evaluate_chunk,
+    make_task,
+    relevant_components,
+)
 from rosreconf.analysis.marginals import Marginals, marginals
 from rosreconf.analysis.workers import executor as open_executor
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.solve.emptyroles import as_chosen
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import PROGRAM, ClingoEngine, _facts, first_configuration
+from rosreconf.solve.solver import ClingoEngine, first_configuration
 from rosreconf.solve.swaps import Swapped, Swaps
 
-
-@dataclass(frozen=True)
-class Task:
-    """Everything a worker needs to solve one schema under failures (plain, picklable data).
-
-    Attributes:
-        schema: the schema's name.
-        program: the ASP program with the schema's ground facts.
-        roles: role names, by role index.
-        components: component names, by component id.
-        atoms: component name -> the (role index, component id) pairs it may fill.
-    """
-
-    schema: str
-    program: str
-    roles: tuple[str, ...]
-    components: tuple[str, ...]
-    atoms: Mapping[str, tuple[tuple[int, int], ...]]
-
-
-@dataclass(frozen=True)
-class Chunk:
-    """A unit of work: some failure sets of one task."""
-
-    task: Task
-    failure_sets: tuple[tuple[str, ...], ...]
-
-
-@dataclass(frozen=True)
-class Outcome:
-    """Whether a schema survives one failure set.
-
-    Attributes:
-        failed: the failed components, in library order.
-        configuration: the surviving configuration's components in role order, or None
-            when the schema has no configuration under these failures (a ``Swapped`` view
-            of the first configuration when twins were swapped in: ``solve.swaps``).
-        solved: True when the solver decided it, False when pruning did.
-    """
-
-    failed: tuple[str, ...]
-    configuration: Sequence[str] | None
-    solved: bool = True
-
-    @property
-    def survives(self) -> bool:
-        """Tell whether the schema still has a configuration."""
-        return self.configuration is not None
-
-
-def make_task(library: ComponentLibrary, schema: InteroperabilitySchema) -> Task:
-    """Compile ``schema`` over ``library`` into a worker's task description."""
-    inst = compile_instance(library, schema)
-    # the instance's library: the library with each optional role's empty choice after it
-    ids = {c.name: i for i, c in enumerate(inst.library.components)}
-    atoms: dict[str, list[tuple[int, int]]] = {}
-    for r, dom in enumerate(inst.domains):
-        for c in dom:
-            atoms.setdefault(c.name, []).append((r, ids[c.name]))
-    return Task(
-        schema.name,
-        PROGRAM + _facts(inst),
-        tuple(r.name for r in inst.roles),
-        tuple(as_chosen(c.name) for c in inst.library.components),
-        {name: tuple(pairs) for name, pairs in atoms.items()},
-    )
-
-
-def _control(task: Task, args: Sequence[str]) -> clingo.Control:
-    ctl = clingo.Control(["--warn=none", *args])
-    ctl.add("base", [], task.program)
-    ctl.ground([("base", [])])
-    return ctl
-
-
-def evaluate_chunk(chunk: Chunk) -> list[Outcome]:
-    """Solve every failure set of ``chunk`` (one grounding, one solve per set)."""
-    task = chunk.task
-    ctl = _control(task, ["--heuristic=Domain", "--models=1"])
-    out = []
-    for failed in chunk.failure_sets:
-        assumptions = [
-            (clingo.Function("x", [clingo.Number(r), clingo.Number(c)]), False)
-            for name in failed
-            for r, c in task.atoms.get(name, ())
-        ]
-        found: list[tuple[str, ...]] = []
-        ctl.solve(assumptions=assumptions, on_model=functools.partial(_keep, task, found))
-        out.append(Outcome(tuple(failed), found[0] if found else None))
-    return out
-
-
-def _keep(task: Task, found: list[tuple[str, ...]], model: clingo.Model) -> None:
-    chosen = {s.arguments[0].number: s.arguments[1].number for s in model.symbols(shown=True)}
-    picked = (task.components[chosen[r]] for r in range(len(task.roles)))
-    found.append(tuple(name for name in picked if name))  # an empty optional role: nothing
-
-
-def evaluate(task: Task, failed: Iterable[str]) -> Outcome:
-    """Solve one failure set (the single-set form of ``evaluate_chunk``)."""
-    return evaluate_chunk(Chunk(task, (tuple(failed),)))[0]
-
-
-def relevant_components(task: Task) -> frozenset[str]:
-    """Return the components that appear in some valid configuration (brave consequences)."""
-    ctl = _control(task, ["--enum-mode=brave", "--models=0"])
-    last: list[str] = []
-
-    def on_model(model: clingo.Model) -> None:
-        picked = (task.components[s.arguments[1].number] for s in model.symbols(shown=True))
-        last[:] = [name for name in picked if name]  # an empty optional role is no component
-
-    result = ctl.solve(on_model=on_model)
-    return frozenset(last) if result.satisfiable else frozenset()
-
+__all__ = [  # the unit of work lives in failsolve; these names are its documented way in
+    "LISTED",
+    "Chunk",
+    "Outcome",
+    "SchemaReport",
+    "Task",
+    "analyse",
+    "evaluate",
+    "evaluate_chunk",
+    "make_task",
+    "relevant_components",
+    "sweep",
+]
 
 LISTED = 10_000
 """Most failure sets a report keeps for listing (the JSON's ``failure_sets``), fewest first.
