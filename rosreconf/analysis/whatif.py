@@ -18,6 +18,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, as_completed, wait
 from dataclasses import dataclass, field
@@ -33,6 +34,7 @@ from rosreconf.analysis.failsolve import (
 )
 from rosreconf.analysis.marginals import Marginals, marginals
 from rosreconf.analysis.workers import executor as open_executor
+from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
@@ -44,6 +46,7 @@ __all__ = [  # the unit of work lives in failsolve; these names are its document
     "Chunk",
     "Outcome",
     "SchemaReport",
+    "SweepOutOfTime",
     "Task",
     "analyse",
     "evaluate",
@@ -73,6 +76,7 @@ class SchemaReport:
             largest asked for (and single failures always): what pruning reads.
         solver_calls: failure sets the solver decided (the rest were pruned).
         alive_by_size: per size j, the surviving j-sets over the relevant components.
+        decided_by_size: per size j, the j-sets decided so far.
         listed: the first ``LISTED`` failure sets by (size, names), for the JSON listing.
         listed_all: ``listed`` holds every decided failure set.
     """
@@ -83,6 +87,7 @@ class SchemaReport:
     outcomes: dict[frozenset[str], Outcome] = field(default_factory=dict)
     solver_calls: int = 0
     alive_by_size: list[int] = field(default_factory=list)
+    decided_by_size: list[int] = field(default_factory=list)
     listed: list[Outcome] = field(default_factory=list)
     listed_all: bool = True
     _pairs: list[tuple[str, str]] = field(default_factory=list)
@@ -92,7 +97,9 @@ class SchemaReport:
         size = len(outcome.failed)
         while len(self.alive_by_size) <= size:
             self.alive_by_size.append(0)
+            self.decided_by_size.append(0)
         self.alive_by_size[size] += outcome.survives
+        self.decided_by_size[size] += 1
         if keep:
             self.outcomes[frozenset(outcome.failed)] = outcome
         if size == 2 and not outcome.survives:
@@ -143,6 +150,13 @@ class SchemaReport:
         return alive, math.comb(n, k)
 
 
+SWEEP_TIME = 600.0
+"""Default most seconds a ``whatif`` sweep takes before it stops with exit 3 (``--search-time``).
+
+``-k 2`` on 1000 roles x 10 candidates ran past 300 s (issue 22): C(9962, 2) pairs, and a
+solve for every pair of the first configuration's components without a working twin."""
+
+
 Progress = Callable[[int], None]
 """Called with the number of failure sets just decided (for a progress display)."""
 
@@ -154,6 +168,7 @@ def analyse(
     executor: Executor | None = None,
     progress: Progress | None = None,
     chunk_size: int = 64,
+    deadline: float | None = None,
 ) -> SchemaReport:
     """Decide every failure set of up to ``max_failures`` relevant components of ``schema``.
 
@@ -161,6 +176,10 @@ def analyse(
     schema come from counting's marginals (``rosreconf.analysis.marginals``) when the system
     graph is sparse enough to eliminate; clingo is grounded only if some set is left to
     solve (a surviving single failure of the first configuration needs its witness).
+
+    Raises:
+        SweepOutOfTime: ``deadline`` (a ``time.monotonic()`` instant) passed first; it says
+            which failure sets were decided.
     """
     with paused_gc():
         inst = compile_instance(library, schema)
@@ -192,7 +211,9 @@ def analyse(
 
         def undecided(k: int = k, keep: bool = keep) -> Iterator[tuple[str, ...]]:
             nonlocal pruned
-            for failed in itertools.combinations(order, k):
+            for i, failed in enumerate(itertools.combinations(order, k)):
+                if i % 1024 == 0:
+                    _check(report, deadline, k)
                 decided = _prune(report.outcomes, failed)
                 if decided is None and k == 1 and failed[0] in in_every:
                     decided = Outcome(failed, None, solved=False)
@@ -217,6 +238,7 @@ def analyse(
             for outcome in outcomes:
                 report.note(outcome, keep=keep)
             report.solver_calls += len(outcomes)
+            _check(report, deadline, k)
             if progress:
                 progress(len(outcomes) + pruned)
                 pruned = 0
@@ -224,6 +246,29 @@ def analyse(
             progress(pruned)
     report.finish()
     return report
+
+
+class SweepOutOfTime(ExternalToolError):
+    """The sweep's time budget ran out before every failure set was decided (exit 3)."""
+
+
+def _check(report: SchemaReport, deadline: float | None, k: int) -> None:
+    """Raise ``SweepOutOfTime`` when ``deadline`` has passed, saying what was decided."""
+    if deadline is None or time.monotonic() < deadline:
+        return
+    m = len(report.relevant)
+    done = report.decided_by_size[k] if k < len(report.decided_by_size) else 0
+    covered = (
+        f"every set of up to {k - 1} failed component(s) was decided "
+        f"(critical components: {', '.join(report.critical) or 'none'}), and "
+        if k > 1
+        else ""
+    )
+    raise SweepOutOfTime(
+        f"schema '{report.schema}': {covered}{done:,} of the {math.comb(m, k):,} sets of "
+        f"{k} failed component(s) (of its {m:,} relevant components) were decided "
+        f"({report.solver_calls:,} solver call(s))"
+    )
 
 
 def _chunks(task: Task, sets: Iterable[tuple[str, ...]], size: int) -> Iterator[Chunk]:
@@ -244,6 +289,7 @@ def sweep(
     workers: int | None = None,
     cluster: str | None = None,
     progress: SchemaProgress | None = None,
+    seconds: float | None = None,
 ) -> list[SchemaReport]:
     """Analyse every schema on one pool: local worker processes, or a Dask cluster.
 
@@ -251,17 +297,30 @@ def sweep(
     ADDRESS``), the one that also runs ``simulate``'s sweep, so both commands run their units
     of work the same way. ``progress`` is how a caller shows progress: this never prints.
 
+    ``seconds`` bounds the whole sweep (``--search-time``; None: no bound).
+
     Raises:
         UsageError: both ``workers`` and ``cluster`` were given.
         ExternalToolError: the cluster cannot be reached (or ``distributed`` is missing).
+        SweepOutOfTime: ``seconds`` passed before every failure set was decided.
     """
     reports = []
+    deadline = None if seconds is None else time.monotonic() + seconds
     with open_executor(workers, cluster) as pool:
         for schema in schemas:
             tick = None if progress is None else functools.partial(progress, schema)
             if tick is not None:
                 tick(0)
-            reports.append(analyse(library, schema, max_failures, pool, tick))
+            try:
+                reports.append(
+                    analyse(library, schema, max_failures, pool, tick, deadline=deadline)
+                )
+            except SweepOutOfTime as exc:
+                done = f"; {len(reports)} schema(s) before it were swept" if reports else ""
+                raise SweepOutOfTime(
+                    f"the what-if sweep ran out of its time (--search-time {seconds:g}): "
+                    f"{exc}{done} (raise --search-time, or lower --max-failures)"
+                ) from None
     return reports
 
 
