@@ -118,11 +118,12 @@ class _Walk:
         """
         sim = simulation_of(self.schema)
         index = inst.role_index
+        mine = {r: mapping[r] for r in loop.roles}  # a loop reads its own roles only
         near = []
-        for role in dict.fromkeys(loop.roles):
+        for role in mine:
             for c in inst.domains[index[role]]:
-                if c.name != mapping[role] and not is_empty_choice(c.name):
-                    near.append({**mapping, role: c.name})
+                if c.name != mine[role] and not is_empty_choice(c.name):
+                    near.append({**mine, role: c.name})
         specs = [loop_spec(self.library, sim, loop, m)[0] for m in near]
         if self._late():
             raise OutOfTime
