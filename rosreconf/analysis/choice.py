@@ -20,6 +20,7 @@ tried and the best found (exit 3).
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from collections.abc import Collection, Mapping
@@ -111,27 +112,40 @@ class _Walk:
 
         A loop's result depends only on the components in its roles, so each assignment of
         its roles that differs from ``mapping`` in one role is simulated alone (a few dozen
-        loops, cached), and those that fail are forbidden at once. Each is a nogood the walk
-        would otherwise learn from one clingo optimum of the whole schema (seconds at 1000
-        roles), so the walk reaches a performing configuration in fewer rounds; only loops
-        that were simulated and failed are forbidden, so the answer is the same.
+        loops, cached), and those that fail are forbidden at once; when every one of them
+        fails, those two swaps away too (a few hundred). Each is a nogood the walk would
+        otherwise learn from one clingo optimum of the whole schema (seconds at 1000 roles),
+        so the walk reaches a performing configuration in fewer rounds; only loops that were
+        simulated and failed are forbidden, so the answer is the same.
         """
-        sim = simulation_of(self.schema)
         index = inst.role_index
         mine = {r: mapping[r] for r in loop.roles}  # a loop reads its own roles only
-        near = []
-        for role in mine:
-            for c in inst.domains[index[role]]:
-                if c.name != mine[role] and not is_empty_choice(c.name):
-                    near.append({**mine, role: c.name})
+        other = {  # the candidates each role could swap to (an empty choice is no loop block)
+            r: [c.name for c in inst.domains[index[r]] if c.name != mine[r]] for r in mine
+        }
+        other = {r: [c for c in cs if not is_empty_choice(c)] for r, cs in other.items()}
+        one = [{**mine, r: c} for r, cs in other.items() for c in cs]
+        if self._judge(search, loop, one):
+            return
+        pairs = itertools.combinations(other, 2)
+        self._judge(search, loop, [{**mine, r: c, q: d} for r, q in pairs
+                                   for c in other[r] for d in other[q]])  # fmt: skip
+
+    def _judge(self, search: Search, loop: ControlLoop, near: list[dict[str, str]]) -> bool:
+        """Simulate the loop under each mapping, forbid those that fail; tell if one performs."""
+        sim = simulation_of(self.schema)
         specs = [loop_spec(self.library, sim, loop, m)[0] for m in near]
         if self._late():
             raise OutOfTime
         simulate_all(specs, self.cache)
         self.near += len(specs)
+        performs = False
         for m, spec in zip(near, specs, strict=True):
-            if not meets(sim.requirements, self.cache[spec]):
+            if meets(sim.requirements, self.cache[spec]):
+                performs = True
+            else:
                 self.ban(search, tuple((r, m[r]) for r in loop.roles))
+        return performs
 
     def ban(self, search: Search, assignment: tuple[tuple[str, str], ...]) -> None:
         """Forbid a failing assignment of a loop's roles (once: later rounds meet it again)."""
@@ -156,7 +170,7 @@ class _Walk:
             f"requirements was found within the search budget ({which}): {self.tried} "
             f"configuration(s) simulated, {len(self.cache)} distinct loop(s), {spent:.1f} s; "
             f"{self.forbidden} failing assignment(s) of a loop's roles forbidden, "
-            f"{self.near} of the loops simulated one swap from a failing one's"
+            f"{self.near} loop(s) judged one or two swaps from a failing one's assignment"
         )
         if self.closest is not None:
             wrong = shortfall(self.schema, self.closest).split("; ")
