@@ -492,6 +492,23 @@ def whole_process(tmp: Path, quick: bool) -> list[dict[str, Any]]:
                 reference_name="clingo alone, first model (python -m clingo)",
             )
         )
+    if not quick:  # issue 22: one solve per failure made this over 300 s
+        sys.path.append(str(HERE.parent / "tests"))
+        from shapes import write_hub  # tests/shapes.py: the deep and wide schemas
+
+        hub = tmp / "hub10000"
+        write_hub(hub, 10_000)
+        rows.append(
+            pair(
+                "rosreconf whatif -k 1 --workers 1 (a hub of 10^4 consumers, 2 candidates each)",
+                [*cli, "whatif", "-k", "1", "--workers", "1"],
+                [floor],
+                hub,
+                1,
+                goal_seconds=120.0,
+                reference_name=floor_name,
+            )
+        )
     return rows
 
 

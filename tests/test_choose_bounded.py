@@ -88,7 +88,16 @@ def _brute_force(
     return {p for p, n in zip(performing, changes, strict=True) if n == least}
 
 
-@pytest.mark.parametrize("seed_roles", [("sen0", "ctl1"), ("act0",), ("per1", "act1", "sen0")])
+@pytest.mark.parametrize(
+    "seed_roles",
+    [
+        ("sen0", "ctl1"),
+        ("act0",),
+        ("per1", "act1", "sen0"),
+        # the 40-failure case in small: the running components of every role of both loops
+        ("sen0", "per0", "ctl0", "act0", "sen1", "per1", "ctl1", "act1"),
+    ],
+)
 def test_choose_equals_simulating_every_valid_configuration(
     tmp_path: Path, seed_roles: tuple[str, ...]
 ) -> None:

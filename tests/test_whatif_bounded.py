@@ -13,11 +13,13 @@ import itertools
 import json
 import subprocess
 import sys
+import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import pytest
 from manylib import write_many
+from shapes import write_hub
 
 from rosreconf.analysis import whatif
 from rosreconf.analysis.whatif import LISTED
@@ -99,3 +101,36 @@ def test_whatif_shares_and_pairs_equal_brute_force_when_the_listing_is_cut(
         sets = list(itertools.combinations(names, k))
         survive = sum(count(compile_instance(library, schema, f)) > 0 for f in sets)
         assert report.survived(k) == (survive, len(sets))
+
+
+def test_whatif_k2_past_its_search_time_exits_3_saying_which_sets_were_decided(
+    tmp_path: Path,
+) -> None:
+    """Case: whatif -k 2 on generate 1000 x 10 ran past 300 s; now it stops at its budget.
+
+    A hub of 2,000 consumers has C(4002, 2) = 8 million pairs: far more than a second's work.
+    """
+    folder = write_hub(tmp_path, 2000)
+    done = subprocess.run(
+        [sys.executable, "-m", "rosreconf", "whatif", "-k", "2", "--workers", "1",
+         "--search-time", "1", "-l", str(folder / "libraries"), "-s", str(folder / "schemas")],
+        capture_output=True, text=True, check=False, timeout=600,
+    )  # fmt: skip
+    words = " ".join(done.stderr.split())
+    assert done.returncode == 3, done.stderr
+    assert done.stdout == "" and "Traceback" not in done.stderr
+    assert "ran out of its time (--search-time 1)" in words
+    # where it stopped depends on the machine's speed; what it says of it does not
+    singles = "of the 4,002 sets of 1 failed component(s) (of its 4,002 relevant components)"
+    pairs = "every set of up to 1 failed component(s) was decided (critical components: none), and "
+    assert singles in words or (pairs in words and "of the 8,006,001 sets of 2 failed" in words)
+    assert "(raise --search-time, or lower --max-failures)" in words
+
+
+def test_whatif_whose_deadline_has_passed_says_nothing_was_decided(tmp_path: Path) -> None:
+    loaded = load_paths([write_many(tmp_path, 40) / "libraries", tmp_path / "schemas"])
+    library, schema = loaded.library, loaded.schemas[0]
+    with pytest.raises(whatif.SweepOutOfTime, match=r"0 of the \d+ sets of 1 failed"):
+        whatif.analyse(library, schema, 2, deadline=time.monotonic())
+    report = whatif.analyse(library, schema, 2, deadline=time.monotonic() + 3600)
+    assert report.survived(1)[1] == len(library)  # a deadline not reached changes nothing

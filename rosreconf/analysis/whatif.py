@@ -8,7 +8,7 @@ all k-failure sets are computed.
 Two facts keep solver calls rare. A superset of a killing set kills (failures only remove
 candidates), and a set that misses every component of a known surviving configuration (the
 witness of one of its subsets) survives with that configuration. Only the remaining sets go
-to the solver, in chunks, through ``evaluate_chunk``: a pure function of a picklable
+to the solver, in chunks, through ``evaluate_chunk`` (``failsolve``): a pure function of a picklable
 ``Chunk`` that grounds the schema once and solves each set under assumptions, so it can run
 in a process pool here or on Dask/Ray workers unchanged (docs/whatif.md).
 """
@@ -18,134 +18,43 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+import time
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, as_completed, wait
 from dataclasses import dataclass, field
 
-import clingo
-
+from rosreconf.analysis.failsolve import (
+    Chunk,
+    Outcome,
+    Task,
+    evaluate,
+    evaluate_chunk,
+    make_task,
+    relevant_components,
+)
 from rosreconf.analysis.marginals import Marginals, marginals
 from rosreconf.analysis.workers import executor as open_executor
+from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
-from rosreconf.solve.emptyroles import as_chosen
 from rosreconf.solve.factors import TooHard, paused_gc
 from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.solver import PROGRAM, _facts, first_configuration
+from rosreconf.solve.solver import ClingoEngine, first_configuration
+from rosreconf.solve.swaps import Swapped, Swaps
 
-
-@dataclass(frozen=True)
-class Task:
-    """Everything a worker needs to solve one schema under failures (plain, picklable data).
-
-    Attributes:
-        schema: the schema's name.
-        program: the ASP program with the schema's ground facts.
-        roles: role names, by role index.
-        components: component names, by component id.
-        atoms: component name -> the (role index, component id) pairs it may fill.
-    """
-
-    schema: str
-    program: str
-    roles: tuple[str, ...]
-    components: tuple[str, ...]
-    atoms: Mapping[str, tuple[tuple[int, int], ...]]
-
-
-@dataclass(frozen=True)
-class Chunk:
-    """A unit of work: some failure sets of one task."""
-
-    task: Task
-    failure_sets: tuple[tuple[str, ...], ...]
-
-
-@dataclass(frozen=True)
-class Outcome:
-    """Whether a schema survives one failure set.
-
-    Attributes:
-        failed: the failed components, in library order.
-        configuration: the surviving configuration's components in role order, or None
-            when the schema has no configuration under these failures.
-        solved: True when the solver decided it, False when pruning did.
-    """
-
-    failed: tuple[str, ...]
-    configuration: tuple[str, ...] | None
-    solved: bool = True
-
-    @property
-    def survives(self) -> bool:
-        """Tell whether the schema still has a configuration."""
-        return self.configuration is not None
-
-
-def make_task(library: ComponentLibrary, schema: InteroperabilitySchema) -> Task:
-    """Compile ``schema`` over ``library`` into a worker's task description."""
-    inst = compile_instance(library, schema)
-    # the instance's library: the library with each optional role's empty choice after it
-    ids = {c.name: i for i, c in enumerate(inst.library.components)}
-    atoms: dict[str, list[tuple[int, int]]] = {}
-    for r, dom in enumerate(inst.domains):
-        for c in dom:
-            atoms.setdefault(c.name, []).append((r, ids[c.name]))
-    return Task(
-        schema.name,
-        PROGRAM + _facts(inst),
-        tuple(r.name for r in inst.roles),
-        tuple(as_chosen(c.name) for c in inst.library.components),
-        {name: tuple(pairs) for name, pairs in atoms.items()},
-    )
-
-
-def _control(task: Task, args: Sequence[str]) -> clingo.Control:
-    ctl = clingo.Control(["--warn=none", *args])
-    ctl.add("base", [], task.program)
-    ctl.ground([("base", [])])
-    return ctl
-
-
-def evaluate_chunk(chunk: Chunk) -> list[Outcome]:
-    """Solve every failure set of ``chunk`` (one grounding, one solve per set)."""
-    task = chunk.task
-    ctl = _control(task, ["--heuristic=Domain", "--models=1"])
-    out = []
-    for failed in chunk.failure_sets:
-        assumptions = [
-            (clingo.Function("x", [clingo.Number(r), clingo.Number(c)]), False)
-            for name in failed
-            for r, c in task.atoms.get(name, ())
-        ]
-        found: list[tuple[str, ...]] = []
-        ctl.solve(assumptions=assumptions, on_model=functools.partial(_keep, task, found))
-        out.append(Outcome(tuple(failed), found[0] if found else None))
-    return out
-
-
-def _keep(task: Task, found: list[tuple[str, ...]], model: clingo.Model) -> None:
-    chosen = {s.arguments[0].number: s.arguments[1].number for s in model.symbols(shown=True)}
-    picked = (task.components[chosen[r]] for r in range(len(task.roles)))
-    found.append(tuple(name for name in picked if name))  # an empty optional role: nothing
-
-
-def evaluate(task: Task, failed: Iterable[str]) -> Outcome:
-    """Solve one failure set (the single-set form of ``evaluate_chunk``)."""
-    return evaluate_chunk(Chunk(task, (tuple(failed),)))[0]
-
-
-def relevant_components(task: Task) -> frozenset[str]:
-    """Return the components that appear in some valid configuration (brave consequences)."""
-    ctl = _control(task, ["--enum-mode=brave", "--models=0"])
-    last: list[str] = []
-
-    def on_model(model: clingo.Model) -> None:
-        picked = (task.components[s.arguments[1].number] for s in model.symbols(shown=True))
-        last[:] = [name for name in picked if name]  # an empty optional role is no component
-
-    result = ctl.solve(on_model=on_model)
-    return frozenset(last) if result.satisfiable else frozenset()
-
+__all__ = [  # the unit of work lives in failsolve; these names are its documented way in
+    "LISTED",
+    "Chunk",
+    "Outcome",
+    "SchemaReport",
+    "SweepOutOfTime",
+    "Task",
+    "analyse",
+    "evaluate",
+    "evaluate_chunk",
+    "make_task",
+    "relevant_components",
+    "sweep",
+]
 
 LISTED = 10_000
 """Most failure sets a report keeps for listing (the JSON's ``failure_sets``), fewest first.
@@ -167,6 +76,7 @@ class SchemaReport:
             largest asked for (and single failures always): what pruning reads.
         solver_calls: failure sets the solver decided (the rest were pruned).
         alive_by_size: per size j, the surviving j-sets over the relevant components.
+        decided_by_size: per size j, the j-sets decided so far.
         listed: the first ``LISTED`` failure sets by (size, names), for the JSON listing.
         listed_all: ``listed`` holds every decided failure set.
     """
@@ -177,6 +87,7 @@ class SchemaReport:
     outcomes: dict[frozenset[str], Outcome] = field(default_factory=dict)
     solver_calls: int = 0
     alive_by_size: list[int] = field(default_factory=list)
+    decided_by_size: list[int] = field(default_factory=list)
     listed: list[Outcome] = field(default_factory=list)
     listed_all: bool = True
     _pairs: list[tuple[str, str]] = field(default_factory=list)
@@ -186,7 +97,9 @@ class SchemaReport:
         size = len(outcome.failed)
         while len(self.alive_by_size) <= size:
             self.alive_by_size.append(0)
+            self.decided_by_size.append(0)
         self.alive_by_size[size] += outcome.survives
+        self.decided_by_size[size] += 1
         if keep:
             self.outcomes[frozenset(outcome.failed)] = outcome
         if size == 2 and not outcome.survives:
@@ -237,6 +150,13 @@ class SchemaReport:
         return alive, math.comb(n, k)
 
 
+SWEEP_TIME = 600.0
+"""Default most seconds a ``whatif`` sweep takes before it stops with exit 3 (``--search-time``).
+
+``-k 2`` on 1000 roles x 10 candidates ran past 300 s (issue 22): C(9962, 2) pairs, and a
+solve for every pair of the first configuration's components without a working twin."""
+
+
 Progress = Callable[[int], None]
 """Called with the number of failure sets just decided (for a progress display)."""
 
@@ -248,6 +168,7 @@ def analyse(
     executor: Executor | None = None,
     progress: Progress | None = None,
     chunk_size: int = 64,
+    deadline: float | None = None,
 ) -> SchemaReport:
     """Decide every failure set of up to ``max_failures`` relevant components of ``schema``.
 
@@ -255,6 +176,10 @@ def analyse(
     schema come from counting's marginals (``rosreconf.analysis.marginals``) when the system
     graph is sparse enough to eliminate; clingo is grounded only if some set is left to
     solve (a surviving single failure of the first configuration needs its witness).
+
+    Raises:
+        SweepOutOfTime: ``deadline`` (a ``time.monotonic()`` instant) passed first; it says
+            which failure sets were decided.
     """
     with paused_gc():
         inst = compile_instance(library, schema)
@@ -266,17 +191,18 @@ def analyse(
     if marg is None:
         task = make_task(library, schema)
         relevant = relevant_components(task)
-        base = evaluate(task, ())
+        first = ClingoEngine().first(inst)
     else:
         relevant = frozenset(marg.usable())
         first = first_configuration(inst) if marg.total else None
-        base = Outcome((), None if first is None else first.components)
+    swaps = None if first is None else Swaps(inst, first)
+    base = Outcome((), None if swaps is None else swaps.whole)
     in_every = frozenset(marg.in_every()) if marg is not None else frozenset()
     order = tuple(c.name for c in library.components if c.name in relevant)
     report = SchemaReport(schema.name, len(library), order)
     report.note(base, keep=True)
     report.solver_calls = 1
-    if not base.survives:
+    if swaps is None:
         report.finish()
         return report
     for k in range(1, max_failures + 1):
@@ -285,10 +211,14 @@ def analyse(
 
         def undecided(k: int = k, keep: bool = keep) -> Iterator[tuple[str, ...]]:
             nonlocal pruned
-            for failed in itertools.combinations(order, k):
+            for i, failed in enumerate(itertools.combinations(order, k)):
+                if i % 1024 == 0:
+                    _check(report, deadline, k)
                 decided = _prune(report.outcomes, failed)
                 if decided is None and k == 1 and failed[0] in in_every:
                     decided = Outcome(failed, None, solved=False)
+                if decided is None and (twins := swaps.avoiding(failed)) is not None:
+                    decided = Outcome(failed, twins, solved=False)
                 if decided is None:
                     yield failed
                 else:
@@ -308,6 +238,7 @@ def analyse(
             for outcome in outcomes:
                 report.note(outcome, keep=keep)
             report.solver_calls += len(outcomes)
+            _check(report, deadline, k)
             if progress:
                 progress(len(outcomes) + pruned)
                 pruned = 0
@@ -315,6 +246,29 @@ def analyse(
             progress(pruned)
     report.finish()
     return report
+
+
+class SweepOutOfTime(ExternalToolError):
+    """The sweep's time budget ran out before every failure set was decided (exit 3)."""
+
+
+def _check(report: SchemaReport, deadline: float | None, k: int) -> None:
+    """Raise ``SweepOutOfTime`` when ``deadline`` has passed, saying what was decided."""
+    if deadline is None or time.monotonic() < deadline:
+        return
+    m = len(report.relevant)
+    done = report.decided_by_size[k] if k < len(report.decided_by_size) else 0
+    covered = (
+        f"every set of up to {k - 1} failed component(s) was decided "
+        f"(critical components: {', '.join(report.critical) or 'none'}), and "
+        if k > 1
+        else ""
+    )
+    raise SweepOutOfTime(
+        f"schema '{report.schema}': {covered}{done:,} of the {math.comb(m, k):,} sets of "
+        f"{k} failed component(s) (of its {m:,} relevant components) were decided "
+        f"({report.solver_calls:,} solver call(s))"
+    )
 
 
 def _chunks(task: Task, sets: Iterable[tuple[str, ...]], size: int) -> Iterator[Chunk]:
@@ -335,6 +289,7 @@ def sweep(
     workers: int | None = None,
     cluster: str | None = None,
     progress: SchemaProgress | None = None,
+    seconds: float | None = None,
 ) -> list[SchemaReport]:
     """Analyse every schema on one pool: local worker processes, or a Dask cluster.
 
@@ -342,17 +297,30 @@ def sweep(
     ADDRESS``), the one that also runs ``simulate``'s sweep, so both commands run their units
     of work the same way. ``progress`` is how a caller shows progress: this never prints.
 
+    ``seconds`` bounds the whole sweep (``--search-time``; None: no bound).
+
     Raises:
         UsageError: both ``workers`` and ``cluster`` were given.
         ExternalToolError: the cluster cannot be reached (or ``distributed`` is missing).
+        SweepOutOfTime: ``seconds`` passed before every failure set was decided.
     """
     reports = []
+    deadline = None if seconds is None else time.monotonic() + seconds
     with open_executor(workers, cluster) as pool:
         for schema in schemas:
             tick = None if progress is None else functools.partial(progress, schema)
             if tick is not None:
                 tick(0)
-            reports.append(analyse(library, schema, max_failures, pool, tick))
+            try:
+                reports.append(
+                    analyse(library, schema, max_failures, pool, tick, deadline=deadline)
+                )
+            except SweepOutOfTime as exc:
+                done = f"; {len(reports)} schema(s) before it were swept" if reports else ""
+                raise SweepOutOfTime(
+                    f"the what-if sweep ran out of its time (--search-time {seconds:g}): "
+                    f"{exc}{done} (raise --search-time, or lower --max-failures)"
+                ) from None
     return reports
 
 
@@ -365,8 +333,10 @@ def _prune(known: dict[frozenset[str], Outcome], failed: tuple[str, ...]) -> Out
         if sub.configuration is None:
             return Outcome(failed, None, solved=False)
         witnesses.append(sub.configuration)
-    for config in witnesses:
-        if as_set.isdisjoint(config):
+    for config in witnesses:  # a swapped view answers ``in`` in O(1), a tuple in O(roles)
+        if isinstance(config, Swapped) and not any(f in config for f in failed):
+            return Outcome(failed, config, solved=False)
+        if not isinstance(config, Swapped) and as_set.isdisjoint(config):
             return Outcome(failed, config, solved=False)
     return None
 

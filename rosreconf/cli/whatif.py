@@ -17,7 +17,7 @@ from rich.progress import (
     TimeElapsedColumn,
 )
 
-from rosreconf.analysis.whatif import SchemaProgress, sweep
+from rosreconf.analysis.whatif import SWEEP_TIME, SchemaProgress, sweep
 from rosreconf.cli.common import JsonOption, LibraryOption, OnlyOption, SchemaOption, select
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
@@ -40,6 +40,16 @@ def whatif_command(
         str | None,
         typer.Option(help="Solve on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
     ] = None,
+    search_time: Annotated[
+        float,
+        typer.Option(
+            "--search-time",
+            min=1,
+            max=7 * 24 * 3600.0,
+            help="The most seconds the sweep takes (then exit 3, saying which failure sets "
+            "were decided).",
+        ),
+    ] = SWEEP_TIME,
     as_json: JsonOption = False,
 ) -> None:
     """Show which schemas survive each set of up to K failures: critical parts and pairs."""
@@ -48,7 +58,9 @@ def whatif_command(
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
     with _bars(stderr) as progress:
-        reports = sweep(sel.library, sel.schemas, max_failures, workers, cluster, progress)
+        reports = sweep(
+            sel.library, sel.schemas, max_failures, workers, cluster, progress, search_time
+        )
     if as_json:
         write_stdout(document(reports, max_failures))
     else:

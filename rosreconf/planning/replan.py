@@ -16,7 +16,6 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from rosreconf.errors import UsageError
 from rosreconf.model import EMPTY, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
 from rosreconf.outfiles import output_folder, write_files_atomic
@@ -27,7 +26,7 @@ from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.objective import Objective
 from rosreconf.solve.search import Budget
-from rosreconf.solve.solver import ClingoEngine, configurations, optimise
+from rosreconf.solve.solver import ClingoEngine, optimise
 from rosreconf.solve.unfillable import explain
 
 
@@ -109,10 +108,10 @@ def plan(
         return ReplanResult(
             schema, PlanStatus.UNSOLVABLE_PROVEN, current, why_not=why, explanation=tuple(lines)
         )
-    forbid: list[Configuration] = []
+    passed: list[Configuration] = []
     notes: list[str] = []
     if schema.simulation is not None:
-        target, forbid, notes = _performing(
+        target, passed, notes = _performing(
             library, schema, inst.failed, current, weights, best, budget
         )
         if target is None:
@@ -123,7 +122,11 @@ def plan(
             )
         best = target
     fewest = objective.score(inst, best)[0] if current else None
-    task = render(inst, objective, forbid=forbid)
+    if passed:  # pin the planner to the performing target: its components are all it may choose
+        rest = {c.name for c in library.components} - set(best.components)
+        task = render(compile_instance(library, schema, set(inst.failed) | rest), objective)
+    else:
+        task = render(inst, objective)
     if keep_pddl is not None:
         write_task(task, keep_pddl)
     run = solve(
@@ -141,10 +144,6 @@ def plan(
     return replace(result, explanation=(*notes, *result.explanation)) if notes else result
 
 
-FORBID_LIMIT = 2000
-"""Most valid configurations ``plan`` forbids to pin the planner to a performing target."""
-
-
 def _performing(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -154,15 +153,14 @@ def _performing(
     fewest: Configuration,
     budget: Budget | None = None,
 ) -> tuple[Configuration | None, list[Configuration], list[str]]:
-    """Return the target that meets the performance requirements, what to forbid, and notes.
+    """Return the target that meets the performance requirements, what it passed over, and notes.
 
     When the plain optimum ``fewest`` performs (and no simulated metric is weighted) it
-    stands and nothing is forbidden. Otherwise the planner is pinned to the chosen target by
-    forbidding every other valid configuration (``render``'s ``forbid``), and a note says
-    why the fewest-change configuration was passed over.
-
-    Raises:
-        UsageError: pinning would forbid more than ``FORBID_LIMIT`` configurations.
+    stands and nothing is passed over. Otherwise the planner is pinned to the chosen target:
+    its task offers only the target's components (the caller's ``render`` of an instance
+    without the others). Forbidding every other valid configuration in the task instead
+    stopped at 2000 of them (issue 22: 1000 roles x 10 candidates have 10^900), and a note
+    says why the fewest-change configuration was passed over.
     """
     from rosreconf.analysis.choice import choose, shortfall  # imports numpy
 
@@ -181,15 +179,7 @@ def _performing(
         return None, [], notes
     if choice.configuration == fewest:
         return fewest, [], notes
-    listed = configurations(library, schema, failed, limit=FORBID_LIMIT + 2)  # streaming
-    others = [c for c in listed if c != choice.configuration]
-    if len(others) > FORBID_LIMIT:
-        raise UsageError(
-            f"schema '{schema.name}': more than {FORBID_LIMIT} valid configurations would have "
-            f"to be forbidden to make the planner reach the performing one (limit {FORBID_LIMIT}); "
-            "use rosreconf simulate to choose"
-        )
-    return choice.configuration, others, notes
+    return choice.configuration, [fewest], notes
 
 
 def unaffected(
