@@ -326,3 +326,18 @@ def test_whatif_clingo_task_survives_exactly_when_a_configuration_avoids_the_fai
         assert outcome.survives == any(not (c & set(failed)) for c in configs), failed
         if outcome.configuration is not None:
             assert frozenset(outcome.configuration) in configs
+
+
+def test_a_walk_may_forbid_an_optional_role_left_empty() -> None:
+    """plan's walk forbids a failing loop's roles as the configuration fills them, EMPTY too."""
+    from rosreconf.formats.loader import load_paths
+    from rosreconf.solve.search import Search
+
+    loaded = load_paths([NAV2 / "lib.yaml", NAV2 / "task.yaml"])
+    inst = compile_instance(loaded.library, loaded.schemas[0])
+    search = Search(inst, Objective(), None)
+    search.forbid([("ekf", EMPTY), ("map_server", EMPTY)])
+    search.forbid([("ekf", "ekf_filter_node")])
+    best = search.best()
+    assert best is not None and best.mapping["ekf"] == EMPTY
+    assert best.mapping["map_server"] == "map_server"

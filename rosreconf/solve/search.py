@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rosreconf.model import Configuration
+from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.instance import Instance
 from rosreconf.solve.objective import Objective
 from rosreconf.solve.solver import OPTIMISE, PROGRAM, _facts, _Reader
@@ -90,8 +91,12 @@ class Search:
         return ctl
 
     def forbid(self, assignment: Iterable[tuple[str, str]]) -> None:
-        """Forbid every configuration that puts these components in these roles together."""
-        body = ", ".join(f"x({self._roles[r]},{self._ids[c]})" for r, c in assignment)
+        """Forbid every configuration that puts these components in these roles together.
+
+        An optional role left empty (``EMPTY``) is its empty choice here, as in the tables.
+        """
+        ids = self._ids
+        body = ", ".join(f"x({self._roles[r]},{ids[as_candidate(r, c)]})" for r, c in assignment)
         self._forbidden.append(f":- {body}.\n")
         self.nogoods += 1
 
