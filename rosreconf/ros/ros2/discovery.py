@@ -20,16 +20,12 @@ endpoints announce: Iron and later put ``typehash=RIHS01_...;`` in every endpoin
 Humble does not. A sample is accepted only if its GID is the writing participant's GUID
 (the writer's participant, as DDS matched it): another participant cannot speak for a third.
 
-rosreconf's participant joins with the user's ``CYCLONEDDS_URI`` plus one fragment of its own
-(``dds.CYCLONE_COMPATIBILITY``): Fast DDS 3 (Kilted) sends XTypes type information for
-``ros_discovery_info`` that Cyclone 11 rejects, and without ignoring it the reader never
-matches (endpoints are seen, node names never). A ``ros_discovery_info`` writer whose
-samples never decode (another Gid layout, a broken writer) is counted as undecodable after
-``UNDECODABLE_AFTER`` s and not waited for; the C library's own message about it is said
-once (``cstderr``).
-
-``ros_discovery_info`` is not keyed, so it is read KEEP_ALL, the newest sample per participant
-kept (``watch`` keeps one session open). DDS details: ``dds``; the join: ``graph``."""
+It joins with the user's ``CYCLONEDDS_URI`` plus ``dds.CYCLONE_COMPATIBILITY`` (Cyclone 11
+rejects Fast DDS 3's XTypes type information: Kilted's nodes would stay unseen). A writer whose
+samples never decode (another Gid layout) is undecodable after ``UNDECODABLE_AFTER`` s, not
+waited for. When a participant's newest sample fails to decode (once in 7 reads at 40 Jazzy
+nodes), its ROS endpoints are named by no node of the older sample: the read then makes a
+fresh reader, once, which is sent the newest sample again. KEEP_ALL, newest per participant."""
 
 from __future__ import annotations
 
@@ -104,6 +100,7 @@ class Ros2Discovery:
     _converted: dict[bytes, tuple[Any, Endpoint]] = field(default_factory=dict, repr=False)
     _last_endpoints: dict[bytes, Endpoint] = field(default_factory=dict, repr=False)
     _settled: bool = False
+    _renew: list[Any] = field(default_factory=list, repr=False)
     _domain: Any = field(default=None, repr=False)
     _writer_of: dict[int, bytes] = field(default_factory=dict, repr=False)
     _info_writer_since: dict[bytes, float] = field(default_factory=dict, repr=False)
@@ -161,6 +158,7 @@ class Ros2Discovery:
                 dp = self._dp if size == sizes[0] else dds.domain.DomainParticipant(self.domain)
                 topic = dds.topic.Topic(dp, DISCOVERY_TOPIC, info_type(dds, size))
                 self._info_readers[size] = dds.sub.DataReader(dp, topic, qos=info_qos)
+                self._renew.append((size, dp, topic, info_qos))
         except dds.core.DDSException as exc:
             self.close()
             raise ExternalToolError(
@@ -344,17 +342,19 @@ class Ros2Discovery:
             self._take_infos()
             ros = {k for k, ud in participants.items() if b"enclave=" in ud}
             silent = self._silent(ros, endpoints)
-            complete = all(k in self._infos or k in silent for k in ros) and all(
-                g in endpoints
-                for k in ros
-                if k in self._infos
-                for n in self._infos[k][1]
-                for g in (*n.readers, *n.writers)
-            )
+            named = {g for k in ros for n in self._infos.get(k, (0, ()))[1] for g in n.gids}
+            stale = any(e.participant in self._infos and e.guid not in named
+                        and ros_name(e.topic) for e in endpoints.values())  # fmt: skip
+            complete = all(k in self._infos or k in silent for k in ros)
+            complete = complete and not stale and named <= endpoints.keys()
             state = (frozenset(participants), frozenset(endpoints), repr(self._infos))
             now = time.monotonic()
             if state != previous:
                 previous, stable_since = state, now
+            if stale and self._renew and now - stable_since >= settle:  # once, a fresh reader:
+                for size, dp, topic, qos in self._renew:  # it is sent the newest info again
+                    self._info_readers[size] = self._dds.sub.DataReader(dp, topic, qos=qos)
+                self._renew = []
             if self._settled or now - start >= timeout:
                 break
             if complete and ros and now - stable_since >= settle:

@@ -59,6 +59,11 @@ class NodeInfo:
     writers: tuple[bytes, ...]
 
     @property
+    def gids(self) -> tuple[bytes, ...]:
+        """Return the GIDs of the node's readers and writers."""
+        return (*self.readers, *self.writers)
+
+    @property
     def full_name(self) -> str:
         """Return the node's global name (``/ns`` + ``name``)."""
         ns = self.namespace.rstrip("/")
