@@ -249,8 +249,15 @@ class Announcer:
 
     def announce(self) -> None:
         """Write the participant's whole state to ros_discovery_info (rmw does on each change)."""
+        info = self.info
+        if self.spec.get("stale_newest"):
+            # A fake: the info without the last node, as a reader holds it when the newest
+            # sample never arrives or does not decode (Cyclone failed one of a Fast DDS
+            # participant's at 40 real Jazzy nodes); the last node's endpoints exist.
+            older = info.node_entities_info_seq[:-1]
+            info = self.info_type(gid=info.gid, node_entities_info_seq=older)
         for _ in range(int(self.spec.get("repeat", 1))):
-            self.info_writer.write(self.info)
+            self.info_writer.write(info)
 
     def forge(self, done: threading.Event) -> None:
         """Keep writing this spec's nodes under another ROS participant's GID (an attack)."""

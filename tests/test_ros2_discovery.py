@@ -158,3 +158,30 @@ def test_undecodable_discovery_is_counted_and_said_once(
     said = [line for line in lines if "could not be decoded" in line]
     assert len(said) == 1, out.stderr
     assert "1 ROS 2 participant(s)" in said[0]
+
+
+def test_a_participant_whose_newest_node_list_never_arrives_is_exit_3_not_a_partial_graph(
+    announce: Announce, ros2_domain: int
+) -> None:
+    """Fake (provokes what Cyclone did once at 40 real Jazzy nodes: it failed to decode one
+    Fast DDS participant's newest ros_discovery_info after an older one had decoded). The
+    announcer's info names all its nodes but the last, whose endpoints exist: what a reader
+    holds when the newest sample never arrives. ``snapshot`` returned the older list with
+    exit 0; a partial answer is now refused with exit 3, saying why."""
+    late = {
+        "name": "late",
+        "plumbing": False,
+        "publishers": [{"name": "/late", "type": "std_msgs/msg/String"}],
+    }
+    announce([LISTENER, late], stale_newest=True)
+    out = subprocess.run(
+        [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain", str(ros2_domain)],
+        capture_output=True,
+        text=True,
+        env={**ros2_harness.dds_env(), "COLUMNS": "200"},
+        timeout=60,
+    )
+    assert out.returncode == 3, (out.stdout, out.stderr)
+    assert out.stdout == ""
+    assert "1 ROS 2 participant(s) announce endpoints that no node" in out.stderr
+    assert "Traceback" not in out.stderr

@@ -159,7 +159,8 @@ class Ros2Source:
 
         Raises:
             ExternalToolError: no ROS 2 participant answered on the domain, or some did but
-                no node name could be read (a wrong ``--distro``, a broken writer).
+                no node name could be read (a wrong ``--distro``, a broken writer), or a
+                participant's newest node list never arrived (``stale``: a partial answer).
         """
         graph = self.read()
         session = self._session
@@ -183,6 +184,13 @@ class Ros2Source:
                 f"{session.endpoints} endpoint(s), but no node names could be read: their "
                 "ros_discovery_info was not received or did not decode"
                 + (layout or " (see docs/ros2.md)")
+            )
+        if session.stale:
+            raise ExternalToolError(
+                f"{where}: {len(session.stale)} ROS 2 participant(s) announce endpoints that "
+                "no node of their ros_discovery_info names, still after the read's wait: their "
+                "newest ros_discovery_info was not received or did not decode, so their node "
+                "list would be out of date (run again; see docs/ros2.md)"
             )
         if on_note is not None and session.undecodable:
             on_note(

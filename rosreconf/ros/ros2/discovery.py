@@ -24,14 +24,14 @@ It joins with the user's ``CYCLONEDDS_URI`` plus ``dds.CYCLONE_COMPATIBILITY`` (
 rejects Fast DDS 3's XTypes type information: Kilted's nodes would stay unseen). A writer whose
 samples never decode (another Gid layout) is undecodable after ``UNDECODABLE_AFTER`` s, not
 waited for. When a participant's newest sample fails to decode (once in 7 reads at 40 Jazzy
-nodes), its ROS endpoints are named by no node of the older sample: the read then makes a
-fresh reader, once, which is sent the newest sample again. KEEP_ALL, newest per participant."""
+nodes), its ROS endpoints are named by no node of the older sample (``stale``): the read then
+makes fresh readers, at most every ``RENEW_EVERY`` s, which are sent the newest sample again.
+KEEP_ALL, newest per participant."""
 
 from __future__ import annotations
 
 import os
 import time
-from contextlib import suppress
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
@@ -39,18 +39,22 @@ from typing import Any
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2 import cstderr
+from rosreconf.ros.ros2.builtin import AliveFollower
 from rosreconf.ros.ros2.dds import (
-    ALIVE,
     cyclone_config,
     info_type,
     load_dds,
     qos_from_dds,
-    read_all,
-    read_new,
     take_all,
     user_data,
 )
-from rosreconf.ros.ros2.graph import Endpoint, NodeInfo, build_graph, graph_uri
+from rosreconf.ros.ros2.graph import (
+    Endpoint,
+    NodeInfo,
+    build_graph,
+    graph_uri,
+    stale_participants,
+)
 from rosreconf.ros.ros2.names import (
     DISCOVERY_TOPIC,
     DISTROS,
@@ -75,6 +79,10 @@ UNDECODABLE_AFTER = 4.5
 than Fast DDS's 3 s heartbeat, after which a sample Cyclone failed to take is sent again
 (measured: a Jazzy participant's info arrived 0.03 to 3.03 s after its writer)."""
 
+RENEW_EVERY = 5.0
+"""Seconds between fresh ``ros_discovery_info`` readers while a participant stays stale (each
+is sent every participant's newest sample again: cheap, but not for every poll)."""
+
 
 @dataclass
 class Ros2Discovery:
@@ -92,15 +100,15 @@ class Ros2Discovery:
     distro: str | None = None
     _dds: Any = field(default=None, repr=False)
     _dp: Any = field(default=None, repr=False)
-    _readers: dict[str, Any] = field(default_factory=dict, repr=False)
+    _readers: dict[str, AliveFollower] = field(default_factory=dict, repr=False)
     _info_readers: dict[int, Any] = field(default_factory=dict, repr=False)
     _infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]] = field(default_factory=dict)
-    _conditions: dict[str, tuple[Any, Any, Any]] = field(default_factory=dict, repr=False)
-    _seen: dict[str, dict[bytes, Any]] = field(default_factory=dict, repr=False)
     _converted: dict[bytes, tuple[Any, Endpoint]] = field(default_factory=dict, repr=False)
     _last_endpoints: dict[bytes, Endpoint] = field(default_factory=dict, repr=False)
     _settled: bool = False
     _renew: list[Any] = field(default_factory=list, repr=False)
+    _renewed_at: float = float("-inf")
+    _stale_since: float | None = None
     _domain: Any = field(default=None, repr=False)
     _writer_of: dict[int, bytes] = field(default_factory=dict, repr=False)
     _info_writer_since: dict[bytes, float] = field(default_factory=dict, repr=False)
@@ -108,6 +116,9 @@ class Ros2Discovery:
     """How many ``ros_discovery_info`` samples named a participant other than their writer's."""
     undecodable: frozenset[bytes] = frozenset()
     """ROS participants whose ``ros_discovery_info`` never decoded (their nodes are unseen)."""
+    stale: frozenset[bytes] = frozenset()
+    """ROS participants whose ROS endpoints the last read found named by none of their nodes
+    (their newest ``ros_discovery_info`` was not received: the node list is out of date)."""
     participants: int = 0
     """How many DDS participants (ROS or not) the last read saw."""
     endpoints: int = 0
@@ -126,27 +137,13 @@ class Ros2Discovery:
             self._dp = dds.domain.DomainParticipant(self.domain)
             b = dds.builtin
             self._readers = {
-                "participant": b.BuiltinDataReader(self._dp, b.BuiltinTopicDcpsParticipant),
-                "publication": b.BuiltinDataReader(self._dp, b.BuiltinTopicDcpsPublication),
-                "subscription": b.BuiltinDataReader(self._dp, b.BuiltinTopicDcpsSubscription),
-            }
-            core = dds.core
-            for name, reader in list(self._readers.items()):
-                # Only alive instances are read: a gone participant's or endpoint's last
-                # sample carries no valid data, and the binding fails on it ("Sampleinfo
-                # errored"); those are taken out separately and dropped.
-                any_sample = core.ViewState.Any | core.SampleState.Any
-                fresh = core.ViewState.Any | core.SampleState.NotRead | core.InstanceState.Alive
-                self._conditions[name] = (
-                    core.ReadCondition(reader, fresh),
-                    core.ReadCondition(reader, any_sample | core.InstanceState.Alive),
-                    core.ReadCondition(
-                        reader,
-                        any_sample
-                        | core.InstanceState.NotAliveDisposed
-                        | core.InstanceState.NotAliveNoWriters,
-                    ),
+                name: AliveFollower(dds, b.BuiltinDataReader(self._dp, topic), name)
+                for name, topic in (
+                    ("participant", b.BuiltinTopicDcpsParticipant),
+                    ("publication", b.BuiltinTopicDcpsPublication),
+                    ("subscription", b.BuiltinTopicDcpsSubscription),
                 )
+            }
             info_qos = dds.qos.Qos(
                 policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1)),
                 policy.Durability.TransientLocal,
@@ -199,64 +196,22 @@ class Ros2Discovery:
             return
         self._readers.clear()
         self._info_readers.clear()
-        self._conditions.clear()
         self._dp = None
         self._domain = None
         self._dds = None
         cstderr.release()
 
-    def _alive(self, name: str) -> list[Any]:
-        """Return the samples of alive instances of a built-in topic; drop the others.
-
-        Incremental: only unread samples are converted (the binding converts each QoS in
-        Python, 2-7 ms here: re-reading 800 endpoints per poll took 1.3-5 s). A dying
-        instance's last sample is taken by ``gone``; if one has no data, all is re-read.
-        """
-        reader = self._readers[name]
-        fresh, alive, gone = self._conditions[name]
-        seen = self._seen.setdefault(name, {})
-        resync = False
-        try:
-            for s in take_all(reader, condition=gone):
-                seen.pop(s.key.bytes, None)
-        except Exception:
-            resync = True  # a sample without data: which instance died is unknown
-        for attempt in range(5):
-            try:
-                samples = (
-                    read_all(reader, condition=alive)
-                    if resync
-                    else read_new(reader, condition=fresh)
-                )
-            except Exception as exc:
-                # The binding raises a bare Exception on a sample without data; an instance
-                # may die between the take and the read, so try again.
-                if attempt == 4:
-                    raise ExternalToolError(f"reading DDS {name} discovery failed: {exc}") from None
-                with suppress(Exception):
-                    take_all(reader, condition=gone)
-                resync = True
-                time.sleep(0.01)
-                continue
-            if resync:
-                seen.clear()
-            for s in samples:
-                if s.sample_info.instance_state == ALIVE:
-                    seen[s.key.bytes] = s
-            return list(seen.values())
-        return []
-
     def _participants(self) -> dict[bytes, bytes]:
         """Return alive participants: GUID -> USER_DATA."""
         policy = self._dds.qos.Policy
-        return {s.key.bytes: user_data(s.qos, policy) for s in self._alive("participant")}
+        return {s.key.bytes: user_data(s.qos, policy) for s in self._readers["participant"].alive()}
 
     def _endpoints(self) -> dict[bytes, Endpoint]:
         """Return every alive endpoint, keyed by GUID."""
         policy = self._dds.qos.Policy
         found: dict[bytes, Endpoint] = {}
         for kind in ("publication", "subscription"):
-            for s in self._alive(kind):
+            for s in self._readers[kind].alive():
                 key = s.key.bytes
                 known = self._converted.get(key)
                 if known is not None and known[0] is s:  # converted once already
@@ -342,19 +297,15 @@ class Ros2Discovery:
             self._take_infos()
             ros = {k for k, ud in participants.items() if b"enclave=" in ud}
             silent = self._silent(ros, endpoints)
+            stale = stale_participants(self._infos, endpoints) & ros
             named = {g for k in ros for n in self._infos.get(k, (0, ()))[1] for g in n.gids}
-            stale = any(e.participant in self._infos and e.guid not in named
-                        and ros_name(e.topic) for e in endpoints.values())  # fmt: skip
             complete = all(k in self._infos or k in silent for k in ros)
             complete = complete and not stale and named <= endpoints.keys()
             state = (frozenset(participants), frozenset(endpoints), repr(self._infos))
             now = time.monotonic()
             if state != previous:
                 previous, stable_since = state, now
-            if stale and self._renew and now - stable_since >= settle:  # once, a fresh reader:
-                for size, dp, topic, qos in self._renew:  # it is sent the newest info again
-                    self._info_readers[size] = self._dds.sub.DataReader(dp, topic, qos=qos)
-                self._renew = []
+            self._renew_if_stale(stale, now, still=now - stable_since >= settle)
             if self._settled or now - start >= timeout:
                 break
             if complete and ros and now - stable_since >= settle:
@@ -364,10 +315,28 @@ class Ros2Discovery:
             time.sleep(0.05)
         self._settled = True
         self.undecodable = frozenset(self._silent(ros, endpoints))
+        self.stale = stale
         self.participants = len(participants)
         self.ros_participants = len(ros)
         self.endpoints = sum(1 for e in endpoints.values() if ros_name(e.topic) is not None)
         return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
+
+    def _renew_if_stale(self, stale: frozenset[bytes], now: float, *, still: bool) -> None:
+        """Make fresh info readers when participants stay stale (transient local resends).
+
+        The first read waits for the graph to be ``still``; later reads (one pass each, as
+        ``watch`` polls) for the same participants to be stale since ``RENEW_EVERY`` s.
+        """
+        if not stale:
+            self._stale_since = None
+            return
+        if self._stale_since is None:
+            self._stale_since = now
+        waited = now - self._stale_since >= RENEW_EVERY if self._settled else still
+        if waited and now - self._renewed_at >= RENEW_EVERY:
+            for size, dp, topic, qos in self._renew:
+                self._info_readers[size] = self._dds.sub.DataReader(dp, topic, qos=qos)
+            self._renewed_at = now
 
     def _silent(self, ros: set[bytes], endpoints: dict[bytes, Endpoint]) -> set[bytes]:
         """Return ROS participants whose discovery writer has sent nothing decodable for a while.

@@ -70,6 +70,23 @@ class NodeInfo:
         return f"{ns}/{self.name}"
 
 
+def stale_participants(
+    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]], endpoints: dict[bytes, Endpoint]
+) -> frozenset[bytes]:
+    """Return participants with a ROS endpoint that no node of their ``ros_discovery_info`` names.
+
+    rmw announces a node's endpoints in the participant's next sample; one still unnamed once
+    the graph is still means that sample was lost or did not decode (Cyclone failed one of
+    Fast DDS's at 40 Jazzy nodes): the node list held for that participant is out of date.
+    """
+    named = {g for _, nodes in infos.values() for n in nodes for g in n.gids}
+    return frozenset(
+        e.participant
+        for e in endpoints.values()
+        if e.participant in infos and e.guid not in named and ros_name(e.topic) is not None
+    )
+
+
 def build_graph(
     domain: int,
     taken_at: datetime,
