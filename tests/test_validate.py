@@ -246,3 +246,19 @@ def test_a_megabyte_name_is_quoted_short_with_its_length(runner: CliRunner, tmp_
     assert code == 1
     assert len(out) < 1_000, out[:2_000]
     assert f"'{name[:120]}... (1,050,000 characters)'" in out
+
+
+def test_the_summary_counts_the_files_that_hold_errors_not_every_file_read(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    """One mistake in one library file of the bundled example's seven: "1 of 7", which said
+    "7 file(s) invalid" before, as if every file were wrong."""
+    for folder in ("libraries", "schemas"):
+        shutil.copytree(REPO / folder, tmp_path / folder)
+    files = sorted(tmp_path.rglob("*.yaml"))
+    library = next(f for f in files if "failure_probability:" in f.read_text(encoding="utf-8"))
+    text = library.read_text(encoding="utf-8")
+    library.write_text(text.replace("failure_probability:", "failure_probabilty:", 1), "utf-8")
+    code, out, _ = _run(runner, tmp_path, *(str(f) for f in files))
+    assert code == 1, out
+    assert out.splitlines()[-1].startswith(f"1 of {len(files)} file(s) invalid: 1 error(s)"), out

@@ -56,10 +56,13 @@ class TextReporter:
         """Return the problems and a one-line summary."""
         lines = [str(p) for p in problems]
         errors, warnings = _counts(problems)
-        verdict = "invalid" if errors else "valid"
+        if errors:  # name how many files hold the errors, not how many were read
+            bad = {p.span.file for p in problems if p.severity is Severity.ERROR}
+            verdict = f"{min(len(bad), len(files)) or 1} of {len(files)} file(s) invalid"
+        else:
+            verdict = f"{len(files)} file(s) valid"
         lines.append(
-            f"{len(files)} file(s) {verdict}: {errors} error(s), {warnings} warning(s)"
-            + (f" [{note}]" if note else "")
+            f"{verdict}: {errors} error(s), {warnings} warning(s)" + (f" [{note}]" if note else "")
         )
         return "\n".join(lines) + "\n"
 
