@@ -135,6 +135,17 @@ def test_node_names_from_the_network_are_escaped(
     assert not any(c in snap.stdout for c in "\x1b\x07\r\x9b")
 
 
+def _snapshot(domain: int) -> subprocess.CompletedProcess[str]:
+    """Run ``snapshot --ros2`` as a process (its stderr is what a user sees, C library included)."""
+    return subprocess.run(
+        [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain", str(domain)],
+        capture_output=True,
+        text=True,
+        env={**ros2_harness.dds_env(), "COLUMNS": "200"},
+        timeout=60,
+    )
+
+
 def test_undecodable_discovery_is_counted_and_said_once(
     announce: Announce, ros2_domain: int
 ) -> None:
@@ -144,13 +155,7 @@ def test_undecodable_discovery_is_counted_and_said_once(
     test_ros2_real's test_cyclone_messages_are_said_once_per_cause covers.)"""
     announce([{**LISTENER, "name": "n" * 300, "plumbing": False}], unbounded_names=True, repeat=5)
     announce([LISTENER])
-    out = subprocess.run(
-        [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain", str(ros2_domain)],
-        capture_output=True,
-        text=True,
-        env={**ros2_harness.dds_env(), "COLUMNS": "200"},
-        timeout=60,
-    )
+    out = _snapshot(ros2_domain)
     assert out.returncode == 0, out.stderr
     assert [n["name"] for n in json.loads(out.stdout)["nodes"]] == ["/listener"]
     lines = out.stderr.splitlines()
@@ -174,13 +179,7 @@ def test_a_participant_whose_newest_node_list_never_arrives_is_exit_3_not_a_part
         "publishers": [{"name": "/late", "type": "std_msgs/msg/String"}],
     }
     announce([LISTENER, late], stale_newest=True)
-    out = subprocess.run(
-        [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain", str(ros2_domain)],
-        capture_output=True,
-        text=True,
-        env={**ros2_harness.dds_env(), "COLUMNS": "200"},
-        timeout=60,
-    )
+    out = _snapshot(ros2_domain)
     assert out.returncode == 3, (out.stdout, out.stderr)
     assert out.stdout == ""
     assert "1 ROS 2 participant(s) announce endpoints that no node" in out.stderr
