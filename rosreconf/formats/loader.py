@@ -136,7 +136,7 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
     if not structural and kind is DocumentKind.LIBRARY:
         structural = value_problems(tree, plain)
     elif not structural:
-        structural = schema_value_problems(tree(), plain)
+        structural = schema_value_problems(tree, plain)
     if structural:
         loaded.problems.extend(structural)
         loaded.library_complete &= kind is not DocumentKind.LIBRARY
