@@ -27,7 +27,7 @@ from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
 from rosreconf.formats.nodes import Node
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
-from rosreconf.formats.structure import DocumentKind, kind_of, named_kind, structure_problems
+from rosreconf.formats.structure import DocumentKind, format_problem, kind_of, structure_problems
 from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
@@ -121,16 +121,16 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         return found
 
     plain = ys.read_plain(src.data)
-    kind = named_kind(plain)
+    kind = kind_of(plain)
     structural = None
     if kind is DocumentKind.LIBRARY:  # a schema is built from its tree: compose it first
         with contextlib.suppress(ValueError):  # a key yaml-rs read as a number: ``read`` says
             structural = structure_problems(tree, kind, plain)
     if structural is None:
-        plain = composed()[1]
-        kind, problems = kind_of(composed()[0], src.name)
+        root, plain = composed()
+        kind = kind_of(plain)
         if kind is None:
-            raise InvalidInputError(problems)
+            raise InvalidInputError([format_problem(root, plain, src.name)])
         structural = structure_problems(tree, kind, plain)
     loaded.problems.extend(todo_marks(src))
     if not structural and kind is DocumentKind.LIBRARY:

@@ -49,41 +49,39 @@ def json_schema(kind: DocumentKind) -> dict[str, Any]:
 # --- the format field -------------------------------------------------------------------
 
 
-def kind_of(tree: nodes.Node | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
-    """Return the format a document claims (its ``format`` field), or the problem with it."""
+def kind_of(plain: nodes.Plain) -> DocumentKind | None:
+    """Return the format a document's plain data names exactly, else None (``format_problem``)."""
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    return DocumentKind(fmt) if isinstance(fmt, str) and fmt in _KINDS else None
+
+
+_KINDS = frozenset(DocumentKind)
+
+
+def format_problem(tree: nodes.Node | None, plain: nodes.Plain, name: str) -> Problem:
+    """Return what is wrong with the format of a document ``kind_of`` found none in."""
     known = ", ".join(k.value for k in DocumentKind)
-    if type(tree) is not nodes.MappingNode:
-        span = nodes.span(tree) if tree is not None else Span(name, 1, 1)
-        return None, [
-            Problem(
-                span,
-                "expected a mapping with a 'format' key at the top of the file",
-                f"start the file with 'format: <kind>' where kind is one of {known}",
-                code="not-a-document",
-            )
-        ]
-    fmt = nodes.fields(tree).get("format")
-    if fmt is None:
-        return None, [
-            Problem(
-                nodes.span(tree),
-                "missing 'format' key",
-                f"add 'format: <kind>' where kind is one of {known}",
-                code="missing-format",
-            )
-        ]
-    raw = fmt.value if type(fmt) is nodes.ScalarNode else ""
-    for kind in DocumentKind:
-        if raw == kind.value:
-            return kind, []
-    return None, [
-        Problem(
-            nodes.span(fmt),
-            f"unknown format '{raw}'",
-            f"use one of {known}",
-            code="unknown-format",
+    if not isinstance(plain, dict):
+        return Problem(
+            nodes.span(tree) if tree is not None else Span(name, 1, 1),
+            "expected a mapping with a 'format' key at the top of the file",
+            f"start the file with 'format: <kind>' where kind is one of {known}",
+            code="not-a-document",
         )
-    ]
+    if "format" not in plain:
+        return Problem(
+            nodes.span(tree),
+            "missing 'format' key",
+            f"add 'format: <kind>' where kind is one of {known}",
+            code="missing-format",
+        )
+    fmt = nodes.fields(tree)["format"]
+    return Problem(
+        nodes.span(fmt),
+        f"unknown format '{nodes.text_of(fmt)}'",
+        f"use one of {known}",
+        "unknown-format",
+    )
 
 
 # --- structure: JSON Schema, with friendly positioned messages ---------------------------
@@ -95,15 +93,6 @@ def validator(kind: DocumentKind) -> Any:
     import jsonschema_rs  # imported only by commands that read files
 
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
-
-
-def named_kind(plain: nodes.Plain) -> DocumentKind | None:
-    """Return the format a document's plain data names exactly, else None (``kind_of`` says)."""
-    fmt = plain.get("format") if isinstance(plain, dict) else None
-    return DocumentKind(fmt) if isinstance(fmt, str) and fmt in _KINDS else None
-
-
-_KINDS = frozenset(DocumentKind)
 
 
 def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
