@@ -77,7 +77,7 @@ def child(folder: str) -> dict[str, float]:
             libraries.append(build_library(plain, src.name, tree, interfaces))
         else:
             assert node is not None
-            schemas.append(build_schema(node, src.name))
+            schemas.append(build_schema(plain, node, src.name))
         seconds["build"] += clock() - t
     t = clock()
     problems = check(libraries, schemas, library_complete=True)

@@ -9,8 +9,8 @@ semantic checks can point at ``file:line:column``.
 A library is built from its plain data (``yamlsource.read_plain`` or ``read``), and where
 its values are written is looked up in the positioned tree only when a check asks
 (``_Where``: a clean library never composes one). A schema, a small file, is built from its
-positioned tree (``yamlsource.read``) through ``nodes``: names as the text written,
-numbers resolved with YAML 1.2.
+plain data too, its positions recorded at once from its tree (``yamlsource.read``, composed
+first: its roles and edges carry their spans).
 """
 
 from __future__ import annotations
@@ -19,11 +19,10 @@ from collections.abc import Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
-from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, field_text, lookup, seq_of, text_of
+from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, lookup, seq_of, text_of
 from rosreconf.formats.nodes import Node as YNode
 from rosreconf.formats.nodes import fields as map_of
 from rosreconf.formats.nodes import span as span_of
-from rosreconf.formats.nodes import value as value_of
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -117,13 +116,16 @@ def _launch(item: Doc) -> RosLaunch:
 
 
 def _numbers(values: list[Any]) -> tuple[float, ...]:
-    return tuple(float(v) if isinstance(v, NUMBER) else 0.0 for v in values)
+    return tuple([_float(v, 0.0) for v in values])
 
 
-def _component_dynamics(item: Doc) -> Dynamics:
-    """Build a component's transfer function or state-space model from its plain data."""
-    delay = item.get("delay")
-    delay = float(delay) if isinstance(delay, NUMBER) else 0.0
+def _float(value: Any, default: float) -> float:
+    return float(value) if isinstance(value, NUMBER) else default
+
+
+def _dynamics(item: Doc) -> Dynamics:
+    """Build a transfer function or state-space model from its plain data."""
+    delay = _float(item.get("delay"), 0.0)
     if "state_space" in item:
         ss = item["state_space"]
         a, b, c, d = (tuple(_numbers(row) for row in ss[part]) for part in "ABCD")
@@ -132,77 +134,32 @@ def _component_dynamics(item: Doc) -> Dynamics:
     return TransferFunction(_numbers(tf["num"]), _numbers(tf["den"]), delay)
 
 
-def _number(node: Node, default: float) -> float:
-    value = value_of(node)
-    return float(value) if isinstance(value, NUMBER) else default
-
-
-def _dynamics(node: Node, key: str, where: dict[str, Span]) -> Dynamics:
-    """Build a transfer function or state-space model; record where its values are."""
-    items = map_of(node)
-    where[key] = span_of(node)
-    if "delay" in items:
-        where[f"{key}.delay"] = span_of(items["delay"])
-    delay = _number(items.get("delay"), 0.0)
-    if "state_space" in items:
-        ss = map_of(items["state_space"])
-        where[f"{key}.state_space"] = span_of(items["state_space"])
-        matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
-        for part in ("A", "B", "C", "D"):
-            path = f"{key}.state_space.{part}"
-            where[path] = span_of(ss[part])
-            rows = []
-            for i, row in enumerate(seq_of(ss[part])):
-                where[f"{path}.{i}"] = span_of(row)
-                cells = seq_of(row)
-                for j, n in enumerate(cells):
-                    where[f"{path}.{i}.{j}"] = span_of(n)
-                rows.append(tuple(_number(n, 0.0) for n in cells))
-            matrices[part] = tuple(rows)
-        return StateSpace(matrices["A"], matrices["B"], matrices["C"], matrices["D"], delay)
-    tf = map_of(items["transfer_function"])
-    coefficients: dict[str, tuple[float, ...]] = {}
-    for part in ("num", "den"):
-        where[f"{key}.{part}"] = span_of(tf[part])
-        values = seq_of(tf[part])
-        for i, n in enumerate(values):
-            where[f"{key}.{part}.{i}"] = span_of(n)
-        coefficients[part] = tuple(_number(n, 0.0) for n in values)
-    return TransferFunction(coefficients["num"], coefficients["den"], delay)
-
-
-def _simulation(node: Node, where: dict[str, Span]) -> Simulation:
-    """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
-    items = map_of(node)
-    where["simulation"] = span_of(node)
-    loops = []
-    for i, n in enumerate(seq_of(items["loops"])):
-        loop = map_of(n)
-        key = f"simulation.loops.{i}"
-        where[key] = span_of(n)
-        where[f"{key}.name"] = span_of(loop["name"])
-        paths: dict[str, tuple[str, ...]] = {}
-        for path in ("forward", "feedback"):
-            roles = seq_of(loop.get(path))
-            for j, r in enumerate(roles):
-                where[f"{key}.{path}.{j}"] = span_of(r)
-            paths[path] = tuple(text_of(r) for r in roles)
-        plant = _dynamics(loop["plant"], f"{key}.plant", where)
-        loops.append(ControlLoop(text_of(loop["name"]), paths["forward"], plant, paths["feedback"]))
-    limits = map_of(items.get("requirements"))
-    for metric, value in limits.items():
-        where[f"simulation.requirements.{metric}"] = span_of(value)
-    for key in ("reference", "duration"):
-        if key in items:
-            where[f"simulation.{key}"] = span_of(items[key])
+def _simulation(item: Doc) -> Simulation:
+    """Build a schema's simulation block from its plain data."""
+    loops = [
+        ControlLoop(
+            n["name"],
+            tuple(n.get("forward", ())),
+            _dynamics(n["plant"]),
+            tuple(n.get("feedback", ())),
+        )
+        for n in item["loops"]
+    ]
     return Simulation(
         loops=tuple(loops),
-        reference=_number(items.get("reference"), 1.0),
-        duration=_number(items.get("duration"), 10.0),
+        reference=_float(item.get("reference"), 1.0),
+        duration=_float(item.get("duration"), 10.0),
         requirements=PerformanceRequirements(
-            **{m: _number(v, 0.0) for m, v in limits.items()}  # keys fixed by the JSON Schema
-        ),
+            **{m: _float(v, 0.0) for m, v in item.get("requirements", {}).items()}
+        ),  # keys fixed by the JSON Schema
     )
+
+
+def _positions(node: Node, key: str, where: dict[str, Span]) -> None:
+    """Record where ``node`` and every value under it are written: ``key``, ``key.<key or i>``..."""
+    where[key] = span_of(node)
+    for step, child in [*map_of(node).items(), *enumerate(seq_of(node))]:
+        _positions(child, f"{key}.{step}", where)
 
 
 def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
@@ -223,7 +180,7 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
         launch=_launch(item["ros"]) if "ros" in item else None,
         metrics=MappingProxyType({k: float(v) for k, v in get("metrics", {}).items()}),
         qos=MappingProxyType(qos),
-        dynamics=_component_dynamics(item["dynamics"]) if "dynamics" in item else None,
+        dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
         where=where,
     )
@@ -254,7 +211,7 @@ def component_where(node: Node) -> dict[str, Span]:
     for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
         where[f"ros.args.{i}"] = span_of(n)
     if "dynamics" in items:
-        _dynamics(items["dynamics"], "dynamics", where)
+        _positions(items["dynamics"], "dynamics", where)
     return where
 
 
@@ -310,40 +267,43 @@ def build_library(
     )
 
 
-def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
-    """Build a schema file's model from its positioned tree."""
+def build_schema(plain: Plain, tree: Node, name: str) -> InteroperabilitySchema:
+    """Build a schema file's model from its plain data, with positions from its tree."""
+    assert isinstance(plain, dict), "a schema that passed its JSON Schema is a mapping"
+    doc: Doc = plain
     items = map_of(tree)
+    roles_at = seq_of(items["roles"])
     roles = tuple(
         Role(
-            name=text_of(map_of(n)["name"]),
-            abstraction=text_of(map_of(n)["abstraction"]),
-            description=field_text(map_of(n), "description"),
-            span=span_of(n),
-            optional=value_of(map_of(n).get("optional")) is True,
+            r["name"],
+            r["abstraction"],
+            r.get("description", ""),
+            span_of(n),
+            r.get("optional") is True,
         )
-        for n in seq_of(items["roles"])
+        for r, n in zip(doc["roles"], roles_at, strict=True)
     )
     edges = []
-    for n in seq_of(items.get("edges")):
-        e = map_of(n)
-        interfaces = frozenset(text_of(i) for i in seq_of(e.get("interfaces")))
-        optional = value_of(e.get("optional")) is True
-        for p in seq_of(e["providers"]):
-            edges.append(Edge(text_of(e["consumer"]), text_of(p), interfaces, span_of(p), optional))
-    nominal = {k: text_of(v) for k, v in map_of(items.get("nominal")).items()}
+    for e, n in zip(doc.get("edges", ()), seq_of(items.get("edges")), strict=True):
+        interfaces = frozenset(e.get("interfaces", ()))
+        providers = zip(e["providers"], seq_of(map_of(n)["providers"]), strict=True)
+        for p, at in providers:
+            edges.append(Edge(e["consumer"], p, interfaces, span_of(at), e.get("optional") is True))
+    nominal = map_of(items.get("nominal"))
     where = {"name": span_of(items["name"])}
-    where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
-    for n in seq_of(items["roles"]):
-        where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(map_of(n)["abstraction"])
-    simulation = _simulation(items["simulation"], where) if "simulation" in items else None
+    where.update({f"nominal.{k}": span_of(v) for k, v in nominal.items()})
+    for r, n in zip(doc["roles"], roles_at, strict=True):
+        where[f"role.{r['name']}.abstraction"] = span_of(map_of(n)["abstraction"])
+    if "simulation" in items:
+        _positions(items["simulation"], "simulation", where)
     return InteroperabilitySchema(
-        name=text_of(items["name"]),
-        title=field_text(items, "title"),
+        name=doc["name"],
+        title=doc.get("title", ""),
         graph=SystemGraph(roles, tuple(edges)),
-        skill=text_of(items["skill"]).strip(),
-        environment=text_of(items["environment"]).strip(),
-        nominal=MappingProxyType(nominal),
-        simulation=simulation,
+        skill=doc["skill"].strip(),
+        environment=doc["environment"].strip(),
+        nominal=MappingProxyType(dict(doc.get("nominal", {}))),
+        simulation=_simulation(doc["simulation"]) if "simulation" in doc else None,
         span=span_of(tree),
         source=name,
         where=MappingProxyType(where),

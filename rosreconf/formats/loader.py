@@ -144,7 +144,7 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         loaded.libraries.append(build_library(plain, src.name, tree, interfaces))
     else:
         loaded.problems.extend(duplicate_edges(tree(), plain))
-        loaded.schemas.append(build_schema(tree(), src.name))
+        loaded.schemas.append(build_schema(plain, tree(), src.name))
 
 
 TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")

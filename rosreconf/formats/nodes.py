@@ -113,11 +113,6 @@ def seq_of(node: Node | None) -> list[Node]:
     return node.value if type(node) is SequenceNode else []
 
 
-def field_text(items: dict[str, Node], key: str, default: str = "") -> str:
-    """Return the text of ``items[key]`` as written, or ``default`` when the key is absent."""
-    return text_of(items[key]) if key in items else default
-
-
 _INT = re.compile(r"[-+]?[0-9]+\Z")
 _OCT = re.compile(r"0o[0-7]+\Z")
 _HEX = re.compile(r"0x[0-9a-fA-F]+\Z")

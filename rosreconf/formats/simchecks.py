@@ -119,7 +119,7 @@ def _state_space(
     matrix of the wrong size is reported at the matrix (too many or too few rows) or at
     the first row of the wrong width, saying what single-input single-output needs.
     """
-    key = f"{key}.state_space"
+    base, key = key, f"{key}.state_space"
     n = len(ss.a)
     finite = True
     for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
@@ -132,10 +132,10 @@ def _state_space(
                     )
     if not math.isfinite(ss.delay):
         finite = False
-        yield _not_finite(at(f"{key[: -len('.state_space')]}.delay"), f"the delay of {what}")
+        yield _not_finite(at(f"{base}.delay"), f"the delay of {what}")
     if not finite:
         return
-    yield from _delay(ss.delay, at(f"{key[: -len('.state_space')]}.delay"), what)
+    yield from _delay(ss.delay, at(f"{base}.delay"), what)
     sized = True
     for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
         for i, row in enumerate(matrix):
@@ -186,6 +186,7 @@ def _shape_hint(part: str, rows: int, cols: int) -> str:
 def _transfer_function(
     tf: TransferFunction, key: str, at: Callable[[str], Span], what: str
 ) -> Iterator[Problem]:
+    base, key = key, f"{key}.transfer_function"
     finite = True
     for part in ("num", "den"):
         for i, value in enumerate(getattr(tf, part)):
@@ -194,7 +195,7 @@ def _transfer_function(
                 yield _not_finite(at(f"{key}.{part}.{i}"), f"{part} coefficient {i + 1} of {what}")
     if not math.isfinite(tf.delay):
         finite = False
-        yield _not_finite(at(f"{key}.delay"), f"the delay of {what}")
+        yield _not_finite(at(f"{base}.delay"), f"the delay of {what}")
     if not finite:
         return
     if not any(tf.den):
@@ -205,7 +206,7 @@ def _transfer_function(
             code="zero-denominator",
         )
         return
-    yield from _delay(tf.delay, at(f"{key}.delay"), what)
+    yield from _delay(tf.delay, at(f"{base}.delay"), what)
     sized = True
     for part in ("num", "den"):
         for i, value in enumerate(getattr(tf, part)):
