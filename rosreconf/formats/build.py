@@ -159,7 +159,7 @@ def _positions(node: Node, key: str, where: dict[str, Span]) -> None:
     """Record where ``node`` and every value under it are written: ``key``, ``key.<key or i>``..."""
     where[key] = span_of(node)
     for step, child in [*map_of(node).items(), *enumerate(seq_of(node))]:
-        _positions(child, f"{key}.{step}", where)
+        _positions(child, f"{key}.{step}" if key else str(step), where)
 
 
 def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
@@ -188,30 +188,22 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
 
 def component_where(node: Node) -> dict[str, Span]:
     """Return where a component's values are written (``Component.where``), from its node."""
+    where: dict[str, Span] = {}
+    _positions(node, "", where)
     items = map_of(node)
-    get = items.get
-    where = {"": span_of(node), "name": span_of(items["name"])}
-    where["abstraction"] = span_of(items["abstraction"])
     for key in ("needs", "excludes", "schemas"):
-        for n in seq_of(get(key)):
-            where[f"{key}.{text_of(n)}"] = span_of(n)
-    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
-    for kind, listed in (("provides", provides), ("requires", requires)):
-        where.update((f"{kind}.{i}", span_of(n)) for i, n in enumerate(listed))
+        where.update((f"{key}.{text_of(n)}", span_of(n)) for n in seq_of(items.get(key)))
+    provides = seq_of(items.get("provides"))
     for n in provides:  # the first of an interface provided twice
         entry = map_of(n)
         kind = _kind(entry)
         written = f"{kind}:{text_of(entry[kind])}:{text_of(entry['type'])}"
         where.setdefault(f"provides.{written}", span_of(n))
-    for n in (*provides, *requires):  # in build order: the last QoS of a label wins
+    for n in (*provides, *seq_of(items.get("requires"))):  # in build order: the last QoS wins
         for iface in seq_of(map_of(n).get("any_of")) or [n]:
             entry = map_of(iface)
             if "qos" in entry:
                 where[f"qos.{text_of(entry[_kind(entry)])}"] = span_of(entry["qos"])
-    for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
-        where[f"ros.args.{i}"] = span_of(n)
-    if "dynamics" in items:
-        _positions(items["dynamics"], "dynamics", where)
     return where
 
 
