@@ -40,9 +40,9 @@ def span(node: Node | None) -> Span:
     return _new_span(Span, (mark.name, mark.line + 1, mark.column + 1))
 
 
-def is_plain(node: Node) -> bool:
-    """Tell whether ``node`` is an untagged plain scalar (resolved with YAML 1.2)."""
-    return type(node) is ScalarNode and not node.tag
+def path_text(path: Sequence[str | int]) -> str:
+    """Return a path of keys and indices as messages write it: ``components[0].dynamics``."""
+    return "".join(f"[{s}]" if isinstance(s, int) else f".{s}" for s in path).lstrip(".")
 
 
 _RESOLVED: dict[str, Scalar] = {}

@@ -15,7 +15,7 @@ import difflib
 import enum
 import json
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from functools import cache
 from typing import Any
 
@@ -248,7 +248,7 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     path = error.path
     node = nodes.lookup(tree, path)
     span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)
-    where = _describe_path(path)
+    where = f"'{nodes.path_text(path)}'" if path else "the document"
     schema = error.schema
     hint = str(schema.get("x-hint", ""))
     validator = error.validator
@@ -268,7 +268,7 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
         want = error.validator_value
         wanted = " or ".join(want) if isinstance(want, list) else str(want)
         fix = hint
-        if "string" in wanted and node is not None and nodes.is_plain(node):
+        if "string" in wanted and type(node) is nodes.ScalarNode and not node.tag:
             fix = f"quote it ('{node.value}') if you mean the text"
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
@@ -300,12 +300,3 @@ def _written(node: nodes.Node | None) -> str:
     if type(node) is nodes.SequenceNode:
         return "a list"
     return "nothing"
-
-
-def _describe_path(path: Sequence[str | int]) -> str:
-    if not path:
-        return "the document"
-    parts = []
-    for step in path:
-        parts.append(f"[{step}]" if isinstance(step, int) else f".{step}")
-    return "'" + "".join(parts).lstrip(".") + "'"

@@ -106,10 +106,10 @@ def _huge(plain: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[
     """Refuse every integer under ``plain`` (at ``path``) too large for a float."""
     if type(plain) is int and abs(plain) > FLOAT_MAX:
         node = _at(tree, *path)
-        where = "".join(f"[{s}]" if isinstance(s, int) else f".{s}" for s in path)
         yield Problem(
             nodes.span(node),
-            f"'{where[1:]}' is {_shown(nodes.text_of(node))}, too large to compute with",
+            f"'{nodes.path_text(path)}' is {_shown(nodes.text_of(node))}, too large to "
+            "compute with",
             "write a number within the ranges docs/simulation.md gives (at most 1e12)",
             code="not-finite",
         )
