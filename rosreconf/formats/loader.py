@@ -86,24 +86,18 @@ def _paused_gc() -> Iterator[None]:
 
 def load_sources(sources: Iterable[Source]) -> Loaded:
     """Parse, check and build every source, collecting problems instead of stopping at the first."""
-    with _paused_gc():
-        return _load_sources(sources)
-
-
-def _load_sources(sources: Iterable[Source]) -> Loaded:
     loaded = Loaded()
     interfaces: Interfaces = {}  # shared by every library file (see build_library)
-    for src in sources:
-        loaded.files.append(src.name)
-        if src.size > ys.MAX_BYTES:
-            loaded.problems.append(ys.too_large(src.name, src.size))
-            loaded.library_complete = False
-            continue
-        try:
-            _load_one(src, loaded, interfaces)
-        except InvalidInputError as exc:
-            loaded.problems.extend(exc.problems)
-            loaded.library_complete = False
+    with _paused_gc():
+        for src in sources:
+            loaded.files.append(src.name)
+            try:
+                if src.size > ys.MAX_BYTES:
+                    raise InvalidInputError([ys.too_large(src.name, src.size)])
+                _load_one(src, loaded, interfaces)
+            except InvalidInputError as exc:
+                loaded.problems.extend(exc.problems)
+                loaded.library_complete = False
     return loaded
 
 
@@ -123,7 +117,7 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
     plain = ys.read_plain(src.data)
     kind = kind_of(plain)
     structural = None
-    if kind is DocumentKind.LIBRARY:  # a schema is built from its tree: compose it first
+    if kind is DocumentKind.LIBRARY:  # a schema records its positions at once: composed first
         with contextlib.suppress(ValueError):  # a key yaml-rs read as a number: ``read`` says
             structural = structure_problems(tree, kind, plain)
     if structural is None:

@@ -1,12 +1,10 @@
 """Check the M-solution's models: component dynamics and schemas' simulation blocks.
 
-The JSON Schema already holds their shape (lists of numbers, a non-negative delay, positive
-durations); what it cannot say is checked here, each problem at the offending value: numbers
-YAML reads as infinite or NaN (``.inf``, ``.nan``), denominators that are all zero, models
-whose numerator has a higher order than their denominator (improper: not realisable, and
-python-control cannot simulate them), state-space models whose matrices do not fit one input
-and one output around a square A, loops naming roles the schema does not have, and a role in
-both the forward and the feedback path (it would sit twice in one loop).
+The JSON Schema holds their shape; what it cannot say is checked here, each problem at the
+offending value: ``.inf`` and ``.nan``, all-zero denominators, improper models (not
+realisable, and python-control cannot simulate them), state-space matrices that do not fit
+one input and one output around a square A, loops naming unknown roles, and a role in both
+the forward and the feedback path (it would sit twice in one loop).
 
 It also holds every number to the range the simulation computes correctly in (docs/simulation.md,
 "Ranges"): coefficients and matrix entries between ``MIN_MAGNITUDE`` and ``MAX_MAGNITUDE``
