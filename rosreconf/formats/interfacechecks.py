@@ -23,12 +23,8 @@ def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement 
     The position itself is made only for the few that a check keeps or reports: a large
     library has 35,000 interfaces and a handful of distinct ones.
     """
-    if len(c.provides) > 1:
-        for i, iface in enumerate(sorted(c.provides)):
-            yield iface, i, None
-    else:
-        for iface in c.provides:
-            yield iface, 0, None
+    for i, iface in enumerate(sorted(c.provides)):
+        yield iface, i, None
     for i, req in enumerate(c.requires):
         for iface in req.options:
             yield iface, i, req

@@ -182,11 +182,6 @@ def _model(model: Dynamics, key: str, at: At, what: str) -> Iterator[Problem]:
         )
 
 
-def _shape(part: str, n: int) -> tuple[int, int]:
-    """Return (rows, columns) of matrix ``part`` of a SISO state-space model of order n."""
-    return {"A": (n, n), "B": (n, 1), "C": (1, n), "D": (1, 1)}[part]
-
-
 def _shapes(ss: StateSpace, key: str, at: At, what: str) -> Iterator[Problem]:
     """Refuse matrices that do not fit one input and one output around a square A.
 
@@ -195,7 +190,7 @@ def _shapes(ss: StateSpace, key: str, at: At, what: str) -> Iterator[Problem]:
     """
     n = len(ss.a)
     for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
-        rows, cols = _shape(part, n)
+        rows, cols = {"A": (n, n), "B": (n, 1), "C": (1, n), "D": (1, 1)}[part]
         need = f"{part} must be {rows} x {cols}"
         why = "single input, single output" if part != "A" else "square"
         if len(matrix) != rows:

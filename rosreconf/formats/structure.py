@@ -159,7 +159,7 @@ class _Error:
         instance: Any = plain
         for step in self.path:  # the value itself: jsonschema-rs gives it as None
             instance = instance[step]
-        if not _non_finite(instance):
+        if not isinstance(instance, float) or math.isfinite(instance):
             return self
         self.instance = instance
         want = self.validator_value
@@ -185,10 +185,6 @@ class _Error:
             return False
         names = [expected] if isinstance(expected, str) else list(expected)
         return any(_is_type(self.instance, name) for name in names)
-
-
-def _non_finite(instance: Any) -> bool:
-    return isinstance(instance, float) and not math.isfinite(instance)
 
 
 _RANGES: dict[str, Callable[[float, float], bool]] = {
@@ -217,7 +213,13 @@ def _best_match(errors: list[_Error], parent: _Error) -> _Error:
 
     def relevance(e: _Error) -> tuple[Any, ...]:
         relative = e.path[len(parent.path) :]
-        return (-len(relative), relative, e.validator not in _WEAK, False, not e.matches_type())
+        return (
+            -len(relative),
+            relative,
+            e.validator not in ("oneOf", "anyOf"),
+            False,
+            not e.matches_type(),
+        )
 
     best = max(errors, key=relevance)
     while best.context:
@@ -227,8 +229,6 @@ def _best_match(errors: list[_Error], parent: _Error) -> _Error:
         best = smallest[0]
     return best
 
-
-_WEAK = frozenset({"oneOf", "anyOf"})
 
 _MESSAGES = {
     "enum": "{0!r} is not one of {1!r}",

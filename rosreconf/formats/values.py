@@ -31,7 +31,6 @@ from collections.abc import Iterator
 from rosreconf.errors import Problem, Severity
 from rosreconf.formats import nodes
 from rosreconf.formats.nodes import NUMBER
-from rosreconf.model import Span
 
 MAX_METRIC = 1e12
 """Largest metric value: sums over 10,000 components stay exact in a float, and costs in PDDL."""
@@ -218,7 +217,7 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     not be what the author meant: one of the two entries is ignored, silently until now.
     ``plain`` is a structurally valid schema's plain data; ``tree`` gives the positions.
     """
-    seen: dict[tuple[str, str], tuple[int, int]] = {}
+    seen: dict[tuple[str, str], list[str | int]] = {}
     problems: list[Problem] = []
     edges = plain.get("edges", []) if isinstance(plain, dict) else []
     for i, entry in enumerate(edges if isinstance(edges, list) else []):
@@ -228,13 +227,14 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
         providers = entry.get("providers", [])
         for j, provider in enumerate(providers if isinstance(providers, list) else []):
             key = (str(consumer), str(provider))
+            at: list[str | int] = ["edges", i, "providers", j]
             if key not in seen:
-                seen[key] = (i, j)
+                seen[key] = at
                 continue
-            first = _provider_span(tree, *seen[key])
+            first = nodes.span(nodes.lookup(tree, seen[key]))
             problems.append(
                 Problem(
-                    _provider_span(tree, i, j),
+                    nodes.span(nodes.lookup(tree, at)),
                     f"edge {provider} -> {consumer} is listed again (first at "
                     f"{first}); the two entries are merged and the one without "
                     "'interfaces' wins",
@@ -244,8 +244,3 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
                 )
             )
     return problems
-
-
-def _provider_span(tree: nodes.Node, edge: int, index: int) -> Span:
-    node = nodes.lookup(tree, ["edges", edge, "providers", index])
-    return nodes.span(node) if node is not None else nodes.span(tree)
