@@ -1,16 +1,10 @@
 """Build the paper's model objects from well-formed files, with their positions.
 
 The loader calls these only after a file passed its JSON Schema and value checks, so every
-key the Schema requires is present and every value has its type; what is left here is to
-turn YAML's shapes into the model (components, requirements, launch data, dynamics, system
-graphs) and to record where each value was written (``span``, ``where``), so that the
-semantic checks can point at ``file:line:column``.
-
-A library is built from its plain data (``yamlsource.read_plain`` or ``read``), and where
-its values are written is looked up in the positioned tree only when a check asks
-(``_Where``: a clean library never composes one). A schema, a small file, is built from its
-plain data too, its positions recorded at once from its tree (``yamlsource.read``, composed
-first: its roles and edges carry their spans).
+key the Schema requires is present and every value has its type. Both formats are built
+from their plain data. Where a library's values are written is looked up in its positioned
+tree only when a check asks (``_Where``: a clean library never composes one); a schema, a
+small file, has its positions recorded at once (its roles and edges carry their spans).
 """
 
 from __future__ import annotations
@@ -240,11 +234,9 @@ def build_library(
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``plain`` passed the JSON Schema and value checks; ``tree`` gives the file's positioned
-    tree, asked for only when a position is (see ``_Where``). One ``seen`` for all the
-    library files of a load makes every use of an interface, in any file, the same object:
-    a requirement in one file and the provision meeting it in another then match by
-    identity in every set and dict, without a comparison.
+    ``tree`` is asked for only when a position is (``_Where``). One ``seen`` for all the
+    library files of a load makes every use of an interface the same object: a requirement
+    and the provision meeting it then match by identity, without a comparison.
     """
     assert isinstance(plain, dict), "a library that passed its JSON Schema is a mapping"
     doc: Doc = plain

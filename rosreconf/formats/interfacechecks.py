@@ -33,12 +33,10 @@ def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement 
 class InterfaceIndex:
     """The distinct interfaces of a library: what a clean library's checks are decided on.
 
-    The loader builds each distinct interface once and shares it (``build.Interfaces``), so
-    a thousand-role library's 45,000 provisions and requirement options are a few thousand
-    objects. Provided interfaces are joined as sets (their hashes are stored in each
-    component's frozenset); requirement options are kept once per object (``id``), which
-    skips the interface's own hash (a Python function) for each repeat. Correct whether or
-    not interfaces are shared, only slower when they are not.
+    The loader shares each distinct interface (``build.Interfaces``): a thousand-role
+    library's 45,000 provisions and options are a few thousand objects. Options are kept once
+    per object (``id``), skipping the interface's own hash (a Python function) for each
+    repeat; correct whether or not interfaces are shared, only slower when they are not.
 
     Attributes:
         provided: every interface some component provides.

@@ -1,14 +1,11 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file goes through three steps, once: YAML -> plain data (``yamlsource``), the plain data
-checked against the shipped JSON Schema (``structure``) and its values checked (``values``);
-then model objects (``build``), which know where each value was written. Positions are looked
-up when a problem is reported: a library that yaml-rs reads with certainty
-(``yamlsource.read_plain``) has its positioned tree composed only when a problem needs a
-``file:line:column``; every other file is composed first (``yamlsource.read``), which also
-says what is wrong with its YAML. Problems are collected per file and across files; the
-caller gets the model of every well-formed file *and* the list of problems, so ``validate``
-can report everything in one run while ``enumerate`` can refuse to work on invalid input.
+Each file is read once into plain data (``yamlsource``), checked (``structure``, ``values``)
+and built (``build``). A library that yaml-rs reads with certainty has its positioned tree
+composed only when a problem needs a ``file:line:column``; every other file is composed
+first (``yamlsource.read``, which also says what is wrong with its YAML). The caller gets
+the model of every well-formed file *and* every problem, so ``validate`` reports everything
+in one run while ``enumerate`` can refuse to work on invalid input.
 """
 
 from __future__ import annotations

@@ -1,10 +1,8 @@
 """Read the positioned tree: where a value is, its text as written, its YAML 1.2 value.
 
-``yamlsource.read`` composes each file into PyYAML's nodes (``ScalarNode``, ``MappingNode``,
-``SequenceNode``, each with its start mark); the checks and ``build`` read them only through
-these functions. A scalar keeps its text as written (so names are never turned into
-numbers); a plain one resolves with YAML 1.2's core schema (``resolve_plain``: only
-``true``/``false`` are booleans, so ``no``, ``on`` and ``yes`` stay strings).
+``yamlsource.read`` composes each file into PyYAML's nodes, each with its start mark. A
+scalar keeps its text as written (names are never turned into numbers); a plain one
+resolves with YAML 1.2's core schema (``resolve_plain``: ``no``, ``on``, ``yes`` stay text).
 """
 
 from __future__ import annotations

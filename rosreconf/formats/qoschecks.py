@@ -66,10 +66,8 @@ def _qos_pair(
             if not why:
                 continue
             where = consumer.at(f"qos.{label}" if label in consumer.qos else f"requires.{i}")
-            if chosen:
-                scope = f"the nominal configuration of {schema.name}"
-            else:
-                scope = f"any configuration of {schema.name} choosing both"
+            scope = "the nominal" if chosen else "any"
+            scope += f" configuration of {schema.name}" + ("" if chosen else " choosing both")
             yield Problem(
                 where,
                 f"topic '{label}': {provider.name} ({role}) offers QoS [{offered}] but "

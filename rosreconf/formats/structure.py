@@ -1,12 +1,9 @@
 """Check a YAML document's structure against the shipped JSON Schema, with positions.
 
-jsonschema-rs does the validating (the same JSON Schema files editors use, shipped in
-``rosreconf/data``), giving the verdict and every error in one pass; this module decides
-which format a document claims to be (its ``format:`` field) and turns each error into a
-``Problem`` that names the exact key or value (``file:line:column``, looked up in the
-positioned tree by the error's instance path), says what is wrong in words, and how to fix
-it (``x-hint`` entries in the JSON Schemas, "did you mean" for unknown keys, "quote it" for
-names YAML read as numbers).
+jsonschema-rs does the validating (the JSON Schema files editors use, in ``rosreconf/data``);
+this module turns each error into a ``Problem`` at the exact key or value (its instance path
+looked up in the positioned tree), saying what is wrong in words and how to fix it
+(``x-hint`` entries in the JSON Schemas, "did you mean", "quote it").
 """
 
 from __future__ import annotations
@@ -141,11 +138,9 @@ class _Error:
     def as_number(self, plain: nodes.Plain) -> _Error | None:
         """Return this error as JSON Schema judges a YAML ``.inf`` or ``.nan``: a number.
 
-        JSON has no such numbers, and jsonschema-rs reads them as null; rosreconf
-        treats them as numbers that compare as Python does (``values`` and the dynamics
-        checks say they are not finite). So a type error on one becomes the range error it
-        would break (``maximum`` for ``.inf``...), or nothing; a ``oneOf`` whose branch
-        fails only so is satisfied.
+        JSON has no such numbers (jsonschema-rs reads them as null); rosreconf compares them
+        as Python does, and ``values`` and ``simchecks`` say they are not finite. So a type
+        error on one becomes the range error it would break, or nothing.
         """
         if self.context:
             branches: dict[int, list[_Error | None]] = {}
