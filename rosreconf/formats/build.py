@@ -202,10 +202,9 @@ def component_where(node: Node) -> dict[str, Span]:
 
 
 class _Where(Mapping[str, Span]):
-    """A component's ``where``, looked up in its file's tree when first read.
+    """A component's ``where``, looked up in its file's tree (composed then) when first read.
 
-    The tree (``TreeOf``) is composed then, so positions cost nothing until a problem is
-    reported (``loader``); ``""`` is where the component itself is (``Component.at``).
+    So positions cost nothing until a problem is reported; ``""`` is the component itself.
     """
 
     __slots__ = ("_found", "_index", "_tree")

@@ -53,8 +53,7 @@ class InterfaceIndex:
     def agree(self) -> bool:
         """Tell whether each (kind, label) has one message class and each label one kind.
 
-        Exactly when ``_conflicts`` has nothing to report: it reports an interface that
-        differs from the first one seen with its key, in whatever order it walks.
+        Exactly when ``_conflicts`` has nothing to report, in whatever order it walks.
         """
         types: dict[tuple[InterfaceKind, str], str] = {}
         kinds: dict[str, InterfaceKind] = {}

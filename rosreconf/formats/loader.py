@@ -234,11 +234,7 @@ def check_loaded(loaded: Loaded) -> list[Problem]:
 
 
 def problems_of(loaded: Loaded, *, errors_only: bool = False) -> list[Problem]:
-    """Return every problem of what was loaded: the files' own, then the semantic checks'.
-
-    ``errors_only``: the caller reports errors only and drops warnings (the solvers, through
-    ``load_checked``).
-    """
+    """Return every problem of what was loaded: the files' own, then the semantic checks'."""
     problems = [*loaded.problems, *check_loaded(loaded)]
     return [p for p in problems if p.severity is Severity.ERROR] if errors_only else problems
 

@@ -66,10 +66,7 @@ _NO_FIELDS: dict[str, Node] = {}
 
 
 def fields(node: Node | None) -> dict[str, Node]:
-    """Return a mapping's values by key text, as ``yamlsource.read`` recorded them.
-
-    The first of a duplicate key: the file was refused for it anyway.
-    """
+    """Return a mapping's values by key text, as ``yamlsource.read`` recorded them."""
     found: dict[str, Node] = getattr(node, "fields", _NO_FIELDS)
     return found
 

@@ -102,8 +102,7 @@ def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
 def _model(model: Dynamics, key: str, at: At, what: str) -> Iterator[Problem]:
     """Yield the problems of a transfer function or a state-space model written at ``key``.
 
-    Each number is checked once; ``at`` (which may compose the file's tree) is asked only for
-    a problem's position.
+    ``at`` (which may compose the file's tree) is asked only for a problem's position.
     """
     ss = isinstance(model, StateSpace)
     rows = (
@@ -183,10 +182,9 @@ def _model(model: Dynamics, key: str, at: At, what: str) -> Iterator[Problem]:
 
 
 def _shapes(ss: StateSpace, key: str, at: At, what: str) -> Iterator[Problem]:
-    """Refuse matrices that do not fit one input and one output around a square A.
+    """Refuse matrices that do not fit one input and one output around A (n x n, n its rows).
 
-    The order n is A's number of rows. A matrix of the wrong size is reported at the matrix
-    (too many or too few rows) or at its first row of the wrong width.
+    Reported at the matrix (too many or too few rows) or at its first row of the wrong width.
     """
     n = len(ss.a)
     for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):

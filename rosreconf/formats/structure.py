@@ -29,21 +29,13 @@ class DocumentKind(enum.StrEnum):
     SCHEMA = "rosreconf/interoperability-schema"
 
 
-JSON_SCHEMA_FILES = {
-    DocumentKind.LIBRARY: "component-library.schema.json",
-    DocumentKind.SCHEMA: "interoperability-schema.schema.json",
-}
-
-
 @cache
 def json_schema(kind: DocumentKind) -> dict[str, Any]:
     """Return the shipped JSON Schema of ``kind`` (the same file editors use)."""
-    text = bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_text(encoding="utf-8")
+    name = kind.value.removeprefix("rosreconf/") + ".schema.json"  # component-library...
+    text = bundled(Bundle.DATA, name).read_text(encoding="utf-8")
     schema: dict[str, Any] = json.loads(text)
     return schema
-
-
-# --- the format field -------------------------------------------------------------------
 
 
 def kind_of(plain: nodes.Plain) -> DocumentKind | None:
@@ -81,9 +73,6 @@ def format_problem(tree: nodes.Node | None, plain: nodes.Plain, name: str) -> Pr
     )
 
 
-# --- structure: JSON Schema, with friendly positioned messages ---------------------------
-
-
 @cache
 def validator(kind: DocumentKind) -> Any:
     """Return jsonschema-rs's validator of ``kind``'s JSON Schema (built once per process)."""
@@ -93,10 +82,7 @@ def validator(kind: DocumentKind) -> Any:
 
 
 def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
-    """Return every structural problem of ``plain`` against ``kind``'s JSON Schema.
-
-    jsonschema-rs gives the verdict and the errors in one pass; each error's instance path
-    is looked up in ``tree()`` (the positioned tree ``plain`` was read from) for its position.
+    """Return every structural problem of ``plain``, placed in ``tree()`` (asked only then).
 
     Raises:
         ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).

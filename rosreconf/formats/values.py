@@ -52,11 +52,7 @@ SUBSTITUTION = "$("
 
 
 def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
-    """Return the problems of a structurally valid component library's numbers and launch values.
-
-    ``tree()`` is the positioned tree ``plain`` was read from, asked only for a value found
-    wrong (by its path).
-    """
+    """Return the problems of a structurally valid library's numbers and launch values."""
     problems: list[Problem] = []
     components = plain.get("components") if isinstance(plain, dict) else None
     for i, component in enumerate(components if isinstance(components, list) else []):
@@ -86,11 +82,9 @@ def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
 
 
 def schema_value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
-    """Return the problems of a schema's numbers that no model could hold.
+    """Return the integers of a schema's simulation block too large to become floats.
 
-    The simulation block's numbers (reference, duration, requirements, the plants) become
-    floats when the schema is built; an integer too large for one is refused here, at its
-    position, before it can stop the build.
+    Refused here, at their position, before they can stop the build.
     """
     simulation = plain.get("simulation") if isinstance(plain, dict) else None
     return list(_huge(simulation, tree, "simulation"))
@@ -121,10 +115,7 @@ def _huge(plain: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[
 
 
 def _qos(interface: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[Problem]:
-    """Refuse QoS depths and durations beyond DDS's 32-bit ``long`` (``QOS_LIMITS``).
-
-    Of an interface a component provides or requires, then of its ``any_of``'s options.
-    """
+    """Refuse an interface's (and its options') QoS numbers beyond DDS's 32-bit ``long``."""
     if not isinstance(interface, dict):
         return
     qos = interface.get("qos")
@@ -149,10 +140,7 @@ def _qos(interface: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterat
 
 
 def _within(value: nodes.Plain, high: float) -> bool:
-    """Tell whether ``value`` is in [0, ``high``], or is no number (the JSON Schema's case).
-
-    A comparison with NaN is false, so NaN is never within.
-    """
+    """Tell whether ``value`` is in [0, ``high``] (never NaN), or no number (the Schema's)."""
     return type(value) not in NUMBER or 0.0 <= value <= high  # type: ignore[operator]
 
 
