@@ -32,7 +32,7 @@ class DocumentKind(enum.StrEnum):
 @cache
 def json_schema(kind: DocumentKind) -> dict[str, Any]:
     """Return the shipped JSON Schema of ``kind`` (the same file editors use)."""
-    name = kind.value.removeprefix("rosreconf/") + ".schema.json"  # component-library...
+    name = kind.value.removeprefix("rosreconf/") + ".schema.json"  # e.g. component-library
     text = bundled(Bundle.DATA, name).read_text(encoding="utf-8")
     schema: dict[str, Any] = json.loads(text)
     return schema
