@@ -19,7 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rosreconf.errors import Problem
-from rosreconf.formats import checks, interfacechecks, yamlsource
+from rosreconf.formats import checks, interfacechecks
 from rosreconf.formats.loader import load_paths
 from rosreconf.model import (
     Component,
@@ -165,25 +165,3 @@ def test_the_bundled_and_test_libraries_give_the_walks_answers() -> None:
         args = (loaded.libraries, loaded.schemas)
         found = checks.check(*args, library_complete=loaded.library_complete)
         assert found == _walked(*args, loaded.library_complete), folder
-
-
-def test_checking_a_clean_library_with_dynamics_composes_no_tree(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    """Positions are looked up only for a problem, dynamics included.
-
-    Before, each component with dynamics asked for its positions while clean, which composed
-    its library's tree a second time in the semantic check.
-    """
-    loaded = load_paths([REPO / "libraries", REPO / "schemas"])
-    assert any(c.dynamics for lib in loaded.libraries for c in lib.components)
-    composed: list[str] = []
-    read = yamlsource.read
-
-    def counted(data: bytes, file: str) -> object:
-        composed.append(file)
-        return read(data, file)
-
-    monkeypatch.setattr(yamlsource, "read", counted)
-    assert checks.check(loaded.libraries, loaded.schemas) == []
-    assert composed == []
