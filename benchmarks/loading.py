@@ -41,7 +41,7 @@ def child(folder: str) -> dict[str, float]:
     from rosreconf.formats import yamlsource as ys
     from rosreconf.formats.build import build_library, build_schema
     from rosreconf.formats.checks import check
-    from rosreconf.formats.structure import DocumentKind, kind_of, named_kind, structure_problems
+    from rosreconf.formats.structure import DocumentKind, kind_of, structure_problems
     from rosreconf.formats.values import duplicate_edges, value_problems
 
     d = Path(folder)
@@ -57,14 +57,14 @@ def child(folder: str) -> dict[str, float]:
     for src in sources:
         t = clock()
         plain = ys.read_plain(src.data)
-        library = named_kind(plain) is DocumentKind.LIBRARY
+        library = kind_of(plain) is DocumentKind.LIBRARY
         if not library:
             node, plain = ys.read(src.data, src.name)
         seconds["parse"] += clock() - t
         tree = functools.cache(lambda src=src: ys.read(src.data, src.name)[0])
         trees.append(tree)
         t = clock()
-        kind = DocumentKind.LIBRARY if library else kind_of(node, src.name)[0]
+        kind = kind_of(plain)
         assert kind is not None, f"{src.name}: format"
         assert not structure_problems(tree, kind, plain), f"{src.name}: structure"
         seconds["structure"] += clock() - t
@@ -77,7 +77,7 @@ def child(folder: str) -> dict[str, float]:
             libraries.append(build_library(plain, src.name, tree, interfaces))
         else:
             assert node is not None
-            schemas.append(build_schema(node, src.name))
+            schemas.append(build_schema(plain, node, src.name))
         seconds["build"] += clock() - t
     t = clock()
     problems = check(libraries, schemas, library_complete=True)

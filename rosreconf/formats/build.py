@@ -1,16 +1,10 @@
 """Build the paper's model objects from well-formed files, with their positions.
 
 The loader calls these only after a file passed its JSON Schema and value checks, so every
-key the Schema requires is present and every value has its type; what is left here is to
-turn YAML's shapes into the model (components, requirements, launch data, dynamics, system
-graphs) and to record where each value was written (``span``, ``where``), so that the
-semantic checks can point at ``file:line:column``.
-
-A library is built from its plain data (``yamlsource.read_plain`` or ``read``), and where
-its values are written is looked up in the positioned tree only when a check asks
-(``_Where``: a clean library never composes one). A schema, a small file, is built from its
-positioned tree (``yamlsource.read``) through ``nodes``: names as the text written,
-numbers resolved with YAML 1.2.
+key the Schema requires is present and every value has its type. Both formats are built
+from their plain data. Where a library's values are written is looked up in its positioned
+tree only when a check asks (``_Where``: a clean library never composes one); a schema, a
+small file, has its positions recorded at once (its roles and edges carry their spans).
 """
 
 from __future__ import annotations
@@ -19,11 +13,10 @@ from collections.abc import Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
-from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, field_text, lookup, seq_of, text_of
+from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, lookup, seq_of, text_of
 from rosreconf.formats.nodes import Node as YNode
 from rosreconf.formats.nodes import fields as map_of
 from rosreconf.formats.nodes import span as span_of
-from rosreconf.formats.nodes import value as value_of
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -117,13 +110,16 @@ def _launch(item: Doc) -> RosLaunch:
 
 
 def _numbers(values: list[Any]) -> tuple[float, ...]:
-    return tuple(float(v) if isinstance(v, NUMBER) else 0.0 for v in values)
+    return tuple([_float(v, 0.0) for v in values])
 
 
-def _component_dynamics(item: Doc) -> Dynamics:
-    """Build a component's transfer function or state-space model from its plain data."""
-    delay = item.get("delay")
-    delay = float(delay) if isinstance(delay, NUMBER) else 0.0
+def _float(value: Any, default: float) -> float:
+    return float(value) if isinstance(value, NUMBER) else default
+
+
+def _dynamics(item: Doc) -> Dynamics:
+    """Build a transfer function or state-space model from its plain data."""
+    delay = _float(item.get("delay"), 0.0)
     if "state_space" in item:
         ss = item["state_space"]
         a, b, c, d = (tuple(_numbers(row) for row in ss[part]) for part in "ABCD")
@@ -132,77 +128,32 @@ def _component_dynamics(item: Doc) -> Dynamics:
     return TransferFunction(_numbers(tf["num"]), _numbers(tf["den"]), delay)
 
 
-def _number(node: Node, default: float) -> float:
-    value = value_of(node)
-    return float(value) if isinstance(value, NUMBER) else default
-
-
-def _dynamics(node: Node, key: str, where: dict[str, Span]) -> Dynamics:
-    """Build a transfer function or state-space model; record where its values are."""
-    items = map_of(node)
-    where[key] = span_of(node)
-    if "delay" in items:
-        where[f"{key}.delay"] = span_of(items["delay"])
-    delay = _number(items.get("delay"), 0.0)
-    if "state_space" in items:
-        ss = map_of(items["state_space"])
-        where[f"{key}.state_space"] = span_of(items["state_space"])
-        matrices: dict[str, tuple[tuple[float, ...], ...]] = {}
-        for part in ("A", "B", "C", "D"):
-            path = f"{key}.state_space.{part}"
-            where[path] = span_of(ss[part])
-            rows = []
-            for i, row in enumerate(seq_of(ss[part])):
-                where[f"{path}.{i}"] = span_of(row)
-                cells = seq_of(row)
-                for j, n in enumerate(cells):
-                    where[f"{path}.{i}.{j}"] = span_of(n)
-                rows.append(tuple(_number(n, 0.0) for n in cells))
-            matrices[part] = tuple(rows)
-        return StateSpace(matrices["A"], matrices["B"], matrices["C"], matrices["D"], delay)
-    tf = map_of(items["transfer_function"])
-    coefficients: dict[str, tuple[float, ...]] = {}
-    for part in ("num", "den"):
-        where[f"{key}.{part}"] = span_of(tf[part])
-        values = seq_of(tf[part])
-        for i, n in enumerate(values):
-            where[f"{key}.{part}.{i}"] = span_of(n)
-        coefficients[part] = tuple(_number(n, 0.0) for n in values)
-    return TransferFunction(coefficients["num"], coefficients["den"], delay)
-
-
-def _simulation(node: Node, where: dict[str, Span]) -> Simulation:
-    """Build a schema's simulation block; positions go under ``simulation.`` in ``where``."""
-    items = map_of(node)
-    where["simulation"] = span_of(node)
-    loops = []
-    for i, n in enumerate(seq_of(items["loops"])):
-        loop = map_of(n)
-        key = f"simulation.loops.{i}"
-        where[key] = span_of(n)
-        where[f"{key}.name"] = span_of(loop["name"])
-        paths: dict[str, tuple[str, ...]] = {}
-        for path in ("forward", "feedback"):
-            roles = seq_of(loop.get(path))
-            for j, r in enumerate(roles):
-                where[f"{key}.{path}.{j}"] = span_of(r)
-            paths[path] = tuple(text_of(r) for r in roles)
-        plant = _dynamics(loop["plant"], f"{key}.plant", where)
-        loops.append(ControlLoop(text_of(loop["name"]), paths["forward"], plant, paths["feedback"]))
-    limits = map_of(items.get("requirements"))
-    for metric, value in limits.items():
-        where[f"simulation.requirements.{metric}"] = span_of(value)
-    for key in ("reference", "duration"):
-        if key in items:
-            where[f"simulation.{key}"] = span_of(items[key])
+def _simulation(item: Doc) -> Simulation:
+    """Build a schema's simulation block from its plain data."""
+    loops = [
+        ControlLoop(
+            n["name"],
+            tuple(n.get("forward", ())),
+            _dynamics(n["plant"]),
+            tuple(n.get("feedback", ())),
+        )
+        for n in item["loops"]
+    ]
     return Simulation(
         loops=tuple(loops),
-        reference=_number(items.get("reference"), 1.0),
-        duration=_number(items.get("duration"), 10.0),
+        reference=_float(item.get("reference"), 1.0),
+        duration=_float(item.get("duration"), 10.0),
         requirements=PerformanceRequirements(
-            **{m: _number(v, 0.0) for m, v in limits.items()}  # keys fixed by the JSON Schema
-        ),
+            **{m: _float(v, 0.0) for m, v in item.get("requirements", {}).items()}
+        ),  # keys fixed by the JSON Schema
     )
+
+
+def _positions(node: Node, key: str, where: dict[str, Span]) -> None:
+    """Record where ``node`` and every value under it are written: ``key``, ``key.<key or i>``..."""
+    where[key] = span_of(node)
+    for step, child in [*map_of(node).items(), *enumerate(seq_of(node))]:
+        _positions(child, f"{key}.{step}" if key else str(step), where)
 
 
 def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
@@ -223,7 +174,7 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
         launch=_launch(item["ros"]) if "ros" in item else None,
         metrics=MappingProxyType({k: float(v) for k, v in get("metrics", {}).items()}),
         qos=MappingProxyType(qos),
-        dynamics=_component_dynamics(item["dynamics"]) if "dynamics" in item else None,
+        dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
         where=where,
     )
@@ -231,38 +182,29 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
 
 def component_where(node: Node) -> dict[str, Span]:
     """Return where a component's values are written (``Component.where``), from its node."""
+    where: dict[str, Span] = {}
+    _positions(node, "", where)
     items = map_of(node)
-    get = items.get
-    where = {"": span_of(node), "name": span_of(items["name"])}
-    where["abstraction"] = span_of(items["abstraction"])
     for key in ("needs", "excludes", "schemas"):
-        for n in seq_of(get(key)):
-            where[f"{key}.{text_of(n)}"] = span_of(n)
-    provides, requires = seq_of(get("provides")), seq_of(get("requires"))
-    for kind, listed in (("provides", provides), ("requires", requires)):
-        where.update((f"{kind}.{i}", span_of(n)) for i, n in enumerate(listed))
+        where.update((f"{key}.{text_of(n)}", span_of(n)) for n in seq_of(items.get(key)))
+    provides = seq_of(items.get("provides"))
     for n in provides:  # the first of an interface provided twice
         entry = map_of(n)
         kind = _kind(entry)
         written = f"{kind}:{text_of(entry[kind])}:{text_of(entry['type'])}"
         where.setdefault(f"provides.{written}", span_of(n))
-    for n in (*provides, *requires):  # in build order: the last QoS of a label wins
+    for n in (*provides, *seq_of(items.get("requires"))):  # in build order: the last QoS wins
         for iface in seq_of(map_of(n).get("any_of")) or [n]:
             entry = map_of(iface)
             if "qos" in entry:
                 where[f"qos.{text_of(entry[_kind(entry)])}"] = span_of(entry["qos"])
-    for i, n in enumerate(seq_of(map_of(get("ros")).get("args"))):
-        where[f"ros.args.{i}"] = span_of(n)
-    if "dynamics" in items:
-        _dynamics(items["dynamics"], "dynamics", where)
     return where
 
 
 class _Where(Mapping[str, Span]):
-    """A component's ``where``, looked up in its file's tree when first read.
+    """A component's ``where``, looked up in its file's tree (composed then) when first read.
 
-    The tree (``TreeOf``) is composed then, so positions cost nothing until a problem is
-    reported (``loader``); ``""`` is where the component itself is (``Component.at``).
+    So positions cost nothing until a problem is reported; ``""`` is the component itself.
     """
 
     __slots__ = ("_found", "_index", "_tree")
@@ -291,11 +233,9 @@ def build_library(
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``plain`` passed the JSON Schema and value checks; ``tree`` gives the file's positioned
-    tree, asked for only when a position is (see ``_Where``). One ``seen`` for all the
-    library files of a load makes every use of an interface, in any file, the same object:
-    a requirement in one file and the provision meeting it in another then match by
-    identity in every set and dict, without a comparison.
+    ``tree`` is asked for only when a position is (``_Where``). One ``seen`` for all the
+    library files of a load makes every use of an interface the same object: a requirement
+    and the provision meeting it then match by identity, without a comparison.
     """
     assert isinstance(plain, dict), "a library that passed its JSON Schema is a mapping"
     doc: Doc = plain
@@ -310,40 +250,43 @@ def build_library(
     )
 
 
-def build_schema(tree: Node, name: str) -> InteroperabilitySchema:
-    """Build a schema file's model from its positioned tree."""
+def build_schema(plain: Plain, tree: Node, name: str) -> InteroperabilitySchema:
+    """Build a schema file's model from its plain data, with positions from its tree."""
+    assert isinstance(plain, dict), "a schema that passed its JSON Schema is a mapping"
+    doc: Doc = plain
     items = map_of(tree)
+    roles_at = seq_of(items["roles"])
     roles = tuple(
         Role(
-            name=text_of(map_of(n)["name"]),
-            abstraction=text_of(map_of(n)["abstraction"]),
-            description=field_text(map_of(n), "description"),
-            span=span_of(n),
-            optional=value_of(map_of(n).get("optional")) is True,
+            r["name"],
+            r["abstraction"],
+            r.get("description", ""),
+            span_of(n),
+            r.get("optional") is True,
         )
-        for n in seq_of(items["roles"])
+        for r, n in zip(doc["roles"], roles_at, strict=True)
     )
     edges = []
-    for n in seq_of(items.get("edges")):
-        e = map_of(n)
-        interfaces = frozenset(text_of(i) for i in seq_of(e.get("interfaces")))
-        optional = value_of(e.get("optional")) is True
-        for p in seq_of(e["providers"]):
-            edges.append(Edge(text_of(e["consumer"]), text_of(p), interfaces, span_of(p), optional))
-    nominal = {k: text_of(v) for k, v in map_of(items.get("nominal")).items()}
+    for e, n in zip(doc.get("edges", ()), seq_of(items.get("edges")), strict=True):
+        interfaces = frozenset(e.get("interfaces", ()))
+        providers = zip(e["providers"], seq_of(map_of(n)["providers"]), strict=True)
+        for p, at in providers:
+            edges.append(Edge(e["consumer"], p, interfaces, span_of(at), e.get("optional") is True))
+    nominal = map_of(items.get("nominal"))
     where = {"name": span_of(items["name"])}
-    where.update({f"nominal.{k}": span_of(v) for k, v in map_of(items.get("nominal")).items()})
-    for n in seq_of(items["roles"]):
-        where[f"role.{text_of(map_of(n)['name'])}.abstraction"] = span_of(map_of(n)["abstraction"])
-    simulation = _simulation(items["simulation"], where) if "simulation" in items else None
+    where.update({f"nominal.{k}": span_of(v) for k, v in nominal.items()})
+    for r, n in zip(doc["roles"], roles_at, strict=True):
+        where[f"role.{r['name']}.abstraction"] = span_of(map_of(n)["abstraction"])
+    if "simulation" in items:
+        _positions(items["simulation"], "simulation", where)
     return InteroperabilitySchema(
-        name=text_of(items["name"]),
-        title=field_text(items, "title"),
+        name=doc["name"],
+        title=doc.get("title", ""),
         graph=SystemGraph(roles, tuple(edges)),
-        skill=text_of(items["skill"]).strip(),
-        environment=text_of(items["environment"]).strip(),
-        nominal=MappingProxyType(nominal),
-        simulation=simulation,
+        skill=doc["skill"].strip(),
+        environment=doc["environment"].strip(),
+        nominal=MappingProxyType(dict(doc.get("nominal", {}))),
+        simulation=_simulation(doc["simulation"]) if "simulation" in doc else None,
         span=span_of(tree),
         source=name,
         where=MappingProxyType(where),

@@ -31,14 +31,10 @@ def check(
 ) -> list[Problem]:
     """Return every semantic problem of the library files and schema files, sorted.
 
-    When a library file could not be loaded (``library_complete`` false), checks that
-    need the whole library (does some component carry this label, provide this interface?)
-    are skipped for the schemas: they would only repeat the broken file's problem as
-    dozens of false ones.
-
-    A clean library is the common case: each check first decides it on an index built
-    once here (``_Index``: names, labels, the few distinct interfaces) and walks the
-    components one by one only to report what it found, in the same order as ever.
+    When a library file could not be loaded (``library_complete`` false), the schemas'
+    checks that need the whole library are skipped: they would only repeat the broken file's
+    problem as dozens of false ones. Each check is first decided on ``_Index``; the
+    components are walked one by one only to report what it found.
     """
     problems: list[Problem] = []
     components = [c for lib in libraries for c in lib.components]
@@ -69,17 +65,11 @@ class _Index:
     and a clean library's checks are decided on these (small) sets.
 
     Attributes:
-        components: the components, in file order.
-        names: their names, in file order.
-        known: their names, as a set.
-        labels: their abstraction labels.
+        names, known: the components' names, in file order and as a set.
         named_schemas: the schemas some component names (``schemas:``).
-        coupled: the components with ``needs`` or ``excludes``.
-        launched: the components with ``ros`` (launch arguments to check).
-        dynamic: the components with dynamics.
-        has_qos: whether some component declares a QoS.
+        coupled, launched, dynamic: the components with ``needs`` or ``excludes``, with
+            ``ros``, with dynamics.
         interfaces: the distinct interfaces they provide and require.
-        provided_labels: the labels of the interfaces they provide.
     """
 
     def __init__(self, components: Sequence[Component]) -> None:

@@ -23,12 +23,8 @@ def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement 
     The position itself is made only for the few that a check keeps or reports: a large
     library has 35,000 interfaces and a handful of distinct ones.
     """
-    if len(c.provides) > 1:
-        for i, iface in enumerate(sorted(c.provides)):
-            yield iface, i, None
-    else:
-        for iface in c.provides:
-            yield iface, 0, None
+    for i, iface in enumerate(sorted(c.provides)):
+        yield iface, i, None
     for i, req in enumerate(c.requires):
         for iface in req.options:
             yield iface, i, req
@@ -37,12 +33,10 @@ def _all_interfaces(c: Component) -> Iterator[tuple[Interface, int, Requirement 
 class InterfaceIndex:
     """The distinct interfaces of a library: what a clean library's checks are decided on.
 
-    The loader builds each distinct interface once and shares it (``build.Interfaces``), so
-    a thousand-role library's 45,000 provisions and requirement options are a few thousand
-    objects. Provided interfaces are joined as sets (their hashes are stored in each
-    component's frozenset); requirement options are kept once per object (``id``), which
-    skips the interface's own hash (a Python function) for each repeat. Correct whether or
-    not interfaces are shared, only slower when they are not.
+    The loader shares each distinct interface (``build.Interfaces``): a thousand-role
+    library's 45,000 provisions and options are a few thousand objects. Options are kept once
+    per object (``id``), skipping the interface's own hash (a Python function) for each
+    repeat; correct whether or not interfaces are shared, only slower when they are not.
 
     Attributes:
         provided: every interface some component provides.
@@ -56,17 +50,10 @@ class InterfaceIndex:
         once = dict(zip(map(id, options), options, strict=True))
         self.options: list[Interface] = list(once.values())
 
-    @classmethod
-    def of(cls, components: Sequence[Component]) -> InterfaceIndex:
-        """Return the index of ``components`` (``checks.check`` gathers the same in its walk)."""
-        options = [o for c in components for r in c.requires for o in r.options]
-        return cls([c.provides for c in components], options)
-
     def agree(self) -> bool:
         """Tell whether each (kind, label) has one message class and each label one kind.
 
-        Exactly when ``interface_problems`` has nothing to report: it reports an interface
-        that differs from the first one seen with its key, in whatever order it walks.
+        Exactly when ``_conflicts`` has nothing to report, in whatever order it walks.
         """
         types: dict[tuple[InterfaceKind, str], str] = {}
         kinds: dict[str, InterfaceKind] = {}
@@ -87,13 +74,13 @@ class InterfaceIndex:
 
 
 def index_problems(components: Sequence[Component], index: InterfaceIndex) -> Iterator[Problem]:
-    """Yield ``interface_problems`` and ``requirement_problems``, decided on ``index`` first."""
+    """Yield type and kind conflicts and unmet requirements, each decided on ``index`` first."""
     if not index.well_spelled():
         yield from _misspelled(components)
     if not index.agree():
         yield from _conflicts(components)
     if not index.all_met():
-        yield from _unmet(components)
+        yield from _unmet(components, index.provided)
 
 
 def _where(c: Component, i: int, req: Requirement | None, iface: Interface | None = None) -> Span:
@@ -129,16 +116,6 @@ def _misspelled(components: Sequence[Component]) -> Iterator[Problem]:
 
 
 _KIND_OF_FOLDER = {"msg": "a topic", "srv": "a service", "action": "an action"}
-
-
-def interface_problems(components: Sequence[Component]) -> Iterator[Problem]:
-    """Yield each label used with two message classes, or as a topic and a service.
-
-    A clean library is decided on its few distinct interfaces (``InterfaceIndex.agree``);
-    only a library with a conflict is walked, for each problem's position and order.
-    """
-    if not InterfaceIndex.of(components).agree():
-        yield from _conflicts(components)
 
 
 def _conflicts(components: Sequence[Component]) -> Iterator[Problem]:
@@ -179,25 +156,14 @@ def _conflicts(components: Sequence[Component]) -> Iterator[Problem]:
                 )
 
 
-def requirement_problems(components: Sequence[Component]) -> Iterator[Problem]:
-    """Yield each requirement that no component of the library provides (Lemma 4).
-
-    When every option of every requirement is provided (a clean library), no requirement is
-    unmet: that is decided on the few distinct options (``InterfaceIndex.all_met``).
-    """
-    if not InterfaceIndex.of(components).all_met():
-        yield from _unmet(components)
-
-
-def _unmet(components: Sequence[Component]) -> Iterator[Problem]:
-    provided = {iface for c in components for iface in c.provides}
+def _unmet(components: Sequence[Component], provided: set[Interface]) -> Iterator[Problem]:
     for c in components:
         for i, req in enumerate(c.requires):
             if not provided.isdisjoint(req.options):
                 continue
             verb = _VERBS[req.options[0].kind]
             yield Problem(
-                req.span if req.span.line else c.at(f"requires.{i}"),
+                _where(c, i, req),
                 f"{c.name} {verb} {req}, which no component in the library provides",
                 "add a component that provides it, or fix the label or type",
                 code="unmet-requirement",

@@ -1,14 +1,11 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file goes through three steps, once: YAML -> plain data (``yamlsource``), the plain data
-checked against the shipped JSON Schema (``structure``) and its values checked (``values``);
-then model objects (``build``), which know where each value was written. Positions are looked
-up when a problem is reported: a library that yaml-rs reads with certainty
-(``yamlsource.read_plain``) has its positioned tree composed only when a problem needs a
-``file:line:column``; every other file is composed first (``yamlsource.read``), which also
-says what is wrong with its YAML. Problems are collected per file and across files; the
-caller gets the model of every well-formed file *and* the list of problems, so ``validate``
-can report everything in one run while ``enumerate`` can refuse to work on invalid input.
+Each file is read once into plain data (``yamlsource``), checked (``structure``, ``values``)
+and built (``build``). A library that yaml-rs reads with certainty has its positioned tree
+composed only when a problem needs a ``file:line:column``; every other file is composed
+first (``yamlsource.read``, which also says what is wrong with its YAML). The caller gets
+the model of every well-formed file *and* every problem, so ``validate`` reports everything
+in one run while ``enumerate`` can refuse to work on invalid input.
 """
 
 from __future__ import annotations
@@ -27,7 +24,7 @@ from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
 from rosreconf.formats.nodes import Node
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
-from rosreconf.formats.structure import DocumentKind, kind_of, named_kind, structure_problems
+from rosreconf.formats.structure import DocumentKind, format_problem, kind_of, structure_problems
 from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
@@ -86,24 +83,18 @@ def _paused_gc() -> Iterator[None]:
 
 def load_sources(sources: Iterable[Source]) -> Loaded:
     """Parse, check and build every source, collecting problems instead of stopping at the first."""
-    with _paused_gc():
-        return _load_sources(sources)
-
-
-def _load_sources(sources: Iterable[Source]) -> Loaded:
     loaded = Loaded()
     interfaces: Interfaces = {}  # shared by every library file (see build_library)
-    for src in sources:
-        loaded.files.append(src.name)
-        if src.size > ys.MAX_BYTES:
-            loaded.problems.append(ys.too_large(src.name, src.size))
-            loaded.library_complete = False
-            continue
-        try:
-            _load_one(src, loaded, interfaces)
-        except InvalidInputError as exc:
-            loaded.problems.extend(exc.problems)
-            loaded.library_complete = False
+    with _paused_gc():
+        for src in sources:
+            loaded.files.append(src.name)
+            try:
+                if src.size > ys.MAX_BYTES:
+                    raise InvalidInputError([ys.too_large(src.name, src.size)])
+                _load_one(src, loaded, interfaces)
+            except InvalidInputError as exc:
+                loaded.problems.extend(exc.problems)
+                loaded.library_complete = False
     return loaded
 
 
@@ -121,22 +112,22 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         return found
 
     plain = ys.read_plain(src.data)
-    kind = named_kind(plain)
+    kind = kind_of(plain)
     structural = None
-    if kind is DocumentKind.LIBRARY:  # a schema is built from its tree: compose it first
+    if kind is DocumentKind.LIBRARY:  # a schema records its positions at once: composed first
         with contextlib.suppress(ValueError):  # a key yaml-rs read as a number: ``read`` says
             structural = structure_problems(tree, kind, plain)
     if structural is None:
-        plain = composed()[1]
-        kind, problems = kind_of(composed()[0], src.name)
+        root, plain = composed()
+        kind = kind_of(plain)
         if kind is None:
-            raise InvalidInputError(problems)
+            raise InvalidInputError([format_problem(root, plain, src.name)])
         structural = structure_problems(tree, kind, plain)
     loaded.problems.extend(todo_marks(src))
     if not structural and kind is DocumentKind.LIBRARY:
         structural = value_problems(tree, plain)
     elif not structural:
-        structural = schema_value_problems(tree(), plain)
+        structural = schema_value_problems(tree, plain)
     if structural:
         loaded.problems.extend(structural)
         loaded.library_complete &= kind is not DocumentKind.LIBRARY
@@ -144,7 +135,7 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         loaded.libraries.append(build_library(plain, src.name, tree, interfaces))
     else:
         loaded.problems.extend(duplicate_edges(tree(), plain))
-        loaded.schemas.append(build_schema(tree(), src.name))
+        loaded.schemas.append(build_schema(plain, tree(), src.name))
 
 
 TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")
@@ -243,11 +234,7 @@ def check_loaded(loaded: Loaded) -> list[Problem]:
 
 
 def problems_of(loaded: Loaded, *, errors_only: bool = False) -> list[Problem]:
-    """Return every problem of what was loaded: the files' own, then the semantic checks'.
-
-    ``errors_only``: the caller reports errors only and drops warnings (the solvers, through
-    ``load_checked``).
-    """
+    """Return every problem of what was loaded: the files' own, then the semantic checks'."""
     problems = [*loaded.problems, *check_loaded(loaded)]
     return [p for p in problems if p.severity is Severity.ERROR] if errors_only else problems
 

@@ -1,10 +1,8 @@
 """Read the positioned tree: where a value is, its text as written, its YAML 1.2 value.
 
-``yamlsource.read`` composes each file into PyYAML's nodes (``ScalarNode``, ``MappingNode``,
-``SequenceNode``, each with its start mark); the checks and ``build`` read them only through
-these functions. A scalar keeps its text as written (so names are never turned into
-numbers); a plain one resolves with YAML 1.2's core schema (``resolve_plain``: only
-``true``/``false`` are booleans, so ``no``, ``on`` and ``yes`` stay strings).
+``yamlsource.read`` composes each file into PyYAML's nodes, each with its start mark. A
+scalar keeps its text as written (names are never turned into numbers); a plain one
+resolves with YAML 1.2's core schema (``resolve_plain``: ``no``, ``on``, ``yes`` stay text).
 """
 
 from __future__ import annotations
@@ -40,9 +38,9 @@ def span(node: Node | None) -> Span:
     return _new_span(Span, (mark.name, mark.line + 1, mark.column + 1))
 
 
-def is_plain(node: Node) -> bool:
-    """Tell whether ``node`` is an untagged plain scalar (resolved with YAML 1.2)."""
-    return type(node) is ScalarNode and not node.tag
+def path_text(path: Sequence[str | int]) -> str:
+    """Return a path of keys and indices as messages write it: ``components[0].dynamics``."""
+    return "".join(f"[{s}]" if isinstance(s, int) else f".{s}" for s in path).lstrip(".")
 
 
 _RESOLVED: dict[str, Scalar] = {}
@@ -68,10 +66,7 @@ _NO_FIELDS: dict[str, Node] = {}
 
 
 def fields(node: Node | None) -> dict[str, Node]:
-    """Return a mapping's values by key text, as ``yamlsource.read`` recorded them.
-
-    The first of a duplicate key: the file was refused for it anyway.
-    """
+    """Return a mapping's values by key text, as ``yamlsource.read`` recorded them."""
     found: dict[str, Node] = getattr(node, "fields", _NO_FIELDS)
     return found
 
@@ -111,11 +106,6 @@ def text_of(node: Node | None) -> str:
 def seq_of(node: Node | None) -> list[Node]:
     """Return a sequence's items (none for anything else, which the JSON Schema refused)."""
     return node.value if type(node) is SequenceNode else []
-
-
-def field_text(items: dict[str, Node], key: str, default: str = "") -> str:
-    """Return the text of ``items[key]`` as written, or ``default`` when the key is absent."""
-    return text_of(items[key]) if key in items else default
 
 
 _INT = re.compile(r"[-+]?[0-9]+\Z")

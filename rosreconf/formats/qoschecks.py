@@ -19,14 +19,12 @@ def qos_problems(
 ) -> Iterator[Problem]:
     """Report topic edges whose publisher's QoS cannot serve the subscription's (ROS 2).
 
-    Only where one side declares a QoS (the other then has the rmw default): a library
-    without ``qos:`` is not checked. For each schema edge, every provider and consumer
-    candidate pair sharing a topic is checked with ``rosreconf.model.qos.incompatibilities``
+    Only where one side declares a QoS (the other then has the rmw default); ``checks.check``
+    asks only when some component declares one. For each schema edge, every provider and
+    consumer candidate pair sharing a topic is checked with ``model.qos.incompatibilities``
     (rmw's rule): an error when the schema's nominal configuration chooses the pair (it would
     run and exchange nothing), a warning otherwise (configurations choosing it are useless).
     """
-    if not any(c.qos for c in components):
-        return
     for schema in schemas:
         fit: dict[str, list[Component]] = {
             r.name: [
@@ -68,10 +66,8 @@ def _qos_pair(
             if not why:
                 continue
             where = consumer.at(f"qos.{label}" if label in consumer.qos else f"requires.{i}")
-            if chosen:
-                scope = f"the nominal configuration of {schema.name}"
-            else:
-                scope = f"any configuration of {schema.name} choosing both"
+            scope = "the nominal" if chosen else "any"
+            scope += f" configuration of {schema.name}" + ("" if chosen else " choosing both")
             yield Problem(
                 where,
                 f"topic '{label}': {provider.name} ({role}) offers QoS [{offered}] but "

@@ -1,12 +1,10 @@
 """Check the M-solution's models: component dynamics and schemas' simulation blocks.
 
-The JSON Schema already holds their shape (lists of numbers, a non-negative delay, positive
-durations); what it cannot say is checked here, each problem at the offending value: numbers
-YAML reads as infinite or NaN (``.inf``, ``.nan``), denominators that are all zero, models
-whose numerator has a higher order than their denominator (improper: not realisable, and
-python-control cannot simulate them), state-space models whose matrices do not fit one input
-and one output around a square A, loops naming roles the schema does not have, and a role in
-both the forward and the feedback path (it would sit twice in one loop).
+The JSON Schema holds their shape; what it cannot say is checked here, each problem at the
+offending value: ``.inf`` and ``.nan``, all-zero denominators, improper models (not
+realisable, and python-control cannot simulate them), state-space matrices that do not fit
+one input and one output around a square A, loops naming unknown roles, and a role in both
+the forward and the feedback path (it would sit twice in one loop).
 
 It also holds every number to the range the simulation computes correctly in (docs/simulation.md,
 "Ranges"): coefficients and matrix entries between ``MIN_MAGNITUDE`` and ``MAX_MAGNITUDE``
@@ -22,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
+from typing import TypeAlias
 
 from rosreconf.errors import Problem
 from rosreconf.model import Component, InteroperabilitySchema, Span, StateSpace, TransferFunction
@@ -41,6 +40,9 @@ MAX_TIME = 1e6
 
 MIN_DURATION = 1e-3
 """Shortest simulated duration, seconds."""
+
+At: TypeAlias = Callable[[str], Span]
+"""Where a value of a component or schema is written, by its ``where`` key."""
 
 
 def component_problems(c: Component) -> Iterator[Problem]:
@@ -97,58 +99,96 @@ def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
         yield from _model(loop.plant, f"{key}.plant", s.at, f"the plant of loop '{loop.name}'")
 
 
-def _model(model: Dynamics, key: str, at: Callable[[str], Span], what: str) -> Iterator[Problem]:
-    """Yield the problems of a transfer function or a state-space model."""
-    if isinstance(model, StateSpace):
-        yield from _state_space(model, key, at, what)
-    else:
-        yield from _transfer_function(model, key, at, what)
+def _model(model: Dynamics, key: str, at: At, what: str) -> Iterator[Problem]:
+    """Yield the problems of a transfer function or a state-space model written at ``key``.
 
-
-def _shape(part: str, n: int) -> tuple[int, int]:
-    """Return (rows, columns) of matrix ``part`` of a SISO state-space model of order n."""
-    return {"A": (n, n), "B": (n, 1), "C": (1, n), "D": (1, 1)}[part]
-
-
-def _state_space(
-    ss: StateSpace, key: str, at: Callable[[str], Span], what: str
-) -> Iterator[Problem]:
-    """Check a state-space model: finite numbers, SISO shapes against A's order, delay.
-
-    The order n is A's number of rows. Each matrix's rows must all have its width; a
-    matrix of the wrong size is reported at the matrix (too many or too few rows) or at
-    the first row of the wrong width, saying what single-input single-output needs.
+    ``at`` (which may compose the file's tree) is asked only for a problem's position.
     """
-    key = f"{key}.state_space"
-    n = len(ss.a)
-    finite = True
-    for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
-        for i, row in enumerate(matrix):
-            for j, value in enumerate(row):
-                if not math.isfinite(value):
-                    finite = False
-                    yield _not_finite(
-                        at(f"{key}.{part}.{i}.{j}"), f"{part}[{i + 1}][{j + 1}] of {what}"
-                    )
-    if not math.isfinite(ss.delay):
-        finite = False
-        yield _not_finite(at(f"{key[: -len('.state_space')]}.delay"), f"the delay of {what}")
-    if not finite:
+    ss = isinstance(model, StateSpace)
+    rows = (
+        dict(zip("ABCD", (model.a, model.b, model.c, model.d), strict=True))
+        if isinstance(model, StateSpace)
+        else {"num": (model.num,), "den": (model.den,)}
+    )
+    cells = [
+        (p, i, j, v) for p, m in rows.items() for i, row in enumerate(m) for j, v in enumerate(row)
+    ]
+
+    def cell(part: str, i: int, j: int) -> tuple[str, str]:
+        """Return where a number is written and how a message names it."""
+        if ss:
+            return f"{key}.state_space.{part}.{i}.{j}", f"{part}[{i + 1}][{j + 1}] of {what}"
+        return f"{key}.transfer_function.{part}.{j}", f"{part} coefficient {j + 1} of {what}"
+
+    broken = [cell(p, i, j) for p, i, j, v in cells if not math.isfinite(v)]
+    for where, label in broken:
+        yield _not_finite(at(where), label)
+    if not math.isfinite(model.delay):
+        yield _not_finite(at(f"{key}.delay"), f"the delay of {what}")
+    if broken or not math.isfinite(model.delay):
         return
-    yield from _delay(ss.delay, at(f"{key[: -len('.state_space')]}.delay"), what)
+    if isinstance(model, TransferFunction) and not any(model.den):
+        yield Problem(
+            at(f"{key}.transfer_function.den"),
+            f"{what} has a denominator of zeros (it divides by zero)",
+            "give at least one non-zero coefficient, e.g. den: [1.0]",
+            code="zero-denominator",
+        )
+        return
+    if model.delay != 0 and not MIN_TIME <= model.delay <= MAX_TIME:
+        yield Problem(
+            at(f"{key}.delay"),
+            f"the delay of {what} is {model.delay:g} s, outside the {MIN_TIME:g} s to "
+            f"{MAX_TIME:g} s (or 0) a simulation computes correctly with",
+            f"write 0 for a delay shorter than {MIN_TIME:g} s; docs/simulation.md gives the ranges",
+            code="out-of-range",
+        )
     sized = True
+    for part, i, j, value in cells:
+        if value != 0 and not MIN_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
+            sized = False
+            where, label = cell(part, i, j)
+            yield Problem(
+                at(where),
+                f"{label} is {value:g}, outside the {MIN_MAGNITUDE:g} to {MAX_MAGNITUDE:g} (or 0) "
+                "a simulation computes correctly with",
+                ("" if ss else "num and den may be multiplied by one common factor; beyond that, ")
+                + "the model is outside the ranges of docs/simulation.md",
+                code="out-of-range",
+            )
+    if isinstance(model, StateSpace):
+        if sized:
+            rate = max((sum(abs(v) for v in row) for row in model.a), default=0.0)
+            how = "poles (bounded by A's largest row sum) up to"
+            yield from _fast(rate, at, f"{key}.state_space.A", what, how)
+        yield from _shapes(model, f"{key}.state_space", at, what)
+        return
+    for part in ("num", "den") if sized else ():
+        how = "a pole at" if part == "den" else "a zero at"
+        yield from _fast(
+            _rate(getattr(model, part)), at, f"{key}.transfer_function.{part}", what, how
+        )
+    num_order = _order(model.num)
+    den_order = _order(model.den)
+    if num_order > den_order:
+        yield Problem(
+            at(f"{key}.transfer_function.num"),
+            f"{what} is improper: its numerator has order {num_order}, its denominator "
+            f"order {den_order}",
+            "a physical model's denominator has at least the numerator's order; add a fast "
+            "pole (e.g. multiply den by (0.01 s + 1)) or drop leading numerator terms",
+            code="improper-transfer-function",
+        )
+
+
+def _shapes(ss: StateSpace, key: str, at: At, what: str) -> Iterator[Problem]:
+    """Refuse matrices that do not fit one input and one output around A (n x n, n its rows).
+
+    Reported at the matrix (too many or too few rows) or at its first row of the wrong width.
+    """
+    n = len(ss.a)
     for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
-        for i, row in enumerate(matrix):
-            for j, value in enumerate(row):
-                label = f"{part}[{i + 1}][{j + 1}] of {what}"
-                for problem in _magnitude(value, at(f"{key}.{part}.{i}.{j}"), label):
-                    sized = False
-                    yield problem
-    if sized:
-        rate = max((sum(abs(v) for v in row) for row in ss.a), default=0.0)
-        yield from _fast(rate, at(f"{key}.A"), what, "poles (bounded by A's largest row sum) up to")
-    for part, matrix in zip("ABCD", (ss.a, ss.b, ss.c, ss.d), strict=True):
-        rows, cols = _shape(part, n)
+        rows, cols = {"A": (n, n), "B": (n, 1), "C": (1, n), "D": (1, 1)}[part]
         need = f"{part} must be {rows} x {cols}"
         why = "single input, single output" if part != "A" else "square"
         if len(matrix) != rows:
@@ -183,53 +223,6 @@ def _shape_hint(part: str, rows: int, cols: int) -> str:
     return f"write A as {rows} row(s) of {cols} number(s) each"
 
 
-def _transfer_function(
-    tf: TransferFunction, key: str, at: Callable[[str], Span], what: str
-) -> Iterator[Problem]:
-    finite = True
-    for part in ("num", "den"):
-        for i, value in enumerate(getattr(tf, part)):
-            if not math.isfinite(value):
-                finite = False
-                yield _not_finite(at(f"{key}.{part}.{i}"), f"{part} coefficient {i + 1} of {what}")
-    if not math.isfinite(tf.delay):
-        finite = False
-        yield _not_finite(at(f"{key}.delay"), f"the delay of {what}")
-    if not finite:
-        return
-    if not any(tf.den):
-        yield Problem(
-            at(f"{key}.den"),
-            f"{what} has a denominator of zeros (it divides by zero)",
-            "give at least one non-zero coefficient, e.g. den: [1.0]",
-            code="zero-denominator",
-        )
-        return
-    yield from _delay(tf.delay, at(f"{key}.delay"), what)
-    sized = True
-    for part in ("num", "den"):
-        for i, value in enumerate(getattr(tf, part)):
-            label = f"{part} coefficient {i + 1} of {what}"
-            for problem in _magnitude(value, at(f"{key}.{part}.{i}"), label):
-                sized = False
-                yield problem
-    if sized:
-        for part in ("num", "den"):
-            how = "a pole at" if part == "den" else "a zero at"
-            yield from _fast(_rate(getattr(tf, part)), at(f"{key}.{part}"), what, how)
-    num_order = _order(tf.num)
-    den_order = _order(tf.den)
-    if num_order > den_order:
-        yield Problem(
-            at(f"{key}.num"),
-            f"{what} is improper: its numerator has order {num_order}, its denominator "
-            f"order {den_order}",
-            "a physical model's denominator has at least the numerator's order; add a fast "
-            "pole (e.g. multiply den by (0.01 s + 1)) or drop leading numerator terms",
-            code="improper-transfer-function",
-        )
-
-
 def _order(coefficients: tuple[float, ...]) -> int:
     """Return the polynomial's order once leading zeros are dropped (-1 for all zeros)."""
     for i, c in enumerate(coefficients):
@@ -247,20 +240,6 @@ def _not_finite(span: Span, what: str) -> Problem:
     )
 
 
-def _magnitude(value: float, span: Span, label: str) -> Iterator[Problem]:
-    """Refuse a non-zero coefficient or entry outside [``MIN_MAGNITUDE``, ``MAX_MAGNITUDE``]."""
-    rescale = label.startswith(("num", "den"))
-    if value != 0 and not MIN_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE:
-        yield Problem(
-            span,
-            f"{label} is {value:g}, outside the {MIN_MAGNITUDE:g} to {MAX_MAGNITUDE:g} (or 0) "
-            "a simulation computes correctly with",
-            ("num and den may be multiplied by one common factor; beyond that, " if rescale else "")
-            + "the model is outside the ranges of docs/simulation.md",
-            code="out-of-range",
-        )
-
-
 def _rate(coefficients: tuple[float, ...]) -> float:
     """Return max_k |c_k / c_0|^(1/k): the polynomial's largest root lies in [rate / n, 2 rate].
 
@@ -274,11 +253,11 @@ def _rate(coefficients: tuple[float, ...]) -> float:
     return max(float(abs(c / lead) ** (1.0 / k)) for k, c in enumerate(trimmed[1:], 1))
 
 
-def _fast(rate: float, span: Span, what: str, how: str) -> Iterator[Problem]:
+def _fast(rate: float, at: At, key: str, what: str, how: str) -> Iterator[Problem]:
     """Refuse a model whose fastest pole or zero is faster than ``1 / MIN_TIME`` rad/s."""
     if rate > 1.0 / MIN_TIME:
         yield Problem(
-            span,
+            at(key),
             f"{what} has {how} about {rate:.3g} rad/s, a time constant of about "
             f"{1.0 / rate:.3g} s, shorter than the {MIN_TIME:g} s a simulation resolves",
             f"model dynamics faster than {MIN_TIME:g} s as instantaneous (drop the factor: "
@@ -287,19 +266,7 @@ def _fast(rate: float, span: Span, what: str, how: str) -> Iterator[Problem]:
         )
 
 
-def _delay(delay: float, span: Span, what: str) -> Iterator[Problem]:
-    """Refuse a delay that is neither 0 nor between ``MIN_TIME`` and ``MAX_TIME`` seconds."""
-    if delay != 0 and not MIN_TIME <= delay <= MAX_TIME:
-        yield Problem(
-            span,
-            f"the delay of {what} is {delay:g} s, outside the {MIN_TIME:g} s to "
-            f"{MAX_TIME:g} s (or 0) a simulation computes correctly with",
-            f"write 0 for a delay shorter than {MIN_TIME:g} s; docs/simulation.md gives the ranges",
-            code="out-of-range",
-        )
-
-
-def _horizon(reference: float, duration: float, at: Callable[[str], Span]) -> Iterator[Problem]:
+def _horizon(reference: float, duration: float, at: At) -> Iterator[Problem]:
     """Refuse a duration outside [``MIN_DURATION``, ``MAX_TIME``] or a reference over the range."""
     if math.isfinite(duration) and not MIN_DURATION <= duration <= MAX_TIME:
         yield Problem(

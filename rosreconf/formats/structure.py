@@ -1,12 +1,9 @@
 """Check a YAML document's structure against the shipped JSON Schema, with positions.
 
-jsonschema-rs does the validating (the same JSON Schema files editors use, shipped in
-``rosreconf/data``), giving the verdict and every error in one pass; this module decides
-which format a document claims to be (its ``format:`` field) and turns each error into a
-``Problem`` that names the exact key or value (``file:line:column``, looked up in the
-positioned tree by the error's instance path), says what is wrong in words, and how to fix
-it (``x-hint`` entries in the JSON Schemas, "did you mean" for unknown keys, "quote it" for
-names YAML read as numbers).
+jsonschema-rs does the validating (the JSON Schema files editors use, in ``rosreconf/data``);
+this module turns each error into a ``Problem`` at the exact key or value (its instance path
+looked up in the positioned tree), saying what is wrong in words and how to fix it
+(``x-hint`` entries in the JSON Schemas, "did you mean", "quote it").
 """
 
 from __future__ import annotations
@@ -15,7 +12,7 @@ import difflib
 import enum
 import json
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from functools import cache
 from typing import Any
 
@@ -32,61 +29,48 @@ class DocumentKind(enum.StrEnum):
     SCHEMA = "rosreconf/interoperability-schema"
 
 
-JSON_SCHEMA_FILES = {
-    DocumentKind.LIBRARY: "component-library.schema.json",
-    DocumentKind.SCHEMA: "interoperability-schema.schema.json",
-}
-
-
 @cache
 def json_schema(kind: DocumentKind) -> dict[str, Any]:
     """Return the shipped JSON Schema of ``kind`` (the same file editors use)."""
-    text = bundled(Bundle.DATA, JSON_SCHEMA_FILES[kind]).read_text(encoding="utf-8")
+    name = kind.value.removeprefix("rosreconf/") + ".schema.json"  # e.g. component-library
+    text = bundled(Bundle.DATA, name).read_text(encoding="utf-8")
     schema: dict[str, Any] = json.loads(text)
     return schema
 
 
-# --- the format field -------------------------------------------------------------------
+def kind_of(plain: nodes.Plain) -> DocumentKind | None:
+    """Return the format a document's plain data names exactly, else None (``format_problem``)."""
+    fmt = plain.get("format") if isinstance(plain, dict) else None
+    return DocumentKind(fmt) if isinstance(fmt, str) and fmt in _KINDS else None
 
 
-def kind_of(tree: nodes.Node | None, name: str) -> tuple[DocumentKind | None, list[Problem]]:
-    """Return the format a document claims (its ``format`` field), or the problem with it."""
+_KINDS = frozenset(DocumentKind)
+
+
+def format_problem(tree: nodes.Node | None, plain: nodes.Plain, name: str) -> Problem:
+    """Return what is wrong with the format of a document ``kind_of`` found none in."""
     known = ", ".join(k.value for k in DocumentKind)
-    if type(tree) is not nodes.MappingNode:
-        span = nodes.span(tree) if tree is not None else Span(name, 1, 1)
-        return None, [
-            Problem(
-                span,
-                "expected a mapping with a 'format' key at the top of the file",
-                f"start the file with 'format: <kind>' where kind is one of {known}",
-                code="not-a-document",
-            )
-        ]
-    fmt = nodes.fields(tree).get("format")
-    if fmt is None:
-        return None, [
-            Problem(
-                nodes.span(tree),
-                "missing 'format' key",
-                f"add 'format: <kind>' where kind is one of {known}",
-                code="missing-format",
-            )
-        ]
-    raw = fmt.value if type(fmt) is nodes.ScalarNode else ""
-    for kind in DocumentKind:
-        if raw == kind.value:
-            return kind, []
-    return None, [
-        Problem(
-            nodes.span(fmt),
-            f"unknown format '{raw}'",
-            f"use one of {known}",
-            code="unknown-format",
+    if not isinstance(plain, dict):
+        return Problem(
+            nodes.span(tree) if tree is not None else Span(name, 1, 1),
+            "expected a mapping with a 'format' key at the top of the file",
+            f"start the file with 'format: <kind>' where kind is one of {known}",
+            code="not-a-document",
         )
-    ]
-
-
-# --- structure: JSON Schema, with friendly positioned messages ---------------------------
+    if "format" not in plain:
+        return Problem(
+            nodes.span(tree),
+            "missing 'format' key",
+            f"add 'format: <kind>' where kind is one of {known}",
+            code="missing-format",
+        )
+    fmt = nodes.fields(tree)["format"]
+    return Problem(
+        nodes.span(fmt),
+        f"unknown format '{nodes.text_of(fmt)}'",
+        f"use one of {known}",
+        "unknown-format",
+    )
 
 
 @cache
@@ -97,20 +81,8 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def named_kind(plain: nodes.Plain) -> DocumentKind | None:
-    """Return the format a document's plain data names exactly, else None (``kind_of`` says)."""
-    fmt = plain.get("format") if isinstance(plain, dict) else None
-    return DocumentKind(fmt) if isinstance(fmt, str) and fmt in _KINDS else None
-
-
-_KINDS = frozenset(DocumentKind)
-
-
 def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
-    """Return every structural problem of ``plain`` against ``kind``'s JSON Schema.
-
-    jsonschema-rs gives the verdict and the errors in one pass; each error's instance path
-    is looked up in ``tree()`` (the positioned tree ``plain`` was read from) for its position.
+    """Return every structural problem of ``plain``, placed in ``tree()`` (asked only then).
 
     Raises:
         ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).
@@ -152,11 +124,9 @@ class _Error:
     def as_number(self, plain: nodes.Plain) -> _Error | None:
         """Return this error as JSON Schema judges a YAML ``.inf`` or ``.nan``: a number.
 
-        JSON has no such numbers, and jsonschema-rs reads them as null; rosreconf
-        treats them as numbers that compare as Python does (``values`` and the dynamics
-        checks say they are not finite). So a type error on one becomes the range error it
-        would break (``maximum`` for ``.inf``...), or nothing; a ``oneOf`` whose branch
-        fails only so is satisfied.
+        JSON has no such numbers (jsonschema-rs reads them as null); rosreconf compares them
+        as Python does, and ``values`` and ``simchecks`` say they are not finite. So a type
+        error on one becomes the range error it would break, or nothing.
         """
         if self.context:
             branches: dict[int, list[_Error | None]] = {}
@@ -170,7 +140,7 @@ class _Error:
         instance: Any = plain
         for step in self.path:  # the value itself: jsonschema-rs gives it as None
             instance = instance[step]
-        if not _non_finite(instance):
+        if not isinstance(instance, float) or math.isfinite(instance):
             return self
         self.instance = instance
         want = self.validator_value
@@ -196,10 +166,6 @@ class _Error:
             return False
         names = [expected] if isinstance(expected, str) else list(expected)
         return any(_is_type(self.instance, name) for name in names)
-
-
-def _non_finite(instance: Any) -> bool:
-    return isinstance(instance, float) and not math.isfinite(instance)
 
 
 _RANGES: dict[str, Callable[[float, float], bool]] = {
@@ -228,7 +194,13 @@ def _best_match(errors: list[_Error], parent: _Error) -> _Error:
 
     def relevance(e: _Error) -> tuple[Any, ...]:
         relative = e.path[len(parent.path) :]
-        return (-len(relative), relative, e.validator not in _WEAK, False, not e.matches_type())
+        return (
+            -len(relative),
+            relative,
+            e.validator not in ("oneOf", "anyOf"),
+            False,
+            not e.matches_type(),
+        )
 
     best = max(errors, key=relevance)
     while best.context:
@@ -238,8 +210,6 @@ def _best_match(errors: list[_Error], parent: _Error) -> _Error:
         best = smallest[0]
     return best
 
-
-_WEAK = frozenset({"oneOf", "anyOf"})
 
 _MESSAGES = {
     "enum": "{0!r} is not one of {1!r}",
@@ -259,7 +229,7 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     path = error.path
     node = nodes.lookup(tree, path)
     span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)
-    where = _describe_path(path)
+    where = f"'{nodes.path_text(path)}'" if path else "the document"
     schema = error.schema
     hint = str(schema.get("x-hint", ""))
     validator = error.validator
@@ -279,7 +249,7 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
         want = error.validator_value
         wanted = " or ".join(want) if isinstance(want, list) else str(want)
         fix = hint
-        if "string" in wanted and node is not None and nodes.is_plain(node):
+        if "string" in wanted and type(node) is nodes.ScalarNode and not node.tag:
             fix = f"quote it ('{node.value}') if you mean the text"
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
@@ -311,12 +281,3 @@ def _written(node: nodes.Node | None) -> str:
     if type(node) is nodes.SequenceNode:
         return "a list"
     return "nothing"
-
-
-def _describe_path(path: Sequence[str | int]) -> str:
-    if not path:
-        return "the document"
-    parts = []
-    for step in path:
-        parts.append(f"[{step}]" if isinstance(step, int) else f".{step}")
-    return "'" + "".join(parts).lstrip(".") + "'"

@@ -13,13 +13,13 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
 - integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit);
 - integers too large for a float (a 401-digit coefficient) anywhere in a model's dynamics or
   a schema's simulation block, which could not even be built, and QoS depths and durations
-  beyond DDS's 32-bit ``long`` (``clean_numbers``, ``schema_value_problems``); the ranges a
-  simulation computes correctly within are ``simchecks``'s, on the built model.
+  beyond DDS's 32-bit ``long``; the ranges a simulation computes correctly within are
+  ``simchecks``'s, on the built model.
 
-These checks run on the plain data once its JSON Schema check passed, before model objects
-are built; a value found wrong is looked up in the positioned tree (composed then, when the
-loader read the file without one) for its ``file:line:column`` and its text as written, so
-nothing downstream ever sees such a value.
+Each check runs once, on the plain data, after its JSON Schema check passed and before model
+objects are built; only a value found wrong is looked up in the positioned tree (composed
+then, when the loader read the file without one) for its ``file:line:column`` and its text
+as written.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from collections.abc import Iterator
 
 from rosreconf.errors import Problem, Severity
 from rosreconf.formats import nodes
-from rosreconf.model import Span
+from rosreconf.formats.nodes import NUMBER
 
 MAX_METRIC = 1e12
 """Largest metric value: sums over 10,000 components stay exact in a float, and costs in PDDL."""
@@ -52,187 +52,122 @@ SUBSTITUTION = "$("
 
 
 def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
-    """Return the problems of a structurally valid component library's numbers and launch values.
-
-    ``plain`` is the library's plain data and ``tree()`` the positioned tree it was read from,
-    where each value found wrong is looked up (by its path) for its position and text.
-    """
+    """Return the problems of a structurally valid library's numbers and launch values."""
     problems: list[Problem] = []
     components = plain.get("components") if isinstance(plain, dict) else None
     for i, component in enumerate(components if isinstance(components, list) else []):
         if not isinstance(component, dict):
             continue
-
-        def at(*path: str, i: int = i) -> nodes.Node | None:
-            return nodes.lookup(tree(), ["components", i, *path])
-
-        if not _within(component.get("failure_probability"), 1.0):
-            problems.extend(_number(at("failure_probability"), "failure_probability", 0.0, 1.0))
+        fp = component.get("failure_probability")
+        if not _within(fp, 1.0):
+            where = _at(tree, "components", i, "failure_probability")
+            problems.append(_number(fp, 1.0, "failure_probability", where))
         metrics = component.get("metrics")
         for key, value in metrics.items() if isinstance(metrics, dict) else ():
             if not _within(value, MAX_METRIC):
-                problems.extend(_number(at("metrics", key), f"metric '{key}'", 0.0, MAX_METRIC))
+                where = _at(tree, "components", i, "metrics", key)
+                problems.append(_number(value, MAX_METRIC, f"metric '{key}'", where))
         ros = component.get("ros")
         params = ros.get("parameters") if isinstance(ros, dict) else None
         for key, value in params.items() if isinstance(params, dict) else ():
-            if not _fine_parameter(value):
-                problems.extend(_parameter(key, at("ros", "parameters", key)))
-        if not clean_numbers(component.get("dynamics")):
-            problems.extend(_huge(at("dynamics"), f"components[{i}].dynamics"))
-        if not _clean_qos(component):
-            problems.extend(_qos_numbers(nodes.lookup(tree(), ["components", i])))
+            problems.extend(_parameter(key, value, tree, i))
+        if "dynamics" in component:
+            problems.extend(_huge(component["dynamics"], tree, "components", i, "dynamics"))
+        for key in ("provides", "requires"):
+            entries = component.get(key)
+            for j, entry in enumerate(entries if isinstance(entries, list) else ()):
+                if isinstance(entry, dict) and ("qos" in entry or "any_of" in entry):
+                    problems.extend(_qos(entry, tree, "components", i, key, j))
     return problems
 
 
-def schema_value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
-    """Return the problems of a schema's numbers that no model could hold.
+def schema_value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
+    """Return the integers of a schema's simulation block too large to become floats.
 
-    The simulation block's numbers (reference, duration, requirements, the plants) become
-    floats when the schema is built; an integer too large for one is refused here, at its
-    position, before it can stop the build.
+    Refused here, at their position, before they can stop the build.
     """
     simulation = plain.get("simulation") if isinstance(plain, dict) else None
-    if clean_numbers(simulation):
-        return []
-    return list(_huge(nodes.fields(tree).get("simulation"), "simulation"))
+    return list(_huge(simulation, tree, "simulation"))
 
 
-def clean_numbers(plain: nodes.Plain) -> bool:
-    """Tell whether ``plain`` (a subtree as plain data) holds no integer too large for a float."""
-    if type(plain) is int:
-        return -FLOAT_MAX <= plain <= FLOAT_MAX
-    if isinstance(plain, dict):
-        return all(clean_numbers(v) for v in plain.values())
-    if isinstance(plain, list):
-        return all(clean_numbers(v) for v in plain)
-    return True
+def _at(tree: nodes.TreeOf, *path: str | int) -> nodes.Node | None:
+    """Return the node at ``path`` of the tree (composed when first asked for)."""
+    return nodes.lookup(tree(), path)
 
 
-def _huge(node: nodes.Node | None, where: str) -> Iterator[Problem]:
-    """Refuse every integer under ``node`` too large for a float, at its position."""
-    if type(node) is nodes.MappingNode:
-        for key, child in nodes.fields(node).items():
-            yield from _huge(child, f"{where}.{key}")
-    elif type(node) is nodes.SequenceNode:
-        for i, child in enumerate(nodes.seq_of(node)):
-            yield from _huge(child, f"{where}[{i}]")
-    elif type(node) is nodes.ScalarNode:
-        value = nodes.value(node)
-        if type(value) is int and abs(value) > FLOAT_MAX:
-            yield Problem(
-                nodes.span(node),
-                f"'{where}' is {_shown(node.value)}, too large to compute with",
-                "write a number within the ranges docs/simulation.md gives (at most 1e12)",
-                code="not-finite",
-            )
+def _huge(plain: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[Problem]:
+    """Refuse every integer under ``plain`` (at ``path``) too large for a float."""
+    if type(plain) is int and abs(plain) > FLOAT_MAX:
+        node = _at(tree, *path)
+        yield Problem(
+            nodes.span(node),
+            f"'{nodes.path_text(path)}' is {_shown(nodes.text_of(node))}, too large to "
+            "compute with",
+            "write a number within the ranges docs/simulation.md gives (at most 1e12)",
+            code="not-finite",
+        )
+    elif isinstance(plain, dict):
+        for key, child in plain.items():
+            yield from _huge(child, tree, *path, key)
+    elif isinstance(plain, list):
+        for i, child in enumerate(plain):
+            yield from _huge(child, tree, *path, i)
 
 
-def _profiles(component: dict[str, nodes.Plain]) -> Iterator[dict[str, nodes.Plain]]:
-    """Yield the interfaces (``any_of``'s options too) a component provides and requires."""
-    for key in ("provides", "requires"):
-        entries = component.get(key)
-        for entry in entries if isinstance(entries, list) else ():
-            if isinstance(entry, dict):
-                yield entry
-                options = entry.get("any_of")
-                for option in options if isinstance(options, list) else ():
-                    if isinstance(option, dict):
-                        yield option
-
-
-def _clean_qos(component: dict[str, nodes.Plain]) -> bool:
-    """Tell whether ``_qos_numbers`` has nothing to report on a component's interfaces."""
-    for interface in _profiles(component):
-        qos = interface.get("qos")
-        if isinstance(qos, dict):
-            for name, high in QOS_LIMITS.items():
-                value = qos.get(name)
-                if type(value) in nodes.NUMBER and value > high:  # type: ignore[operator]
-                    return False
-    return True
-
-
-def _qos_numbers(component: nodes.Node | None) -> Iterator[Problem]:
-    """Refuse QoS depths and durations beyond DDS's 32-bit ``long`` (``QOS_LIMITS``)."""
-    for key in ("provides", "requires"):
-        for entry in nodes.seq_of(nodes.fields(component).get(key)):
-            options = nodes.seq_of(nodes.fields(entry).get("any_of"))
-            for interface in (entry, *options):
-                qos = nodes.fields(interface).get("qos")
-                for name, high in QOS_LIMITS.items():
-                    node = nodes.fields(qos).get(name)
-                    value = nodes.value(node)
-                    if type(value) not in nodes.NUMBER or not value > high:  # type: ignore[operator]
-                        continue  # NaN, and what the Schema refuses, are reported elsewhere
-                    unit = "" if name == "depth" else " s"
-                    yield Problem(
-                        nodes.span(node),
-                        f"QoS {name} is {_shown(nodes.text_of(node))}, more than DDS can carry "
-                        f"({high}{unit}, a 32-bit 'long')",
-                        "give a depth of at most 2147483647 (0 keeps all)"
-                        if name == "depth"
-                        else "give at most 2147483647 seconds, or null for none",
-                        code="out-of-range",
-                    )
+def _qos(interface: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[Problem]:
+    """Refuse an interface's (and its options') QoS numbers beyond DDS's 32-bit ``long``."""
+    if not isinstance(interface, dict):
+        return
+    qos = interface.get("qos")
+    for name, high in QOS_LIMITS.items() if isinstance(qos, dict) else ():
+        value = qos.get(name)  # type: ignore[union-attr]
+        if type(value) not in NUMBER or not value > high:  # type: ignore[operator]
+            continue  # NaN, and what the Schema refuses, are reported elsewhere
+        node = _at(tree, *path, "qos", name)
+        unit = "" if name == "depth" else " s"
+        yield Problem(
+            nodes.span(node),
+            f"QoS {name} is {_shown(nodes.text_of(node))}, more than DDS can carry "
+            f"({high}{unit}, a 32-bit 'long')",
+            "give a depth of at most 2147483647 (0 keeps all)"
+            if name == "depth"
+            else "give at most 2147483647 seconds, or null for none",
+            code="out-of-range",
+        )
+    options = interface.get("any_of")
+    for k, option in enumerate(options if isinstance(options, list) else ()):
+        yield from _qos(option, tree, *path, "any_of", k)
 
 
 def _within(value: nodes.Plain, high: float) -> bool:
-    """Tell whether ``_number`` accepts ``value`` in [0, ``high``] (anything not a number too).
-
-    A comparison with NaN is false, so NaN is never within.
-    """
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return True
-    return 0.0 <= value <= high
+    """Tell whether ``value`` is in [0, ``high``] (never NaN), or no number (the Schema's)."""
+    return type(value) not in NUMBER or 0.0 <= value <= high  # type: ignore[operator]
 
 
-def _fine_parameter(value: nodes.Plain) -> bool:
-    """Tell whether ``_parameter`` has nothing to say about a launch parameter's value."""
-    if isinstance(value, str):
-        return SUBSTITUTION not in value
-    if isinstance(value, float):
-        return math.isfinite(value)
-    if isinstance(value, int) and not isinstance(value, bool):
-        return INT32[0] <= value <= INT32[1]
-    return True
-
-
-def _number(node: nodes.Node | None, what: str, low: float, high: float) -> Iterator[Problem]:
-    """Refuse a non-finite number, one too large for a float, or one outside [low, high]."""
-    if type(node) is not nodes.ScalarNode:
-        return
-    value = nodes.value(node)
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return  # the JSON Schema reports the type
+def _number(value: nodes.Plain, high: float, what: str, node: nodes.Node | None) -> Problem:
+    """Return the problem of a number ``_within`` refused: not finite, or outside [0, high]."""
     try:
-        number = float(value)
+        finite = math.isfinite(float(value))  # type: ignore[arg-type]
     except OverflowError:
-        number = math.inf
-    if not math.isfinite(number):
-        how = "too large to compute with" if isinstance(value, int) else "not a finite number"
-        yield Problem(
-            nodes.span(node),
-            f"{what} is {_shown(node.value)}, {how}",
-            f"give a number between {low:g} and {high:g}",
-            code="not-finite",
-        )
-    elif not low <= number <= high:
-        yield Problem(
-            nodes.span(node),
-            f"{what} is {_shown(node.value)}, outside [{low:g}, {high:g}]",
-            f"give a number between {low:g} and {high:g}",
-            code="out-of-range",
-        )
+        finite = False
+    how = "too large to compute with" if type(value) is int else "not a finite number"
+    return Problem(
+        nodes.span(node),
+        f"{what} is {_shown(nodes.text_of(node))}, "
+        + (f"outside [0, {high:g}]" if finite else how),
+        f"give a number between 0 and {high:g}",
+        code="out-of-range" if finite else "not-finite",
+    )
 
 
-def _parameter(key: str, node: nodes.Node | None) -> Iterator[Problem]:
-    """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry."""
-    if type(node) is not nodes.ScalarNode:
-        return  # {substitution: "..."}: marked by the user (its shape is the Schema's job)
-    value = nodes.value(node)
+def _parameter(key: str, value: nodes.Plain, tree: nodes.TreeOf, i: int) -> Iterator[Problem]:
+    """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry.
+
+    A mapping (``{substitution: "..."}``) is marked by the user; its shape is the Schema's job.
+    """
     if isinstance(value, str) and SUBSTITUTION in value:
         yield Problem(
-            nodes.span(node),
+            nodes.span(_at(tree, "components", i, "ros", "parameters", key)),
             f"parameter '{key}' contains '$(', which roslaunch would evaluate as a "
             "substitution ($(eval ...) runs Python, $(env ...) reads the environment)",
             f'if it is meant as one, mark it: {key}: {{substitution: "{value}"}}; '
@@ -240,19 +175,19 @@ def _parameter(key: str, node: nodes.Node | None) -> Iterator[Problem]:
             code="launch-substitution",
         )
     elif isinstance(value, float) and not math.isfinite(value):
+        node = _at(tree, "components", i, "ros", "parameters", key)
         yield Problem(
             nodes.span(node),
-            f"parameter '{key}' is {node.value}, not a finite number",
+            f"parameter '{key}' is {nodes.text_of(node)}, not a finite number",
             "give a finite number",
             code="not-finite",
         )
-    elif (
-        isinstance(value, int) and not isinstance(value, bool) and not INT32[0] <= value <= INT32[1]
-    ):
+    elif type(value) is int and not INT32[0] <= value <= INT32[1]:
+        node = _at(tree, "components", i, "ros", "parameters", key)
         yield Problem(
             nodes.span(node),
-            f"parameter '{key}' is {_shown(node.value)}, outside the 32-bit integers ROS 1 can "
-            "carry",
+            f"parameter '{key}' is {_shown(nodes.text_of(node))}, outside the 32-bit integers "
+            "ROS 1 can carry",
             "write it as a float (with a '.') or as a quoted string",
             code="out-of-range",
         )
@@ -270,7 +205,7 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     not be what the author meant: one of the two entries is ignored, silently until now.
     ``plain`` is a structurally valid schema's plain data; ``tree`` gives the positions.
     """
-    seen: dict[tuple[str, str], tuple[int, int]] = {}
+    seen: dict[tuple[str, str], list[str | int]] = {}
     problems: list[Problem] = []
     edges = plain.get("edges", []) if isinstance(plain, dict) else []
     for i, entry in enumerate(edges if isinstance(edges, list) else []):
@@ -280,13 +215,14 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
         providers = entry.get("providers", [])
         for j, provider in enumerate(providers if isinstance(providers, list) else []):
             key = (str(consumer), str(provider))
+            at: list[str | int] = ["edges", i, "providers", j]
             if key not in seen:
-                seen[key] = (i, j)
+                seen[key] = at
                 continue
-            first = _provider_span(tree, *seen[key])
+            first = nodes.span(nodes.lookup(tree, seen[key]))
             problems.append(
                 Problem(
-                    _provider_span(tree, i, j),
+                    nodes.span(nodes.lookup(tree, at)),
                     f"edge {provider} -> {consumer} is listed again (first at "
                     f"{first}); the two entries are merged and the one without "
                     "'interfaces' wins",
@@ -296,8 +232,3 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
                 )
             )
     return problems
-
-
-def _provider_span(tree: nodes.Node, edge: int, index: int) -> Span:
-    node = nodes.lookup(tree, ["edges", edge, "providers", index])
-    return nodes.span(node) if node is not None else nodes.span(tree)

@@ -1,26 +1,17 @@
 """Read YAML into PyYAML's positioned node tree and plain data, applying rosreconf's rules.
 
-The reader of record is PyYAML's composer over libyaml (``yaml.CSafeLoader``; without
-libyaml, the same code over ``yaml.SafeLoader``, slower): it builds the tree in C and every
-node keeps its start mark, so ``file:line:column`` comes from the library. Nothing is
-constructed. rosreconf's rules: no tags but the string ones; duplicate keys are errors naming
+The reader of record is PyYAML's composer over libyaml (``yaml.CSafeLoader``, else the pure
+``yaml.SafeLoader``): every node keeps its start mark, so ``file:line:column`` comes from the
+library. rosreconf's rules: no tags but the string ones; duplicate keys are errors naming
 both lines; no anchors or aliases ("billion laughs"); at most ``MAX_BYTES`` and ``MAX_DEPTH``;
-plain scalars resolve with YAML 1.2's core schema (``nodes.resolve_plain``).
-
-``read`` composes the tree once and walks it once into the plain data the JSON Schema check
-reads. What shows in the event stream alone (a tag, an anchor or alias, a second document,
-a syntax error) is found by one pass over libyaml's events (``_event_problems``), made only
-when the text holds ``!``, ``&`` or ``*`` or when composing failed.
+plain scalars resolve with YAML 1.2's core schema (``nodes.resolve_plain``). What shows in
+libyaml's event stream alone (a tag, an anchor or alias, a second document, a syntax error)
+is found by one pass over it (``_event_problems``), made only when it may be there.
 
 ``read_plain`` is the fast way to the same plain data, without positions: yaml-rs (a YAML 1.2
-reader in Rust) makes the Python objects, about eight times faster than composing the tree.
-It answers only when it is sure that ``read`` would give the same data and no problem:
-libyaml accepts the text (``raw_parse``, no Python objects), yaml-rs finds no duplicate key,
-and the text holds nothing the two read differently (``_UNSURE``: tags, anchors, aliases,
-documents, YAML 1.1 line breaks, a byte order mark; ``_numbers_agree``: every word that may
-be a number is one YAML 1.2 reads as a number). Otherwise it returns None and the caller
-uses ``read``, which says what is wrong. The loader composes the tree of a file read so only
-when a problem needs a position.
+reader in Rust) makes the Python objects about eight times faster than composing the tree.
+It answers only when it is sure that ``read`` would give the same data and no problem;
+otherwise it returns None and the caller uses ``read``, which says what is wrong.
 """
 
 from __future__ import annotations
@@ -78,12 +69,10 @@ class _TooDeep(Exception):
 
 
 class _Loader(BASE_LOADER):  # type: ignore[misc]
-    """The composer with rosreconf's resolver: no YAML 1.1 tags.
+    """The composer with rosreconf's resolver: no YAML 1.1 tags (``PLAIN`` is resolved later).
 
-    The composer calls ``resolve`` for every untagged node; this one only tells plain
-    scalars (``PLAIN``, resolved later with YAML 1.2) from the others. Its nesting is
-    bounded by libyaml itself (measured: over 1000 levels, "exceeded maximum nesting depth")
-    or, for the pure parser, by Python's recursion limit; ``_plain`` applies ``MAX_DEPTH``.
+    Its nesting is bounded by libyaml itself (measured: over 1000 levels) or, for the pure
+    parser, by Python's recursion limit; ``_plain`` applies ``MAX_DEPTH``.
     """
 
     def resolve(self, kind: type[Node], value: Any, implicit: Any) -> str:
@@ -201,11 +190,10 @@ _MAY_BE_NUMBER = re.compile(rb"[0-9]|(?i:inf|nan)")
 def read_plain(data: bytes) -> Plain | None:
     """Return the plain data ``read`` would give, when it is sure of it; else None.
 
-    None means: let ``read`` decide (a problem, or a text this fast reader may read otherwise).
-    See the module docstring for when it is sure. One difference is left to the caller: a
-    mapping key YAML 1.2 reads as a number, boolean or null stays one here, where ``read``
-    keeps its text; jsonschema-rs refuses such a key (``ValueError``), and the loader then
-    reads the file with ``read``.
+    Sure: libyaml accepts the text (``raw_parse``, no Python objects), yaml-rs finds no
+    duplicate key, and the text holds nothing the two read differently (``_UNSURE``,
+    ``_numbers_agree``). Left to the caller: a mapping key YAML 1.2 reads as a number stays
+    one here, where ``read`` keeps its text; jsonschema-rs refuses it (``ValueError``).
     """
     if BASE_LOADER is yaml.SafeLoader or len(data) > MAX_BYTES or any(m in data for m in _UNSURE):
         return None
@@ -230,8 +218,7 @@ def read_plain(data: bytes) -> Plain | None:
 def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
     """Return ``node`` (a collection at ``depth``) as plain data; add key problems to ``problems``.
 
-    Duplicate and complex keys are reported here; each mapping node also keeps its values
-    by key (``nodes.fields``). Scalars are resolved inline, collections recursively.
+    Each mapping node also keeps its values by key (``nodes.fields``).
 
     Raises:
         _TooDeep: a collection is nested deeper than ``MAX_DEPTH``.
@@ -250,7 +237,7 @@ def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
             message = "a mapping key must be a plain value, not a list or mapping"
             problems.append(Problem(span(key), message, code="complex-key"))
         elif key.value in out:
-            first = _first_key(node, key.value).start_mark.line + 1
+            first = next(k for k, _ in node.value if k.value == key.value).start_mark.line + 1
             message = f"duplicate key '{key.value}' (first written at line {first})"
             problems.append(
                 Problem(span(key), message, "remove or rename one of the two", "duplicate-key")
@@ -261,11 +248,6 @@ def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
             out[key.value] = value(item) if scalar else _plain(item, problems, depth + 1)
     node.fields = by_key  # type: ignore[attr-defined]
     return out
-
-
-def _first_key(node: Node, name: str) -> Node:
-    """Return the first key node of mapping ``node`` written as ``name``."""
-    return next(k for k, _ in node.value if type(k) is ScalarNode and k.value == name)
 
 
 def _event_problems(data: bytes, file: str) -> list[Problem]:
