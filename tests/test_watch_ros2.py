@@ -453,17 +453,31 @@ def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
         watch.stop()
 
 
-def _pids_running(pattern: bytes) -> set[int]:
-    """Return the pids whose command line holds ``pattern`` (what ``pgrep -f`` reads)."""
+def _pids_running(pattern: bytes, under: int) -> set[int]:
+    """Return the pids under process ``under`` whose command line holds ``pattern``.
+
+    What ``pgrep -f`` reads, kept to one watch's descendants: a second test run beside this
+    one (two fresh clones at a time) has stand-ins of the same names.
+    """
     found = set()
     for entry in Path("/proc").iterdir():
         if entry.name.isdigit() and int(entry.name) != os.getpid():
             try:
-                if pattern in (entry / "cmdline").read_bytes():
+                if pattern in (entry / "cmdline").read_bytes() and _under(int(entry.name), under):
                     found.add(int(entry.name))
             except OSError:
                 continue
     return found
+
+
+def _under(pid: int, root: int) -> bool:
+    """Tell whether ``root`` is ``pid``'s parent, grandparent, ... (from /proc/PID/stat)."""
+    while pid > 1:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+        pid = int(stat.rsplit(")", 1)[1].split()[1])
+        if pid == root:
+            return True
+    return False
 
 
 def test_each_stand_in_is_a_process_of_its_own_named_so_and_dies_with_a_killed_watch(
@@ -476,7 +490,8 @@ def test_each_stand_in_is_a_process_of_its_own_named_so_and_dies_with_a_killed_w
         pids = watch.pids()
         assert sorted(pids) == sorted(NOMINAL) and len(set(pids.values())) == len(NOMINAL)
         for component, pid in pids.items():
-            assert _pids_running(f"__node:={component}\0".encode()) == {pid}, component
+            named = _pids_running(f"__node:={component}\0".encode(), watch.process.pid)
+            assert named == {pid}, component
             assert os.getsid(pid) == pid  # a session and group of its own: signalled alone
         os.kill(watch.process.pid, signal.SIGKILL)  # no cleanup can run in watch
         watch.process.wait(10)
