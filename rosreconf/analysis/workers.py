@@ -253,11 +253,14 @@ def _dask(address: str) -> Iterator[Executor]:
             "--cluster needs Dask's distributed package (pip install 'rosreconf[dask]')"
         ) from None
     _check_address(distributed, address, where)
-    # Its reconnect errors would repeat ours, with tracebacks: only ours is said.
+    # Its reconnect errors would repeat ours, with tracebacks: only ours is said. Tornado's
+    # too: distributed gives "tornado.application" a handler, which printed a CommClosedError
+    # traceback ("Exception in callback") when the scheduler was killed mid-sweep (1 fresh
+    # clone's CI run in 16).
     quiet = {
         name: logging.getLogger(name)
-        for name in ["distributed", *logging.root.manager.loggerDict]
-        if name.split(".")[0] == "distributed"
+        for name in ["distributed", "tornado", *logging.root.manager.loggerDict]
+        if name.split(".")[0] in ("distributed", "tornado")
     }
     levels = {name: logger.level for name, logger in quiet.items()}
     for logger in quiet.values():
