@@ -99,6 +99,30 @@ def _ours(snapshot: dict[str, Any]) -> tuple[list[Any], dict[str, Any]]:
     return sorted(nodes, key=lambda n: n["name"]), qos
 
 
+def _second_look(domain: int, ours: list[Any], theirs: list[Any], stderr: str) -> str:
+    """Describe a short snapshot: which nodes it missed, and what a fresh read sees now.
+
+    A diagnosis, not a retry: the test still fails. It tells a participant lost for a while
+    (the fresh read sees all) from one whose nodes stay unseen (counts of DDS participants,
+    ROS participants and endpoints; stale and undecodable participants).
+    """
+    from rosreconf.ros.ros2.discovery import Ros2Discovery
+
+    names = {n["name"] for n in ours}
+    missing = sorted(n["name"] for n in theirs if n["name"] not in names)
+    with Ros2Discovery(domain) as again:
+        graph = again.read()
+        seen = (
+            f"{len(graph.nodes)} nodes, {again.participants} DDS participants, "
+            f"{again.ros_participants} ROS participants, {again.endpoints} ROS endpoints, "
+            f"{len(again.stale)} stale, {len(again.undecodable)} undecodable"
+        )
+    return (
+        f"snapshot saw {len(ours)} of {NODES} nodes; missing {missing}; a fresh read now sees "
+        f"{seen}; snapshot's stderr: {stderr!r}"
+    )
+
+
 def test_snapshot_equals_rclpy_graph_at_40_nodes(
     forty: ros2_real.Ros2System, runner: CliRunner
 ) -> None:
@@ -111,6 +135,8 @@ def test_snapshot_equals_rclpy_graph_at_40_nodes(
     assert result.exit_code == 0, result.stderr
     snapshot = json.loads(result.stdout)
     nodes, qos = _ours(snapshot)
+    if len(nodes) != NODES:  # rare (1 fresh clone in 16): say what a second look sees
+        pytest.fail(_second_look(forty.domain, nodes, reference["nodes"], result.stderr))
     assert len(nodes) == len(reference["nodes"]) == NODES
     assert nodes == reference["nodes"]
     assert qos == reference["qos"]
