@@ -79,12 +79,6 @@ UNDECODABLE_AFTER = 4.5
 than Fast DDS's 3 s heartbeat, after which a sample Cyclone failed to take is sent again
 (measured: a Jazzy participant's info arrived 0.03 to 3.03 s after its writer)."""
 
-FIRST_READ_AT_LEAST = 3.5
-"""Seconds the first read listens before it may settle: Fast DDS re-announces each participant
-every 3 s (``leaseDuration_announcementperiod``). Settling on stillness alone (1 s) missed two
-of five loaded participants once (24 of 40 real Jazzy nodes, exit 0; a read moments later saw
-all 40): a participant not yet heard of cannot hold a read back."""
-
 RENEW_EVERY = 5.0
 """Seconds between fresh ``ros_discovery_info`` readers while a participant stays stale (each
 is sent every participant's newest sample again: cheap, but not for every poll)."""
@@ -289,8 +283,7 @@ class Ros2Discovery:
 
         The first call waits (at most ``timeout`` s) until discovery is complete: every ROS
         participant has sent its ``ros_discovery_info`` and every endpoint named there has
-        been discovered, nothing changed for ``settle`` s, and it has listened for at least
-        ``FIRST_READ_AT_LEAST`` s. Later calls do not wait.
+        been discovered, and nothing changed for ``settle`` s. Later calls do not wait.
         """
         if self._dp is None:
             raise UsageError("this ROS 2 discovery session is closed")
@@ -315,8 +308,7 @@ class Ros2Discovery:
             self._renew_if_stale(stale, now, still=now - stable_since >= settle)
             if self._settled or now - start >= timeout:
                 break
-            listened = now - start >= FIRST_READ_AT_LEAST
-            if complete and ros and listened and now - stable_since >= settle:
+            if complete and ros and now - stable_since >= settle:
                 break
             if not ros and now - start >= max(settle * 2, 1.0):
                 break
