@@ -9,6 +9,7 @@ names) into the ``LiveGraph`` every live command reads. Pure data: no DDS here.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from datetime import datetime
 
@@ -71,15 +72,17 @@ class NodeInfo:
 
 
 def stale_participants(
-    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]], endpoints: dict[bytes, Endpoint]
+    named: AbstractSet[bytes],
+    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]],
+    endpoints: dict[bytes, Endpoint],
 ) -> frozenset[bytes]:
     """Return participants with a ROS endpoint that no node of their ``ros_discovery_info`` names.
 
-    rmw announces a node's endpoints in the participant's next sample; one still unnamed once
-    the graph is still means that sample was lost or did not decode (Cyclone failed one of
-    Fast DDS's at 40 Jazzy nodes): the node list held for that participant is out of date.
+    ``named`` holds every GID the held node lists name (the caller needs it too). rmw
+    announces a node's endpoints in the participant's next sample; one still unnamed once the
+    graph is still means that sample was lost or did not decode: the node list held for that
+    participant is out of date.
     """
-    named = {g for _, nodes in infos.values() for n in nodes for g in n.gids}
     return frozenset(
         e.participant
         for e in endpoints.values()
