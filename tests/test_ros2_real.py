@@ -21,8 +21,11 @@ from __future__ import annotations
 
 import json
 import re
+import signal
 import subprocess
 import sys
+import threading
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -281,3 +284,34 @@ def test_forged_gid_of_another_participant_is_ignored(
     names = {n["name"] for n in json.loads(result.stdout)["nodes"]}
     assert names == {"/lidar", "/planner", "/controller", "/robot/base"}
     assert "named another participant's GID and were ignored" in result.stderr
+
+
+def test_a_participant_that_answers_late_is_read_not_called_absent(
+    distro: str, loopback: None, tmp_path: Path, runner: CliRunner
+) -> None:
+    """A participant whose process gets no CPU answers discovery late: a first read that
+    ended on 1 s of stillness once returned 24 of 40 real nodes with exit 0 on a loaded
+    machine. Here the only node's process is stopped (SIGSTOP, a fault provoked on a real
+    node) before ``snapshot`` starts and continued 2.4 s later, after the 2 s in which an
+    empty domain used to be called empty: its node must be in the snapshot."""
+    from rosreconf.ros.ros2.discovery import FIRST_READ_AT_LEAST
+
+    system = _system(distro, tmp_path)
+    try:
+        late = system.start(_specs()["PLANNER"]).process
+        late.send_signal(signal.SIGSTOP)
+        timer = threading.Timer(2.4, late.send_signal, [signal.SIGCONT])
+        begun = time.monotonic()
+        timer.start()
+        result = runner.invoke(app, ["snapshot", "--ros2", "--domain", str(system.domain)])
+        took = time.monotonic() - begun
+        timer.join()
+        assert result.exit_code == 0, (
+            f"{result.stderr} (took {took:.2f} s; the first read listens at least "
+            f"{FIRST_READ_AT_LEAST} s)"
+        )
+        assert [n["name"] for n in json.loads(result.stdout)["nodes"]] == ["/planner"]
+    finally:
+        for p in system.processes:
+            p.process.send_signal(signal.SIGCONT)
+        system.stop()
