@@ -123,6 +123,18 @@ def _second_look(domain: int, ours: list[Any], theirs: list[Any], stderr: str) -
     )
 
 
+def _differences(ours: list[Any], theirs: list[Any]) -> str:
+    """Say, per node and field, what the snapshot has that rclpy has not, and the reverse."""
+    said = []
+    for mine, ref in zip(ours, theirs, strict=True):
+        for field in ("publishes", "subscribes", "serves", "clients"):
+            extra = [e for e in mine[field] if e not in ref[field]]
+            lack = [e for e in ref[field] if e not in mine[field]]
+            if extra or lack:
+                said.append(f"{mine['name']} {field}: only ours {extra}, only rclpy's {lack}")
+    return "; ".join(said)
+
+
 def test_snapshot_equals_rclpy_graph_at_40_nodes(
     forty: ros2_real.Ros2System, runner: CliRunner
 ) -> None:
@@ -138,7 +150,7 @@ def test_snapshot_equals_rclpy_graph_at_40_nodes(
     if len(nodes) != NODES:  # rare (1 fresh clone in 16): say what a second look sees
         pytest.fail(_second_look(forty.domain, nodes, reference["nodes"], result.stderr))
     assert len(nodes) == len(reference["nodes"]) == NODES
-    assert nodes == reference["nodes"]
+    assert nodes == reference["nodes"], _differences(nodes, reference["nodes"])
     assert qos == reference["qos"]
     states = {n["name"]: n["lifecycle_state"] for n in snapshot["nodes"] if n["lifecycle_state"]}
     assert states == {"/robot/n7": "inactive"}

@@ -60,6 +60,7 @@ class Watch:
 
     def __init__(self, tmp: Path, domain: int, *args: str) -> None:
         self.log = tmp / "watch.jsonl"
+        self.err = tmp / "watch.err"
         self.env = _env(tmp)
         self.domain = domain
         argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain),
@@ -67,7 +68,7 @@ class Watch:
                 *args]  # fmt: skip
         self.process = subprocess.Popen(
             argv, env=self.env, stdout=subprocess.DEVNULL,
-            stderr=(tmp / "watch.err").open("wb"), start_new_session=True,
+            stderr=self.err.open("wb"), start_new_session=True,
         )  # fmt: skip
 
     def events(self) -> list[dict[str, Any]]:
@@ -88,7 +89,10 @@ class Watch:
             found = [e for e in self.events()[after:] if e["event"] == kind]
             if found:
                 return found[0]
-            assert self.process.poll() is None, f"watch exited: {self.events()[-5:]}"
+            if self.process.poll() is not None:  # what it said on stderr tells why
+                said = self.err.read_text(errors="replace")[-2000:]
+                pytest.fail(f"watch exited {self.process.returncode}: {self.events()[-5:]}"
+                            f"\nits stderr ends:\n{said}", pytrace=False)  # fmt: skip
             assert time.monotonic() < deadline, [e["message"] for e in self.events()[-8:]]
             time.sleep(0.1)
 
