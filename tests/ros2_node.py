@@ -17,7 +17,7 @@ the spec, each its own ``rclpy.node.Node``::
 node exists and spins until SIGTERM or SIGINT (then it leaves the domain cleanly).
 
 ``--graph N SECONDS`` instead joins the domain with one node of its own (``_rclpy_graph``,
-hidden), waits until at least N other nodes are seen and the graph has not changed for 1 s
+hidden), waits until at least N other nodes are seen and the graph has not changed for 3.5 s
 (at most SECONDS), and prints rclpy's own view as one JSON document: per node its
 publishers, subscriptions, services and clients with types (``get_*_names_and_types_by_node``)
 and per topic each endpoint's QoS (``get_publishers_info_by_topic``,
@@ -147,8 +147,15 @@ def _endpoint_qos(info: Any) -> dict[str, Any]:
     }
 
 
+QUIET = 3.5
+"""Seconds rclpy's graph must stay unchanged before it is the reference: one Fast DDS
+announcement period (3 s) and a margin, as rosreconf's own first read. Quiet for 1 s, a
+loaded machine once gave a reference that differed from rosreconf's snapshot in one node's
+endpoints, all 40 nodes present (which side was short was not recorded)."""
+
+
 def graph(at_least: int, seconds: float) -> None:
-    """Print rclpy's graph once it has ``at_least`` other nodes and is quiet for 1 s."""
+    """Print rclpy's graph once it has ``at_least`` other nodes and is quiet for ``QUIET`` s."""
     rclpy.init()
     node = Node("_rclpy_graph")
     deadline = time.monotonic() + seconds
@@ -161,7 +168,7 @@ def graph(at_least: int, seconds: float) -> None:
         key = json.dumps(doc, sort_keys=True)
         if key != last:
             last, quiet_since = key, time.monotonic()
-        elif len(doc["nodes"]) >= at_least and time.monotonic() - quiet_since >= 1.0:
+        elif len(doc["nodes"]) >= at_least and time.monotonic() - quiet_since >= QUIET:
             break
     print(json.dumps(doc, sort_keys=True), flush=True)
     node.destroy_node()
