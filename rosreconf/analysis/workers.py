@@ -32,7 +32,7 @@ from concurrent.futures import BrokenExecutor, CancelledError, Executor, Future,
 from typing import Any, ParamSpec, TypeVar
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.procs import pool_worker_setup, sigterm_raises
+from rosreconf.procs import pool_worker_setup, sigterm_raises, stops_held
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -62,6 +62,8 @@ class Watched(Executor):
     or the error a user should see when the executor failed (not the function): a broken
     process pool, cancelled work, a lost scheduler. With ``health``, a thread checks the
     cluster while work is pending and fails it all after ``patience`` seconds of trouble.
+    With ``hold_stops`` (a local pool, which forks its workers in ``submit``), SIGINT and
+    SIGTERM wait until each submit is done (``procs.stops_held``).
     """
 
     def __init__(
@@ -71,8 +73,11 @@ class Watched(Executor):
         health: Health | None = None,
         patience: float = 0.0,
         cancelled: Callable[[], str] = lambda: "the work was cancelled",
+        *,
+        hold_stops: bool = False,
     ) -> None:
         self.inner = inner
+        self._hold_stops = hold_stops
         self.where = where
         self._cancelled = cancelled
         self._health = health
@@ -85,8 +90,9 @@ class Watched(Executor):
     def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
         """Submit ``fn(*args, **kwargs)`` to the inner executor; return a future of ours."""
         outer: Future[T] = Future()
-        try:
-            inner = self.inner.submit(fn, *args, **kwargs)
+        try:  # a local pool forks its workers in submit: stops wait until it is done
+            with stops_held() if self._hold_stops else contextlib.nullcontext():
+                inner = self.inner.submit(fn, *args, **kwargs)
         except (BrokenExecutor, RuntimeError) as exc:
             raise ExternalToolError(f"{self.where}: cannot take more work ({exc})") from None
         with self._lock:
@@ -213,7 +219,7 @@ def _local(n: int) -> Iterator[Executor]:
     )
     try:
         with sigterm_raises():
-            yield Watched(pool, f"--workers {n}")
+            yield Watched(pool, f"--workers {n}", hold_stops=True)
     except BaseException:  # an error, Ctrl-C or SIGTERM: the queued work is not wanted
         _kill(pool)
         raise

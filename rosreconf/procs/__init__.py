@@ -45,7 +45,7 @@ from rosreconf.procs.run import (
     ProgramResult,
     run_program,
 )
-from rosreconf.procs.signals import Terminated, sigterm_raises
+from rosreconf.procs.signals import Terminated, sigterm_raises, stops_held
 from rosreconf.procs.workdirs import WORKDIR_PREFIX, clean_stale_workdirs, private_workdir
 
 __all__ = [
@@ -64,4 +64,5 @@ __all__ = [
     "sigterm_raises",
     "start_program",
     "stop_all",
+    "stops_held",
 ]

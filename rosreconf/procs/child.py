@@ -25,7 +25,7 @@ import signal
 import sys
 from collections.abc import Callable
 
-from rosreconf.procs.signals import sigint_ignored
+from rosreconf.procs.signals import STOPS, sigint_ignored
 
 LINUX = sys.platform.startswith("linux")
 """The parent-death signal and the watchdog exist on Linux only."""
@@ -100,6 +100,7 @@ def pool_worker_setup(parent: int) -> None:
     """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOPS)  # forked with them held (stops_held)
     if LINUX:
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
     if os.getppid() != parent:  # rosreconf died before prctl took effect

@@ -70,3 +70,26 @@ def signal_group(pgid: int, sig: signal.Signals) -> None:
     """Send ``sig`` to a process group; a group that is already gone is fine."""
     with contextlib.suppress(ProcessLookupError, PermissionError):
         os.killpg(pgid, sig)
+
+
+STOPS = frozenset({signal.SIGINT, signal.SIGTERM})
+"""The signals that stop rosreconf (a terminal's Ctrl-C, a service manager's SIGTERM)."""
+
+
+@contextlib.contextmanager
+def stops_held() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM (blocked, so kept pending) in this thread while the block runs.
+
+    For the moments a process pool forks its workers. Python runs ``os.fork``'s hooks in
+    both processes; a Ctrl-C that lands in one is "ignored" there: in a worker that has not
+    yet ignored SIGINT it printed a KeyboardInterrupt traceback, and in rosreconf it was lost,
+    so the sweep went on to its end with exit 0 (2 of 40 Ctrl-Cs to ``simulate --workers 2``
+    as its workers started; in a fresh clone's CI the sweep outlived the test's 20 s). Held,
+    the signal reaches rosreconf when the block ends, and the forked worker starts with it
+    blocked until ``pool_worker_setup`` has chosen what it does with each.
+    """
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, STOPS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
