@@ -103,6 +103,7 @@ def test_optimal_planner_and_solver_agree_on_the_objective(
     reach the same (changes, metric) value, each with a valid configuration.
     """
     from rosreconf.planning.replan import plan
+    from rosreconf.solve.running import change_objective
     from rosreconf.solve.solver import optimise
 
     library, schema = generated(roles, candidates, 0.2, seed)
@@ -119,7 +120,7 @@ def test_optimal_planner_and_solver_agree_on_the_objective(
         timeout=60,
     )
     inst = compile_instance(library, schema, failed)
-    objective = Objective(current, weights)
+    objective = change_objective(library, schema, current, weights)  # restarts counted too
     best = optimise(inst, objective).configuration
     if best is None:
         assert result.status is PlanStatus.UNSOLVABLE_PROVEN
@@ -128,3 +129,22 @@ def test_optimal_planner_and_solver_agree_on_the_objective(
     assert result.configuration is not None
     assert is_valid(result.configuration, library, schema, failed)
     assert objective.cost(inst, result.configuration) == objective.cost(inst, best)
+
+
+@pytest.mark.parametrize(("failed", "fewest"), [("NSM3", 10), ("NCA1", 8), ("NFB21", 10)])
+def test_optimal_planner_counts_restarts_as_the_solver_does(failed: str, fewest: int) -> None:
+    """An optimal plan restarts the kept consumers a failover rewires, and costs what the
+    solver proves (and tests/test_watcher_fewest.py checks by brute force): 9 role changes
+    and NREA's restart after NSM3, 3 and five restarts after NCA1."""
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.planning.replan import plan
+
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    result = plan(
+        bundle.library, schema, [failed], dict(schema.nominal), FastDownward("astar(lmcut())")
+    )
+    assert result.status is PlanStatus.SOLVED, result.message
+    assert result.fewest_changes == fewest
+    assert sum(c.counted for c in result.changes) == fewest
+    assert any(step.startswith("restart NREA") for step in result.steps)

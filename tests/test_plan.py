@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
+import yaml
 from conftest import fake
 from typer.testing import CliRunner
 
@@ -14,6 +15,7 @@ from rosreconf.formats.configfile import read_configurations
 from rosreconf.formats.loader import load_bundled
 from rosreconf.planning.planners import PLANNERS, FastDownward, TaskFiles
 from rosreconf.planning.replan import unaffected
+from rosreconf.resources import Bundle, bundled
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.running import running_configuration
 from rosreconf.solve.solver import Objective, optimise
@@ -40,8 +42,16 @@ def test_nsm3_failing_moves_repositioning_to_the_dc_arm_and_ends_disc_loading(
         "NDC3",
         "NFB11",
     ]
-    assert moved["fewest_changes"] == 9
+    # 9 roles change and the kept reasoner NREA restarts: it called the servo arm's
+    # /arm_servo/<joint>/servo_command, and ROS fixes a node's remappings when it starts, so
+    # it must restart to call the DC arm's /arm_dc/<joint>/servo_command (the wiring model)
+    assert moved["fewest_changes"] == 10
+    kinds = {c["role"]: c["kind"] for c in moved["changes"]}  # type: ignore[attr-defined]
+    assert kinds["reasoner"] == "restart" and kinds["camera"] == "keep"
+    assert sum(k != "keep" for k in kinds.values()) == 10
     text = " ".join(moved["explanation"])  # type: ignore[arg-type]
+    assert "NREA (reasoner) restarts to be rewired" in text
+    assert "10 part(s) change (9 replaced or started, 1 restarted to be rewired)" in text
     assert (
         "positioning: NFB21 cannot stay (it needs elbow/digital_servo_command, which only NSM3 "
         "provides and NSM3 failed" in text
@@ -63,10 +73,23 @@ def test_nca1_failing_changes_only_camera_sensor_and_perception(
     only = ["--only", "object_repositioning", "--only", "disc_loading"]
     result = runner.invoke(app, ["plan", "--fail", "NCA1", *only, "--json"])
     assert result.exit_code == 0, result.stderr
+    # NCO2 serves gripper_feeling at /gripper2/feeling where NCO1 served /gripper1/feeling:
+    # every kept consumer of it restarts to be rewired (its remappings are fixed at start)
+    library = yaml.safe_load(bundled(Bundle.LIBRARIES, "robot_arms.yaml").read_text("utf-8"))
+    feeling = {
+        c["name"]
+        for c in library["components"]
+        if any(r.get("service") == "gripper_feeling" for r in c.get("requires", []))
+    }
     for s in by_name(json.loads(result.stdout)).values():
-        changed = {c["role"] for c in s["changes"] if c["kind"] != "keep"}  # type: ignore[attr-defined]
-        assert changed == {"camera", "gripper_sensor", "perception"}
-        assert s["configurations"][0]["assignment"]["camera"] == "NCA2"  # type: ignore[index]
+        kinds = {c["role"]: c["kind"] for c in s["changes"]}  # type: ignore[attr-defined]
+        replaced = {r for r, k in kinds.items() if k == "replace"}
+        assert replaced == {"camera", "gripper_sensor", "perception"}
+        assignment = s["configurations"][0]["assignment"]  # type: ignore[index]
+        restarted = {r for r, k in kinds.items() if k == "restart"}
+        assert restarted == {r for r, c in assignment.items() if c in feeling} - replaced
+        assert restarted and s["fewest_changes"] == 3 + len(restarted)
+        assert assignment["camera"] == "NCA2"
     saved = tmp_path / "now.json"
     saved.write_text(result.stdout, encoding="utf-8")
     assert read_configurations(saved)["disc_loading"]["perception"] == "NVP2"

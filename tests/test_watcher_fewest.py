@@ -12,24 +12,50 @@ import itertools
 from pathlib import Path
 
 from rosreconf.formats.loader import load_bundled
-from rosreconf.model import Configuration
-from rosreconf.model.validity import is_valid
+from rosreconf.model import Configuration, VertexKind
+from rosreconf.model.validity import is_valid, ros_graph
 from rosreconf.ros.sources import MasterSource
 from rosreconf.ros.watcher import Event, Watcher
 
 SCHEMA = "object_repositioning"
 
 
+def _wired_to(watcher: Watcher, config: Configuration) -> dict[str, set[tuple[str, str]]]:
+    """Return per component the (label, name its provider really uses) it consumes.
+
+    Read off the ROS-graph (Def. 1) and the library's remappings, as a launch file wires a
+    consumer: what a process is started with, which ROS 2 fixes until it restarts.
+    """
+    g = ros_graph(config, watcher.library, watcher.schema)
+    out: dict[str, set[tuple[str, str]]] = {c: set() for c in config.components}
+    for (kind, name), data in g.nodes(data=True):
+        if kind is VertexKind.NODE:
+            continue
+        label = str(data["label"])
+        for (_, provider), _ in g.in_edges((kind, name)):
+            launch = watcher.library[provider].launch
+            real = launch.remappings.get(label, label) if launch else label
+            for _, (_, consumer) in g.out_edges((kind, name)):
+                out[consumer].add((label, real))
+    return out
+
+
 def _fewest_by_brute_force(watcher: Watcher, old: dict[str, str], failed: frozenset[str]) -> int:
-    """Return the least number of roles any valid configuration changes from ``old``."""
+    """Return the fewest changes of any valid configuration from ``old``, by trying them all.
+
+    A change is a role that changes component, or a kept component whose wiring (what its
+    providers are called) changes: ROS names are fixed when a node starts, so it restarts.
+    """
     roles = watcher.schema.graph.roles
     doms = [[c.name for c in watcher.library.candidates(r.abstraction)] for r in roles]
+    before = _wired_to(watcher, Configuration.of(watcher.schema.name, old, roles))
     best: int | None = None
     for combo in itertools.product(*doms):
         mapping = dict(zip([r.name for r in roles], combo, strict=True))
         config = Configuration.of(watcher.schema.name, mapping, roles)
         if is_valid(config, watcher.library, watcher.schema, failed):
-            n = sum(old[r] != c for r, c in mapping.items())
+            after = _wired_to(watcher, config)
+            n = sum(old[r] != c or before[c] != after[c] for r, c in mapping.items())
             best = n if best is None else min(best, n)
     assert best is not None
     return best

@@ -19,6 +19,7 @@ from rosreconf.model import (
     Requirement,
 )
 from rosreconf.model.validity import requirement_met, violations
+from rosreconf.model.wiring import rewiring
 
 
 @dataclass(frozen=True)
@@ -30,17 +31,20 @@ class Change:
         before: the component running now (None when nothing is known to run there,
             ``EMPTY`` when the optional role is left empty now).
         after: the component of the new configuration (``EMPTY``: left empty).
+        rewired: why a kept component restarts to be rewired (``rosreconf.model.wiring``);
+            empty when it needs not.
     """
 
     role: str
     before: str | None
     after: str
+    rewired: str = ""
 
     @property
     def kind(self) -> str:
-        """Return ``keep``, ``replace``, ``start`` or ``stop`` (an optional role emptied)."""
+        """Return ``keep``, ``restart`` (kept, rewired), ``replace``, ``start`` or ``stop``."""
         if (self.before or EMPTY) == self.after:
-            return "keep"
+            return "restart" if self.rewired else "keep"
         if not self.before:
             return "start"
         return "stop" if self.after == EMPTY else "replace"
@@ -48,9 +52,11 @@ class Change:
     @property
     def counted(self) -> bool:
         """Tell whether the objective counts this as a change (something ran, or was empty)."""
-        return self.before is not None and self.before != self.after
+        return self.before is not None and (self.before != self.after or bool(self.rewired))
 
     def __str__(self) -> str:
+        if self.kind == "restart":
+            return f"{self.role}: restart {self.after} (rewired)"
         if self.kind == "keep":
             return f"{self.role}: keep {self.after or 'it empty'}"
         if self.kind == "start":
@@ -60,9 +66,22 @@ class Change:
         return f"{self.role}: stop {self.before}, start {self.after}"
 
 
-def changes(current: Mapping[str, str], new: Configuration) -> list[Change]:
-    """Compare the running configuration with the new one, role by role."""
-    return [Change(role, current.get(role), comp) for role, comp in new.assignment]
+def changes(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    current: Mapping[str, str],
+    new: Configuration,
+) -> list[Change]:
+    """Compare the running configuration with the new one, role by role.
+
+    A kept component whose wiring changes is a ``restart`` (the wiring model,
+    ``rosreconf.model.wiring``): it is counted as a change, with the reason.
+    """
+    rewired = rewiring(library, schema, current, new.mapping)
+    return [
+        Change(role, current.get(role), comp, rewired.get(role, ""))
+        for role, comp in new.assignment
+    ]
 
 
 def _providers(library: ComponentLibrary, req: Requirement) -> list[str]:
@@ -160,7 +179,7 @@ def explain_replan(
     for role, comp in current.items():
         if comp in failed:
             lines.append(f"{comp} ({role}) has failed.")
-    every = changes(current, new)
+    every = changes(library, schema, current, new)
     replaced = [c for c in every if c.kind in ("replace", "stop")]
     for change in replaced:
         assert change.before is not None
@@ -174,15 +193,20 @@ def explain_replan(
                 f"{change.role}: {change.before} is replaced by {change.after} although it could "
                 "have stayed (the planner's choice; see the change count below)."
             )
+    lines += [f"{c.rewired}." for c in every if c.kind == "restart"]
     n = sum(1 for c in every if c.counted)
+    restarts = sum(1 for c in every if c.kind == "restart")
+    parts = f"{n} part(s) change"
+    if restarts:
+        parts += f" ({n - restarts} replaced or started, {restarts} restarted to be rewired)"
     if not n:
         lines.append("Nothing has to change." if current else "")
     if fewest_changes is not None and current:
         if n == fewest_changes:
-            lines.append(f"{n} part(s) change: the fewest possible.")
+            lines.append(f"{parts}: the fewest possible.")
         else:
             lines.append(
-                f"{n} part(s) change; the fewest possible is {fewest_changes} (try --search "
+                f"{parts}; the fewest possible is {fewest_changes} (try --search "
                 "seq-sat-lama-2011 or a longer --timeout)."
             )
     lines.append(f"{schema.display_name} still works: {' '.join(schema.skill.split())}")

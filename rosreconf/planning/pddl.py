@@ -21,7 +21,13 @@ along it. The task, for roles ``r_0 .. r_n`` and a candidate ``c`` of ``r_i``::
                    token to the next role; cost: the objective's price
     connect-u-q-v  (checking u), not (met u q), (serves v u q) -> (met u q); cost 0
     finish-r-c     (checking r), (uses r c), (met r q) for every requirement q of c,
-                   (chosen d) for every d that c needs -> token to the next role; cost 0
+                   (chosen d) for every d that c needs -> token to the next role; cost 0;
+                   for the running component c of r: also not (rewired r), and
+                   (wire-r-k) for each thing k it is wired to now
+    restart-r-c    for the running component c of r: as finish-r-c without those; cost:
+                   one change. A choose action of a provider candidate adds (wire-r-k) for
+                   each thing k it wires c to as now, (rewired r) for anything else
+                   (``Objective.restarts``; the wiring model, ``rosreconf.model.wiring``)
     goal           (finished)
 
 Only earlier roles are checked: when ``r_i`` is chosen exactly ``r_0 .. r_(i-1)`` are
@@ -142,9 +148,10 @@ def render(
     extra = {n for u in range(len(inst.roles)) for n in inst.excluded[u]}
     comps = {n: names.component(n) for n in sorted(candidates | extra | set(inst.failed))}
     t = _Tables(inst, roles, comps, _requirement_names(inst, names))
+    rewiring = _rewiring(inst, t, objective)
     actions = _choose_actions(inst, names, t, objective, _costs(inst, objective))
     actions += _connect_actions(inst, names, t)
-    actions += _finish_actions(inst, names, t)
+    actions += _finish_actions(inst, names, t, objective, _costs(inst, objective).change)
     avoided = _avoid_actions(inst, names, t, forbid)
     actions += avoided
     current = {r: c for r, c in objective.current.items() if r in inst.role_index}
@@ -161,6 +168,8 @@ def render(
         "current": [(names.role(r), c or "(empty)") for r, c in current.items()],
         "weights": dict(objective.weights),
         "forbid": [f[1:-1] for f in forbidden],
+        "rewired": bool(rewiring.needs),
+        "flags": rewiring.flags,
     }
     return PddlTask(
         _template("domain.pddl.j2").render(context),
@@ -251,11 +260,54 @@ def _requirement_names(inst: Instance, names: PddlNames) -> dict[Requirement, st
     }
 
 
+@dataclass
+class _Rewiring:
+    """``Objective.restarts`` as literals: what each choice adds, what a kept role needs.
+
+    Attributes:
+        adds: (provider role, candidate) -> the literals choosing it adds: ``(wire-U-K)`` for
+            each thing it wires the kept component of role U to that it is wired to now,
+            ``(rewired U)`` for anything else.
+        needs: consumer role -> the ``(wire-U-K)`` its kept component needs to stay as it is.
+    """
+
+    adds: dict[tuple[int, str], list[str]] = field(default_factory=dict)
+    needs: dict[int, list[str]] = field(default_factory=dict)
+
+    @property
+    def flags(self) -> list[str]:
+        """Return the 0-ary predicates the domain declares for it."""
+        return [f[1:-1] for fs in self.needs.values() for f in fs]
+
+
+def _rewiring(inst: Instance, t: _Tables, objective: Objective) -> _Rewiring:
+    """Compile ``Objective.restarts`` for the choose and finish actions (module docstring)."""
+    index, table, out = inst.role_index, objective.restarts, _Rewiring()
+    number: dict[int, dict[object, int]] = {}
+    for u, was in sorted(table.wired.items()):
+        if u in index:
+            number[index[u]] = {w: k for k, w in enumerate(sorted(was))}
+            out.needs[index[u]] = [f"(wire-{t.roles[index[u]]}-{k})" for k in range(len(was))]
+    for (u, v), offer in sorted(table.offers.items()):
+        if u not in index or v not in index:
+            continue
+        ui, known = index[u], number.get(index[u], {})
+        for name, pairs in offer.items():
+            adds = out.adds.setdefault((index[v], as_candidate(v, name)), [])
+            for w in sorted(pairs):
+                k = known.get(w)
+                adds.append(
+                    f"(rewired {t.roles[ui]})" if k is None else f"(wire-{t.roles[ui]}-{k})"
+                )
+    return out
+
+
 def _choose_actions(
     inst: Instance, names: PddlNames, t: _Tables, objective: Objective, costs: _Costs
 ) -> list[Action]:
     out = []
     roles, comps = t.roles, t.comps
+    rewires = _rewiring(inst, t, objective).adds
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
         for c in dom:
@@ -287,6 +339,7 @@ def _choose_actions(
                 f"(serves {roles[u]} {roles[w]} {t.reqs[q]})"
                 for w, q in t.serves.get((u, c.name), ())
             ]
+            eff += rewires.get((u, c.name), [])
             keep = objective.current.get(role.name)
             keep = None if keep is None else as_candidate(role.name, keep)
             cost = costs.metric[c.name] + (costs.change if keep and keep != c.name else 0)
@@ -322,11 +375,21 @@ def _connect_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Actio
     return out
 
 
-def _finish_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Action]:
+def _finish_actions(
+    inst: Instance, names: PddlNames, t: _Tables, objective: Objective, change: int
+) -> list[Action]:
+    """Check each role's requirements and couplings; a kept component rewired must restart.
+
+    Where a choice of a provider rewires the kept component of role ``u`` (``(rewired u)``),
+    its plain finish needs ``not (rewired u)``, and ``restart-u-c`` finishes it instead at
+    the price of one change.
+    """
     out = []
     roles, comps = t.roles, t.comps
+    needs = _rewiring(inst, t, objective).needs
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
+        kept = objective.current.get(role.name)
         for c in dom:
             if any(d in inst.failed or not t.holders.get(d) for d in c.needs):
                 continue  # a needed component that cannot be chosen: c can never finish
@@ -337,6 +400,12 @@ def _finish_actions(inst: Instance, names: PddlNames, t: _Tables) -> list[Action
                 f"finish-{roles[u]}-{comps[c.name]}", Step("finish", role.name, as_chosen(c.name))
             )
             comment = f"{c.name} has all it requires and needs"
+            if u in needs and c.name == kept:
+                step = Step("restart", role.name, c.name)
+                restart = names.action(f"restart-{roles[u]}-{comps[c.name]}", step)
+                why = f"restart {c.name} to rewire it: a provider it is wired to changed"
+                out.append(Action(restart, why, pre, t.after("checking", u), change))
+                pre = [*pre, f"(not (rewired {roles[u]}))", *needs[u]]
             out.append(Action(name, comment, pre, t.after("checking", u), 0))
     return out
 

@@ -24,8 +24,9 @@ class Step:
     """One action of the task, as the model sees it.
 
     Attributes:
-        kind: ``choose``, ``connect``, ``finish`` or ``avoid`` (proof that a forbidden
-            configuration is not reached; not a step for the operator).
+        kind: ``choose``, ``connect``, ``finish``, ``restart`` (a kept component finished by
+            restarting it, rewired) or ``avoid`` (proof that a forbidden configuration is not
+            reached; not a step for the operator).
         role: the role the action fills or serves.
         component: the chosen component (choose, finish), the providing one (connect: empty
             in the name map, where only the provider role is known; ``planning`` fills it in).

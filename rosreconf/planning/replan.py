@@ -24,7 +24,7 @@ from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
 from rosreconf.solve.instance import compile_instance
-from rosreconf.solve.objective import Objective
+from rosreconf.solve.running import change_objective
 from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import ClingoEngine, optimise
 from rosreconf.solve.unfillable import explain
@@ -93,14 +93,14 @@ def plan(
             PlanStatus.SOLVED,
             current,
             configuration=config,
-            changes=tuple(changes(current, config)),
+            changes=tuple(changes(library, schema, current, config)),
             explanation=tuple(explain_replan(library, schema, failed, current, config, 0)),
             message="unaffected: no planner run",
             fewest_changes=0,
             unaffected=reason,
         )
     inst = compile_instance(library, schema, failed)
-    objective = Objective(dict(current), dict(weights or {}))
+    objective = change_objective(library, schema, current, weights)
     best = optimise(inst, objective).configuration if current else ClingoEngine().first(inst)
     if best is None:
         why = explain(inst)
@@ -240,6 +240,8 @@ def _read_back(
         else s
         for s in steps
     ]
+    # a restart step stands after its role's choice: the operator reads "keep, then restart"
+    restarted = {s.role for s in steps if s.kind == "restart"}
     config = Configuration.of(schema.name, chosen, roles)
     wrong = violations(config, library, schema, failed)
     if wrong:
@@ -252,10 +254,12 @@ def _read_back(
         current,
         configuration=config,
         steps=tuple(
-            _step_text(s, current, chosen) for s in steps if s.kind in ("choose", "connect")
+            _step_text(s, current, chosen, restarted)
+            for s in steps
+            if s.kind in ("choose", "connect")
         ),
         actions=tuple(name for name, _ in run.actions),
-        changes=tuple(changes(current, config)),
+        changes=tuple(changes(library, schema, current, config)),
         explanation=tuple(lines),
         message=run.message,
         fewest_changes=fewest,
@@ -263,10 +267,14 @@ def _read_back(
     )
 
 
-def _step_text(step: Step, current: Mapping[str, str], chosen: Mapping[str, str]) -> str:
+def _step_text(
+    step: Step, current: Mapping[str, str], chosen: Mapping[str, str], restarted: set[str]
+) -> str:
     """Say one plan step the way Figure 8 of the paper lists them."""
     if step.kind == "choose":
         before = current.get(step.role)
+        if before and step.role in restarted:
+            return f"restart {step.component} as {step.role} (rewired)"
         if (before or EMPTY) == step.component:
             return f"keep {step.component} as {step.role}" if before else f"keep {step.role} empty"
         if step.component == EMPTY:  # rule optional-role
@@ -335,7 +343,8 @@ def write_tasks(
     """Write every schema's PDDL task under ``folder``; return the files written, in order."""
     written: list[Path] = []
     for s in schemas:
-        task = render(compile_instance(library, s, failed), Objective(running[s.name], weights))
+        objective = change_objective(library, s, running[s.name], weights)
+        task = render(compile_instance(library, s, failed), objective)
         where = write_task(task, folder)
         written += [where / "domain.pddl", where / "problem.pddl"]
     return written

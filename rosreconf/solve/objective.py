@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from rosreconf.model import EMPTY, Component, Configuration
+from rosreconf.model.wiring import RestartTable
 from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.instance import Instance
 
@@ -28,14 +29,24 @@ class Objective:
             are minimised before anything else: the paper's minimal reconfiguration).
         weights: metric name -> weight; a component's score is the weighted sum of its
             metrics (missing metrics count 0); lower is better.
+        restarts: what the running components are wired to and what each choice would wire
+            them to (``rosreconf.model.wiring.RestartTable``): a kept component whose wiring
+            changes must restart, which costs 1, as a change does: it is one, counted at the
+            same level (the wiring model, docs/architecture.md). Empty: no restarts counted.
     """
 
     current: Mapping[str, str] = field(default_factory=dict)
     weights: Mapping[str, float] = field(default_factory=dict)
+    restarts: RestartTable = field(default_factory=RestartTable)
+
+    def restarted(self, mapping: Mapping[str, str]) -> set[str]:
+        """Return the roles whose kept running component ``mapping`` restarts to rewire it."""
+        return self.restarts.restarted(self.current, mapping)
 
     def score(self, inst: Instance, config: Configuration) -> tuple[int, float]:
-        """Return (changes against current, weighted metric sum) of ``config``."""
+        """Return (changes against current, restarts included; weighted metric sum)."""
         changes = sum(1 for r, c in config.assignment if r in self.current and self.current[r] != c)
+        changes += len(self.restarted(config.mapping))
         metric = sum(
             w * inst.library[c].metrics.get(m, 0.0)
             for _, c in config.assignment
@@ -45,10 +56,10 @@ class Objective:
         return changes, metric
 
     def cost(self, inst: Instance, config: Configuration) -> tuple[int, int]:
-        """Return the exact (changes, scaled metric sum) that every engine minimises."""
+        """Return the exact (changes and restarts, scaled metric sum) every engine minimises."""
         costs = unary_costs(inst, self)
         index = inst.role_index
-        changes = metric = 0
+        changes, metric = len(self.restarted(config.mapping)), 0
         for role, comp in config.assignment:
             c, m = costs[index[role]][as_candidate(role, comp)]
             changes, metric = changes + c, metric + m

@@ -32,6 +32,7 @@ from rosreconf.formats.configfile import read_configurations
 from rosreconf.formats.selection import Selection
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
+from rosreconf.model.wiring import restart_table
 from rosreconf.solve.objective import Objective
 from rosreconf.solve.solver import best_configuration, configurations, why_not
 
@@ -70,13 +71,33 @@ def nearest_valid(
 ) -> Configuration | None:
     """Return ``running`` if still valid under ``failed``, else the valid one nearest to it.
 
-    Nearest means fewest changed roles, then the weighted metric sum (the paper's minimal
-    reconfiguration); None when no valid configuration is left.
+    Nearest means fewest changes, then the weighted metric sum (the paper's minimal
+    reconfiguration); a change is a role that changes component, or a kept component
+    restarted because what it is wired to changes (``rosreconf.model.wiring``). None when
+    no valid configuration is left.
     """
     if not violations(running, library, schema, failed):
         return running
-    objective = Objective(current=running.mapping, weights=dict(weights or {}))
+    objective = change_objective(library, schema, running.mapping, weights)
     return best_configuration(library, schema, objective, failed)
+
+
+def change_objective(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    running: Mapping[str, str],
+    weights: Mapping[str, float] | None = None,
+) -> Objective:
+    """Return the objective of a reconfiguration away from ``running``: fewest changes.
+
+    Each role that changes component costs one, and so does each kept component that must
+    restart to be rewired (the wiring model); then the weighted metric sum.
+    """
+    return Objective(
+        current=dict(running),
+        weights=dict(weights or {}),
+        restarts=restart_table(library, schema, running),
+    )
 
 
 def should_run(

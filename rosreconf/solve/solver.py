@@ -68,7 +68,13 @@ chosen(C) :- x(_,C).                           % rule: needs excludes one-type-p
 OPTIMISE = """
 #minimize { 1@2,R : x(R,C), current(R,D), C != D }.
 #minimize { W@1,R,C : x(R,C), weight(C,W) }.
+wire(U,W) :- current(U,C), x(U,C), offer(U,V,D,W), x(V,D).
+restart(U) :- current(U,C), x(U,C), wire(U,W), not wired(U,W).
+restart(U) :- current(U,C), x(U,C), wired(U,W), not wire(U,W).
+#minimize { 1@2,U,restart : restart(U) }.
 """
+"""The objective: fewest changes, a kept component restarted to rewire it counting as one
+(``Objective.restarts``, the wiring model), then the weighted metric sum."""
 
 
 def _facts(inst: Instance, objective: Objective | None = None) -> str:
@@ -102,7 +108,33 @@ def _facts(inst: Instance, objective: Objective | None = None) -> str:
                 out.append(f"current({index[role]},{ids[comp]}).")
         for c in inst.library.components:
             out.append(f"weight({ids[c.name]},{scaled_metric(objective, c)}).")
+        out += _restart_facts(inst, objective, ids)
     return "\n".join(out)
+
+
+def _restart_facts(inst: Instance, objective: Objective, ids: dict[str, int]) -> list[str]:
+    """Render ``Objective.restarts`` as ``wired(U,W)`` and ``offer(U,V,D,W)`` facts.
+
+    W numbers each (interface, served name) pair; U and V are role indices, D a candidate.
+    """
+    index = inst.role_index
+    table = objective.restarts
+    wires: dict[object, int] = {}
+    out = []
+    for u, was in sorted(table.wired.items()):
+        if u in index:
+            out += [f"wired({index[u]},{wires.setdefault(w, len(wires))})." for w in sorted(was)]
+    for (u, v), offer in sorted(table.offers.items()):
+        if u not in index or v not in index:
+            continue
+        for name, pairs in sorted(offer.items()):
+            d = ids.get(as_candidate(v, name))
+            if d is not None:
+                out += [
+                    f"offer({index[u]},{index[v]},{d},{wires.setdefault(w, len(wires))})."
+                    for w in sorted(pairs)
+                ]
+    return out
 
 
 def _control(inst: Instance, objective: Objective | None, args: list[str]) -> clingo.Control:
@@ -189,10 +221,17 @@ class EliminationEngine:
     def best(self, inst: Instance, objective: Objective) -> Configuration | None:
         """Return a configuration optimal for ``objective`` (proven), or None.
 
+        Restarts (``Objective.restarts``) are not a cost of one role alone: the unary
+        optimum is returned when it restarts nothing, since its change count is then a lower
+        bound that it reaches; else clingo decides (``TooHard``), with restarts in its sum.
+
         Raises:
-            TooHard: the system graph is too dense for tables of ``max_rows`` rows.
+            TooHard: the system graph is too dense for tables of ``max_rows`` rows, or the
+                optimum without restarts restarts a kept component.
         """
         found = minimise(inst, unary_costs(inst, objective), self.max_rows)
+        if found is not None and objective.restarted(found[0].mapping):
+            raise TooHard("the fewest-change configuration restarts a kept component to rewire it")
         return found[0] if found else None
 
 

@@ -1,6 +1,7 @@
 ;; rosreconf: Disc Loading (disc_loading), pre-grounded STRIPS with action costs.
 ;; choose-ROLE-COMPONENT fills a role (roles in schema order); connect-ROLE-REQUIREMENT-PROVIDERROLE
-;; meets a requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings.
+;; meets a requirement along an edge; finish-ROLE-COMPONENT checks requirements and couplings;
+;; restart-ROLE-COMPONENT finishes a kept component that must restart to be rewired (one change).
 ;; Generated from the templates in rosreconf; see docs/pddl.md.
 (define (domain rosreconf-disc_loading)
   (:requirements :strips :typing :negative-preconditions :action-costs)
