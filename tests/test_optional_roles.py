@@ -219,12 +219,20 @@ def test_plan_fail_map_server_moves_to_slam_and_leaves_the_map_server_empty(
 
 
 @pytest.mark.planner
-def test_plan_fail_ekf_leaves_the_add_on_empty_with_one_change(runner: CliRunner) -> None:
+def test_plan_fail_ekf_leaves_the_add_on_empty_and_restarts_its_consumer(
+    runner: CliRunner,
+) -> None:
+    """The controller read odometry/filtered from the EKF: started for a configuration, a
+    node uses only its ROS-graph edges' interfaces, so it restarts to read odom alone (the
+    wiring model): two changes, where an empty role alone would be one."""
     (s,) = _json(runner, "plan", "--fail", "ekf_filter_node")["schemas"]
-    assert s["fewest_changes"] == 1
+    assert s["fewest_changes"] == 2
     assert [c for c in s["changes"] if c["kind"] != "keep"] == [
-        {"role": "ekf", "before": "ekf_filter_node", "after": None, "kind": "stop"}
-    ]
+        {"role": "ekf", "before": "ekf_filter_node", "after": None, "kind": "stop"},
+        {"role": "controller", "before": "controller_server", "after": "controller_server",
+         "kind": "restart"},
+    ]  # fmt: skip
+    assert any("it no longer uses odometry/filtered at" in line for line in s["explanation"])
 
 
 def test_launch_starts_nothing_for_an_empty_role(runner: CliRunner, tmp_path: Path) -> None:

@@ -175,19 +175,25 @@ def rewiring(
         if kept is None or kept != old.get(role) or after.get(role, frozenset()) == was:
             continue
         now = after.get(role, frozenset())
-        came, gone = _some(now - was, "nothing new"), _some(was - now, "nothing")
+        came, gone = _some(now - was), _some(was - now)
+        if not came:
+            how = f"it no longer uses {gone}"
+        elif not gone:
+            how = f"it now also uses {came}"
+        else:
+            how = f"it now uses {came}, instead of {gone}"
         out[role] = (
             f"{kept} ({role}) restarts to be rewired, since ROS names are fixed when a node "
-            f"starts: it now uses {came}, instead of {gone}"
+            f"starts: {how}"
         )
     return out
 
 
-def _some(wires: frozenset[Wire], none: str) -> str:
-    """Say a few wires ("label at /name"), and how many more there are."""
+def _some(wires: frozenset[Wire]) -> str:
+    """Say a few wires ("label at /name"), and how many more there are ("" for none)."""
     said = sorted(f"{i.label} at {n}" for i, n in wires)
     more = f" and {len(said) - 2} more" if len(said) > 2 else ""
-    return ", ".join(said[:2]) + more if said else none
+    return ", ".join(said[:2]) + more
 
 
 def used_interfaces(
