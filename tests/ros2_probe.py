@@ -3,7 +3,10 @@
 
 Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [NODE ...]. Prints one JSON document:
 {"nodes": [full names], "topics": {name: [types]}, "services": {name: [types]},
- "states": {node: lifecycle state label, via its get_state service}}.
+ "states": {node: lifecycle state label, via its get_state service},
+ "dangling": {"calls": [[node, service]], "subscriptions": [[node, topic]]}}: each service a
+node calls that no node serves, and each topic it subscribes that no node publishes (the
+probe itself, /rosout and /parameter_events left out), read per node from rclpy's graph.
 
 It reads once every ``--wait-for`` name (a node, topic or service) is seen and the graph has
 then not changed for 1 s, or after SECONDS at most: discovery takes longer on a busy machine,
@@ -27,6 +30,28 @@ def _graph(node: Any) -> tuple[list[str], dict[str, Any], dict[str, Any]]:
     topics = {k: sorted(v) for k, v in node.get_topic_names_and_types()}
     services = {k: sorted(v) for k, v in node.get_service_names_and_types()}
     return names, topics, services
+
+
+def _dangling(node: Any) -> dict[str, list[list[str]]]:
+    """Return each node's calls that nothing serves and subscriptions nothing publishes."""
+    calls, subscriptions = [], []
+    nodes = [(n, ns) for n, ns in node.get_node_names_and_namespaces()]
+    served = {
+        s for n, ns in nodes for s, _ in node.get_service_names_and_types_by_node(n, ns)
+    }  # servers only: the graph-wide service list holds clients' names too
+    for name, ns in nodes:
+        full = ns.rstrip("/") + "/" + name
+        if name == "_rosreconf_probe":
+            continue
+        for service, _ in node.get_client_names_and_types_by_node(name, ns):
+            if service not in served:
+                calls.append([full, service])
+        for topic, _ in node.get_subscriber_names_and_types_by_node(name, ns):
+            if topic.startswith(("/rosout", "/parameter_events")):
+                continue
+            if node.count_publishers(topic) == 0:
+                subscriptions.append([full, topic])
+    return {"calls": sorted(calls), "subscriptions": sorted(subscriptions)}
 
 
 def main() -> int:
@@ -59,7 +84,9 @@ def main() -> int:
         future = client.call_async(GetState.Request())
         rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
         states[name] = future.result().current_state.label if future.done() else None
-    print(json.dumps({"nodes": names, "topics": topics, "services": services, "states": states}))
+    doc = {"nodes": names, "topics": topics, "services": services, "states": states}
+    doc["dangling"] = _dangling(node)
+    print(json.dumps(doc))
     rclpy.shutdown()
     return 0
 

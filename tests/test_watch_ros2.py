@@ -42,7 +42,7 @@ def _ros2_python() -> Path:
     return JAZZY
 
 
-def _env(tmp: Path) -> dict[str, str]:
+def _env(tmp: Path, python: Path | None = None) -> dict[str, str]:
     """Return the environment of watch and its nodes: Cyclone's and Fast DDS's defaults.
 
     Not the harness's loopback-only CYCLONEDDS_URI: rclpy's Fast DDS participants announce
@@ -51,21 +51,30 @@ def _env(tmp: Path) -> dict[str, str]:
     """
     env = ros2_harness.dds_env()
     env.pop("CYCLONEDDS_URI", None)
-    env.update(ROSRECONF_ROS2_PYTHON=str(_ros2_python()), HOME=str(tmp), ROS_LOG_DIR=str(tmp))
+    python = python or _ros2_python()
+    env.update(ROSRECONF_ROS2_PYTHON=str(python), HOME=str(tmp), ROS_LOG_DIR=str(tmp))
     return env
 
 
 class Watch:
     """One ``rosreconf watch --ros2 --apply --stand-ins`` subprocess and its JSON log."""
 
-    def __init__(self, tmp: Path, domain: int, *args: str) -> None:
+    def __init__(
+        self,
+        tmp: Path,
+        domain: int,
+        *args: str,
+        python: Path | None = None,
+        stand_ins: bool = True,
+        env: dict[str, str] | None = None,
+    ) -> None:
         self.log = tmp / "watch.jsonl"
         self.err = tmp / "watch.err"
-        self.env = _env(tmp)
+        self.env = {**_env(tmp, python), **(env or {})}
         self.domain = domain
         argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain),
-                "--apply", "--stand-ins", "--interval", "0.5", "--json-log", str(self.log),
-                *args]  # fmt: skip
+                "--apply", *(["--stand-ins"] if stand_ins else []), "--interval", "0.5",
+                "--json-log", str(self.log), *args]  # fmt: skip
         self.process = subprocess.Popen(
             argv, env=self.env, stdout=subprocess.DEVNULL,
             stderr=self.err.open("wb"), start_new_session=True,
@@ -132,6 +141,16 @@ def probe(
     return dict(json.loads(out.stdout))
 
 
+def changes_of_plan(failed: str, *files: str) -> dict[str, str | None]:
+    """Return role -> new component of ``rosreconf plan --fail``'s changes (restarts too)."""
+    argv = [sys.executable, "-m", "rosreconf", "plan", "--fail", failed, "--only",
+            "object_repositioning", *files, "--json"]  # fmt: skip
+    out = subprocess.run(argv, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    (schema,) = json.loads(out.stdout)["schemas"]
+    return {c["role"]: c["after"] for c in schema["changes"] if c["kind"] != "keep"}
+
+
 def alive(pid: int) -> bool:
     try:
         os.kill(pid, 0)
@@ -157,10 +176,13 @@ def test_kill_nsm3_replans_onto_the_dc_arm_stops_the_replaced_and_confirms(
         assert failed["component"] == "NSM3" and failed["returncode"] == -signal.SIGKILL
         replanned = after[kinds.index("replanned")]
         assert replanned["configuration"]["elbow_joint"] == "NDC3"
-        assert sorted(c["to"] for c in replanned["changes"]) == sorted(DC_ARM)
-        assert sorted(e["component"] for e in after if e["event"] == "stop") == sorted(REPLACED)
+        # the kept reasoner restarts: it called the servo arm's names (the wiring model)
+        assert sorted(c["to"] for c in replanned["changes"]) == sorted([*DC_ARM, "NREA"])
+        assert changes_of_plan("NSM3") == {c["role"]: c["to"] for c in replanned["changes"]}
+        stopped = sorted(e["component"] for e in after if e["event"] == "stop")
+        assert stopped == sorted([*REPLACED, "NREA"])
         (launch,) = (e for e in after if e["event"] == "launch")
-        assert sorted(launch["components"]) == sorted(DC_ARM)
+        assert sorted(launch["components"]) == sorted([*DC_ARM, "NREA"])
         assert kinds.index("failed") < kinds.index("replanned") < kinds.index("conformant")
         for name in REPLACED:
             assert not alive(pids[name]), name
@@ -170,6 +192,7 @@ def test_kill_nsm3_replans_onto_the_dc_arm_stops_the_replaced_and_confirms(
         assert not {f"/{c}" for c in [*REPLACED, "NSM3"]} & set(seen["nodes"])
         types = seen["services"]["/arm_dc/elbow/servo_command"]
         assert types == ["robot_arm_msgs/srv/DcServoCommand"]  # the library's type, posed
+        assert seen["dangling"] == {"calls": [], "subscriptions": []}  # every node wired
         started = watch.pids()
         assert watch.stop() == 128 + signal.SIGTERM
         assert not [c for c, p in started.items() if alive(p)]  # everything it started is gone
@@ -205,16 +228,21 @@ def test_standby_failover_is_activate_and_the_states_read_back(
         os.kill(watch.pids()["NSM3"], signal.SIGKILL)
         watch.wait("conformant", after=before)
         after = watch.events()[before:]
-        assert not [e for e in after if e["event"] == "launch"]  # nothing had to start
+        # only the kept reasoner starts again, to be rewired; the standbys were started wired
+        # for the configuration they join, so activating them leaves nothing dangling
+        (launch,) = (e for e in after if e["event"] == "launch")
+        assert launch["components"] == ["NREA"]
         activated = {e["component"]: e for e in after if e.get("transition") == "activate"}
-        assert sorted(activated) == sorted(DC_ARM)
+        assert sorted(activated) == sorted([*DC_ARM, "NREA"])
         assert all(e["ok"] and e["state"] == "active" for e in activated.values())
         parked = {e["component"]: e for e in after if e.get("transition") == "deactivate"}
         assert sorted(parked) == sorted(REPLACED)  # out of service, a ready standby now
         assert all(e["ok"] and e["state"] == "inactive" for e in parked.values())
-        states = probe(watch.env, ros2_domain, "/NDC3", "/NFB11", "/NSM1", "/NFB21")["states"]
-        assert states == {"/NDC3": "active", "/NFB11": "active", "/NSM1": "inactive",
-                          "/NFB21": "inactive"}  # fmt: skip
+        seen = probe(watch.env, ros2_domain, "/NDC3", "/NFB11", "/NSM1", "/NFB21", "/NREA")
+        assert seen["states"] == {"/NDC3": "active", "/NFB11": "active", "/NSM1": "inactive",
+                                  "/NFB21": "inactive", "/NREA": "active"}  # fmt: skip
+        dangling = seen["dangling"]["calls"]  # the parked standbys are no one's to call
+        assert not [d for d in dangling if d[0] not in {f"/{c}" for c in parked}], dangling
     finally:
         watch.stop(signal.SIGKILL)
 

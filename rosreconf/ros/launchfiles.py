@@ -50,7 +50,7 @@ from rosreconf.model import (
 )
 from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
-from rosreconf.ros.conformance import node_live_name
+from rosreconf.model.wiring import node_live_name, used_interfaces
 from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
 
 ACTIONLIB_TOPICS = ("goal", "cancel", "status", "feedback", "result")
@@ -99,7 +99,7 @@ def launch_file(
     """
     chosen = [library[name] for name in configuration.components if only is None or name in only]
     if stand_ins:
-        return _stand_in_file(schema, configuration, chosen)
+        return _stand_in_file(library, schema, configuration, chosen)
     bare = [c.name for c in chosen if c.launch is None]
     if bare:
         raise RosreconfError(
@@ -142,8 +142,14 @@ def _refuse_shared_node_names(schema: InteroperabilitySchema, chosen: list[Compo
 
 
 def _stand_in_file(
-    schema: InteroperabilitySchema, configuration: Configuration, chosen: list[Component]
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    configuration: Configuration,
+    chosen: list[Component],
 ) -> LaunchFile:
+    """Start stand-ins acting out the options they are wired to, remapped as real nodes are."""
+    remaps = wiring(library, schema, configuration)
+    uses = used_interfaces(library, schema, configuration.mapping)
     root = ET.Element("launch")
     root.append(
         ET.Comment(
@@ -158,9 +164,14 @@ def _stand_in_file(
         if c.launch is not None and c.launch.namespace:
             attrs["ns"] = c.launch.namespace
         # roslaunch splits args like a shell: one single-quoted word, so no ' inside.
-        attrs["args"] = "'" + json.dumps(standin_spec(c)).replace("'", "") + "'"
+        spec = standin_spec(c, uses.get(c.name, frozenset()))
+        attrs["args"] = "'" + json.dumps(spec).replace("'", "") + "'"
         attrs["output"] = "log"
-        root.append(ET.Element("node", attrs))
+        node = ET.SubElement(root, "node", attrs)
+        for old, new, action in remaps.get(c.name, []):
+            for part in ACTIONLIB_TOPICS if action else ("",):
+                tail = f"/{part}" if part else ""
+                node.append(ET.Element("remap", {"from": old + tail, "to": new + tail}))
     ET.indent(root)
     text = '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(root, encoding="unicode")
     return LaunchFile(text + "\n", tuple(c.name for c in chosen), ())

@@ -10,19 +10,24 @@ is the watcher's.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.wiring import node_live_name, rewiring
 from rosreconf.planning.narrative import explain_replan
-from rosreconf.ros.conformance import node_live_name
-from rosreconf.ros.sources import lifecycle_steps
+from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.sources import LiveSource, lifecycle_steps
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import why_not
 
 Say = Callable[..., None]
 Change = tuple[str, str, str]
-"""One role's change: (role, old component, new component; "" for an empty optional role)."""
+"""One role's change: (role, old component, new component; "" for an empty optional role).
+
+Old and new are the same component for a kept one that restarts to be rewired (the wiring
+model, ``rosreconf.model.wiring``): it counts as a change."""
 
 
 def replan(
@@ -54,15 +59,24 @@ def replan(
         )
         return None
     old = current.mapping
-    changes = [(r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c]
-    text = "; ".join(f"{r}: {a or '(empty)'} -> {b or '(empty)'}" for r, a, b in changes)
+    rewired = rewiring(library, schema, old, new.mapping)
+    changes = [
+        (r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c or r in rewired
+    ]
+    text = "; ".join(
+        f"{r}: restart {b} (rewired)" if a == b else f"{r}: {a or '(empty)'} -> {b or '(empty)'}"
+        for r, a, b in changes
+    )
     say(
         "replanned",
         f"replanned without {', '.join(sorted(failed))}: "
         f"{len(changes)} change(s), {fewest}: {text}",
         failed=sorted(failed),
         configuration=new.shown,
-        changes=[{"role": r, "from": a or None, "to": b or None} for r, a, b in changes],
+        changes=[
+            {"role": r, "from": a or None, "to": b or None, "restart": a == b}
+            for r, a, b in changes
+        ],
     )
     # best_configuration is the exact optimum of the change count, so it is the fewest by
     # proof; passing len(changes) as "fewest" would only compare a number with itself.
@@ -126,3 +140,31 @@ def listed_transitions(
             role=role,
             transitions=steps,
         )
+
+
+def stop_replaced(
+    source: LiveSource,
+    library: ComponentLibrary,
+    graph: LiveGraph,
+    changes: list[Change],
+    failed: Collection[str],
+    say: Say,
+) -> None:
+    """Stop, through the master, each live component a replan takes out or restarts.
+
+    ROS 1 (the node API's ``shutdown``), and ROS 2 through ``ros2 launch``, where the
+    lifecycle transitions are only listed for a person. A kept component restarted to be
+    rewired is stopped too: its launch file starts it again, wired (``stop`` event).
+    """
+    alive = {n.name for n in graph.nodes}
+    for role, old_comp, new_comp in changes:
+        if source.ros_version is RosVersion.ROS2:
+            listed_transitions(library, old_comp, new_comp, role, say)
+        if not old_comp or old_comp in failed:  # an empty optional role: nothing to stop
+            continue
+        name = node_live_name(library[old_comp])
+        restart = old_comp == new_comp  # to rewire it: ROS names are fixed at start
+        reason = "rosreconf: " + (f"{role} is rewired" if restart else f"{role} is now {new_comp}")
+        if name in alive and source.stop(graph, name, reason):
+            how = "to restart it rewired" if restart else f"replaced by {new_comp or '(empty)'}"
+            say("stop", f"stopped {old_comp} ({role}): {how}", component=old_comp)

@@ -11,6 +11,7 @@ shows the action as ``rosreconf.ros.liveactions`` reads it.
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 from rosreconf.model import Component, Interface, InterfaceKind
@@ -36,8 +37,21 @@ def action_topics(name: str, iface: Interface) -> dict[str, dict[str, str]]:
     return {part: {"topic": f"{name}/{part}", "type": t} for part, t in types.items()}
 
 
-def standin_spec(component: Component) -> dict[str, Any]:
-    """Return the stand-in JSON spec acting out ``component``'s provisions and requirements."""
+def _options(component: Component, uses: Collection[Interface] | None) -> list[Interface]:
+    """Return the requirement options a stand-in acts out: those it is wired to, or all.
+
+    ``uses`` (``rosreconf.model.wiring.used_interfaces``) holds the options on the node's
+    ROS-graph edges in the configuration it is started for; None: every option (a stand-in
+    started for no configuration).
+    """
+    return [o for r in component.requires for o in r.options if uses is None or o in uses]
+
+
+def standin_spec(component: Component, uses: Collection[Interface] | None = None) -> dict[str, Any]:
+    """Return the stand-in JSON spec acting out ``component``'s provisions and requirements.
+
+    ``uses``: the requirement options it is wired to (``_options``).
+    """
     publish: list[dict[str, str]] = []
     serve: list[dict[str, str]] = []
     subscribe: list[dict[str, str]] = []
@@ -52,17 +66,16 @@ def standin_spec(component: Component) -> dict[str, Any]:
                 (publish if part in ROS1_SERVER_PUBLISHES else subscribe).append(entry)
         else:
             publish.append({"topic": name, "type": iface.type})
-    for req in component.requires:
-        for option in req.options:  # services called are invisible at the master
-            if option.kind is InterfaceKind.TOPIC:
-                subscribe.append(
-                    {"topic": interface_live_name(component, option.label), "type": option.type}
-                )
-            elif option.kind is InterfaceKind.ACTION:
-                name = interface_live_name(component, option.label)
-                actions.append({"action": name, "type": option.written, "role": "client"})
-                for part, entry in action_topics(name, option).items():
-                    (subscribe if part in ROS1_SERVER_PUBLISHES else publish).append(entry)
+    for option in _options(component, uses):  # services called are invisible at the master
+        if option.kind is InterfaceKind.TOPIC:
+            subscribe.append(
+                {"topic": interface_live_name(component, option.label), "type": option.type}
+            )
+        elif option.kind is InterfaceKind.ACTION:
+            name = interface_live_name(component, option.label)
+            actions.append({"action": name, "type": option.written, "role": "client"})
+            for part, entry in action_topics(name, option).items():
+                (subscribe if part in ROS1_SERVER_PUBLISHES else publish).append(entry)
     spec: dict[str, Any] = {
         "name": component.node_name,
         "publish": publish,
@@ -80,11 +93,14 @@ def ros2_type(library_type: str, kind: str) -> str:
     return library_type if len(parts) == 3 else f"{parts[0]}/{kind}/{parts[-1]}"
 
 
-def ros2_standin_spec(component: Component) -> dict[str, Any]:
+def ros2_standin_spec(
+    component: Component, uses: Collection[Interface] | None = None
+) -> dict[str, Any]:
     """Return the JSON spec ``rosreconf/ros/ros2/standin_node.py`` acts out for ``component``.
 
     As ``standin_spec``, with ROS 2 type names, the namespace, the services the component
-    calls (a ROS 2 graph shows clients), and whether it is a managed (lifecycle) node.
+    calls (a ROS 2 graph shows clients), and whether it is a managed (lifecycle) node. Its
+    names are its own: it is wired by ``-r`` remappings, as a real executable is.
     """
     publish, serve, subscribe, call = [], [], [], []
     action_serve, action_call = [], []
@@ -96,15 +112,14 @@ def ros2_standin_spec(component: Component) -> dict[str, Any]:
             serve.append({"service": name, "type": ros2_type(iface.type, "srv")})
         else:
             publish.append({"topic": name, "type": ros2_type(iface.type, "msg")})
-    for req in component.requires:
-        for option in req.options:
-            name = interface_live_name(component, option.label)
-            if option.kind is InterfaceKind.ACTION:
-                action_call.append({"action": name, "type": ros2_type(option.type, "action")})
-            elif option.kind is InterfaceKind.TOPIC:
-                subscribe.append({"topic": name, "type": ros2_type(option.type, "msg")})
-            else:
-                call.append({"service": name, "type": ros2_type(option.type, "srv")})
+    for option in _options(component, uses):
+        name = interface_live_name(component, option.label)
+        if option.kind is InterfaceKind.ACTION:
+            action_call.append({"action": name, "type": ros2_type(option.type, "action")})
+        elif option.kind is InterfaceKind.TOPIC:
+            subscribe.append({"topic": name, "type": ros2_type(option.type, "msg")})
+        else:
+            call.append({"service": name, "type": ros2_type(option.type, "srv")})
     launch = component.launch
     return {
         "name": component.node_name,

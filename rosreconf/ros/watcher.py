@@ -46,8 +46,9 @@ from rosreconf.ros.conformance import Conformance, compare, node_live_name
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import Launcher
 from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.replanning import listed_transitions, replan
+from rosreconf.ros.replanning import replan, stop_replaced
 from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.rosmaster import known_identity, restart_event
 from rosreconf.ros.sources import LiveSource
@@ -107,8 +108,10 @@ class Watcher:
     _control: Ros2Control | None = field(default=None, repr=False)
     _pending: float | None = None
     _graph: LiveGraph | None = None
+    _lifecycle: LifecycleFaults = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
+        self._lifecycle = LifecycleFaults(self._say)
         self._launcher = Launcher(
             self.source, self.library, self.schema, self.workdir, self.env, self._say,
             stand_ins=self.stand_ins, launch_dir=self.launch_dir,
@@ -186,6 +189,7 @@ class Watcher:
                     f"unregistered dead node(s) {', '.join(purged)} from the master",
                     nodes=list(purged),
                 )
+        self._inactive(check)
         if self.failed & set(self.current.components):
             if self._replan():
                 return self._confirm()
@@ -209,6 +213,11 @@ class Watcher:
         self._follow(check)
         return check
 
+    def _inactive(self, check: Conformance) -> None:
+        """Act on managed nodes of the configuration that left ``active`` (``lifecycle_faults``)."""
+        if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
+            self._pending = time.monotonic()
+
     def _follow(self, check: Conformance) -> None:
         """Confirm a repair made since the last replan, by rosreconf or by a person."""
         if self._pending is None:
@@ -222,14 +231,19 @@ class Watcher:
         self._seen |= set(self.current.components)
         self._running = True  # "conformant" says it
         self._pending = None
-        if self._control is not None:
-            self._control.left = ()
+        self._lifecycle.said.clear()
         self._say(
             "conformant",
             f"the live system conforms to the configuration ({took:.1f} s {since})",
             seconds=round(took, 3),
             configuration=self.current.shown,
+            **checked(check),
         )
+        if self._control is not None:
+            self._control.left = ()
+            self._control.by_hand.clear()  # conformant: each was stopped or restarted
+            # after the confirmation, not before it: choosing each standby's wiring replans
+            self._control.prepare_standby(self.current, self.failed)
 
     def _check_master(self) -> None:
         """Notice a restarted master, and start over from what the new one lists."""
@@ -274,32 +288,21 @@ class Watcher:
         if self._control is not None:  # make before break: the new ones start first
             self.current = new
             self._seen -= {a for _, a, _ in changes}
-            started = self._start([b for _, _, b in changes if b], "new in the configuration")
+            restarts = {b: r for r, a, b in changes if a == b}  # kept, to be rewired
+            by_hand = {c: r for c, r in restarts.items() if not self._control.owns(c)}
+            fresh = [b for _, _, b in changes if b and b not in by_hand]
+            started = self._start(fresh, "new in the configuration")
             self._control.retire(
                 [
                     (a, r, b, node_live_name(self.library[a]) in alive)
                     for r, a, b in changes
-                    if a and a not in self.failed  # an optional role that was empty: none
+                    if a and a not in self.failed and a not in restarts  # empty role: none
                 ]
             )
+            for comp, role in by_hand.items():
+                self._control.restart_by_hand(comp, role, new)
             return started
-        for role, old_comp, new_comp in changes:
-            if self.source.ros_version is RosVersion.ROS2:
-                listed_transitions(self.library, old_comp, new_comp, role, self._say)
-            if not old_comp:  # an optional role that was empty: nothing to stop
-                continue
-            name = node_live_name(self.library[old_comp])
-            reason = f"rosreconf: {role} is now {new_comp or '(empty)'}"
-            if (
-                name in alive
-                and old_comp not in self.failed
-                and self.source.stop(graph, name, reason)
-            ):
-                self._say(
-                    "stop",
-                    f"stopped {old_comp} ({role}): replaced by {new_comp}",
-                    component=old_comp,
-                )
+        stop_replaced(self.source, self.library, graph, changes, self.failed, self._say)
         self.current = new
         self._seen -= {a for _, a, _ in changes}
         return self._start([b for _, _, b in changes if b], "new in the configuration")
@@ -310,7 +313,6 @@ class Watcher:
             return self._launcher.start(self.current, components, why)
         self._launcher.launched |= set(components)  # not started again on every poll
         self._control.start(self.current, components, why)
-        self._control.prepare_standby(self.current, self.failed)
         return True
 
     def _confirm(self) -> Conformance:

@@ -34,11 +34,15 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.ros.conformance import Conformance, node_live_name
+from rosreconf.ros.conformance import Conformance, Finding, node_live_name
+from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent, Outcome
+from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
 from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.transitions import Transitions
 
+TEND_TIMEOUT = 0.5
+"""Seconds a standby's configure may take on the watch loop's path (tried again later)."""
 STANDBY_TRIES = 5
 """Configure attempts for one standby node before it is left unconfigured (and said so)."""
 
@@ -78,16 +82,17 @@ class Ros2Control:
     parked: set[str] = field(default_factory=set)
     by_hand: dict[str, str] = field(default_factory=dict)
     dead: set[str] = field(default_factory=set)
-    states: dict[str, str] = field(default_factory=dict)
+    states: dict[str, str] = field(init=False)
     left: tuple[str, ...] = ()
     unready: list[str] = field(default_factory=list)
     tries: dict[str, int] = field(default_factory=dict)
     nodes: NodeProcesses = field(init=False)
-    _agent: LifecycleAgent | None = None
-    _agent_error: str | None = None
+    lifecycle: Transitions = field(init=False)
 
     def __post_init__(self) -> None:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
+        self.lifecycle = Transitions(self.env, self.directory, self.say, self._node, self.timeout)
+        self.states = self.lifecycle.states
 
     def _managed(self, component: str) -> bool:
         launch = self.library[component].launch
@@ -96,28 +101,16 @@ class Ros2Control:
     def _node(self, component: str) -> str:
         return node_live_name(self.library[component])
 
-    def agent(self) -> LifecycleAgent:
-        """Return the lifecycle agent, started on first use."""
-        if self._agent is None:
-            if self._agent_error is not None:  # said once; not retried on every call
-                raise ExternalToolError(self._agent_error)
-            self.directory.mkdir(parents=True, exist_ok=True)
-            try:
-                self._agent = LifecycleAgent(
-                    self.env, self.directory / "lifecycle-agent.log", self.timeout
-                )
-            except ExternalToolError as exc:
-                self._agent_error = str(exc)
-                raise
-        return self._agent
-
     def _agent_call(self, call: Callable[[LifecycleAgent], Any]) -> Any:
-        """Ask the lifecycle agent something; a failure is said (never raised), None returned."""
-        try:
-            return call(self.agent())
-        except ExternalToolError as exc:
-            self.say("lifecycle", f"lifecycle agent: {exc}", ok=False, error=str(exc))
-            return None
+        return self.lifecycle.call(call)
+
+    def _transitions(
+        self, steps: list[tuple[str, str]], appear: float | None = None
+    ) -> dict[str, bool]:
+        return self.lifecycle.perform(steps, appear)
+
+    def _transition(self, component: str, transition: str) -> bool:
+        return self.lifecycle.perform([(component, transition)]).get(component, False)
 
     def exited(self) -> list[tuple[str, str, int]]:
         """Return (component, node, exit status) of each own process that ended since last asked."""
@@ -151,11 +144,22 @@ class Ros2Control:
         gone = set(self.by_hand) - set(check.live.names)
         for node in gone:  # stopped by a person
             del self.by_hand[node]
-        if not check.findings or any(
-            f.code != "extra-node" or f.live_name not in self.by_hand for f in check.findings
-        ):
+
+        def for_a_person(f: Finding) -> bool:  # a node to stop, or to restart rewired
+            if f.code == "extra-node":
+                return f.live_name in self.by_hand
+            return f.component is not None and self._node(f.component) in self.by_hand
+
+        if not check.findings or not all(for_a_person(f) for f in check.findings):
             return False
-        left = tuple(sorted(f.live_name for f in check.findings))
+        left = tuple(
+            sorted(
+                {
+                    f.live_name if f.code == "extra-node" else self._node(str(f.component))
+                    for f in check.findings
+                }
+            )
+        )
         if left != self.left:
             self.left = left
             self.say(
@@ -186,6 +190,7 @@ class Ros2Control:
 
         Returns whether everything asked for was done.
         """
+        self._rewire(configuration, components)
         fresh = [c for c in components if c not in self.nodes.nodes]
         self.unready = [c for c in self.unready if c not in components]
         ok = True
@@ -221,53 +226,26 @@ class Ros2Control:
         self.parked -= {self._node(c) for c in managed}
         return ok
 
-    def _transitions(
-        self, steps: list[tuple[str, str]], appear: float | None = None
-    ) -> dict[str, bool]:
-        """Perform several transitions at once; say each (with its result); component -> ok."""
-        if not steps:
-            return {}
-        nodes = {self._node(c): c for c, _ in steps}
+    def _rewire(self, configuration: Configuration, components: Collection[str]) -> None:
+        """Stop the processes of ``components`` that were started wired otherwise.
+
+        ROS names are fixed when a process starts, so a kept consumer whose providers
+        changed, or a standby prepared for another failure, is stopped here and started
+        again by ``start``, wired for ``configuration``. A node rosreconf did not start
+        cannot be restarted: it is named, with the remappings it needs. Each is stopped
+        with SIGINT first, so that it says goodbye on DDS at once: a lifecycle request to
+        the new process would otherwise go to the old one's lingering endpoints and be lost.
+        """
         try:
-            outcomes = self.agent().transitions([(self._node(c), t) for c, t in steps], appear)
-        except ExternalToolError as exc:
-            return {c: self._said_failure(c, t, str(exc)) for c, t in steps}
-        done = {}
-        for outcome in outcomes:
-            done[nodes[outcome.node]] = self._said(nodes[outcome.node], outcome)
-        return done
-
-    def _said_failure(self, component: str, transition: str, error: str) -> bool:
-        node = self._node(component)
-        self.say("lifecycle", f"{node}: {transition} failed: {error}", component=component,
-                 node=node, transition=transition, ok=False, error=error)  # fmt: skip
-        return False
-
-    def _transition(self, component: str, transition: str, appear: float | None = None) -> bool:
-        """Perform one transition, confirmed by reading the state back; say how it went."""
-        return self._transitions([(component, transition)], appear).get(component, False)
-
-    def _said(self, component: str, outcome: Outcome) -> bool:
-        """Say how one transition went (event ``lifecycle``); return whether it held."""
-        if outcome.state is not None:
-            self.states[component] = outcome.state
-        result = (
-            f"now {outcome.state} ({outcome.seconds * 1000:.0f} ms)"
-            if outcome.ok
-            else f"failed: {outcome.error}"
-        )
-        self.say(
-            "lifecycle",
-            f"{outcome.node}: {outcome.transition} {result}",
-            component=component,
-            node=outcome.node,
-            transition=outcome.transition,
-            ok=outcome.ok,
-            state=outcome.state,
-            seconds=round(outcome.seconds, 4),
-            **({"error": outcome.error} if outcome.error else {}),
-        )
-        return bool(outcome.ok)
+            stale = self.nodes.miswired(self.library, self.schema, configuration, components)
+        except ExternalToolError:
+            stale = []  # said by start, which fails the same way
+        for own in self.nodes.stop(stale):
+            self.parked.discard(own.node)
+            self.states.pop(own.component, None)
+            self.say("stop", f"stopped {own.component} to restart it wired for the new "
+                     f"configuration (pid {own.pid})", component=own.component,
+                     how="rewire")  # fmt: skip
 
     def retire(self, leaving: list[tuple[str, str, str, bool]]) -> None:
         """Take components out of service, each the way its kind allows (module docstring).
@@ -311,26 +289,68 @@ class Ros2Control:
                      f"(pid {ended.pid}, exit {code})", component=component,
                      how="process", returncode=code)  # fmt: skip
 
+    def reactivate(self, component: str, state: str) -> bool:
+        """Bring a managed node of the configuration back to ``active``; True when it holds.
+
+        ``state`` is the one the live graph shows. A node rosreconf did not start is driven
+        the same way (lifecycle services answer whoever calls them). Configure first when it
+        is ``unconfigured``; a node ``finalized`` cannot come back.
+        """
+        if state == "finalized":
+            return False
+        steps = ["configure", "activate"] if state == "unconfigured" else ["activate"]
+        return all(self._transition(component, t) for t in steps)
+
+    def owns(self, component: str) -> bool:
+        """Tell whether the node of ``component`` runs in a process rosreconf started."""
+        return component in self.nodes.nodes
+
+    def restart_by_hand(self, component: str, role: str, configuration: Configuration) -> None:
+        """Name a node rosreconf did not start that must restart to be rewired, and how."""
+        node = self._node(component)
+        self.by_hand[node] = component
+        rules = [
+            f"{a}:={b}"
+            for a, b, _ in wiring(self.library, self.schema, configuration).get(component, [])
+        ]
+        self.say(
+            "restart-by-hand",
+            f"restart this by hand: {node} ({component}, {role}) must be rewired for the new "
+            "configuration (its remappings are fixed at start), but rosreconf did not start it; "
+            f"start it with --ros-args {' '.join(f'-r {r}' for r in rules)}",
+            component=component,
+            node=node,
+            remappings=rules,
+        )
+
     def prepare_standby(self, configuration: Configuration, failed: Collection[str]) -> None:
-        """Start and configure the managed alternatives of every role, ready to activate."""
+        """Start and configure managed alternatives, each wired for the configuration it joins.
+
+        For every running component, the configuration that would replace it were it to fail
+        (``rosreconf.solve.running.nearest_valid``, the watcher's own replan) names the
+        alternatives that would start; each is started wired for that configuration (the
+        likeliest failure first, by failure probability), so activating it at a failover
+        leaves nothing dangling. A standby running with other wiring is started again.
+        """
         if not self.standby:
             return
         running = set(configuration.components)
-        wanted = [
-            c.name
-            for role in self.schema.graph.roles
-            for c in self.library.candidates(role.abstraction)
-            if c.may_serve_in(self.schema.name)
-            and c.name not in running
-            and c.name not in failed
-            and c.name not in self.nodes.nodes
-            and self._managed(c.name)
+        joins = self._joins(configuration, set(failed))
+        stale = [
+            c
+            for c, cfg in joins.items()
+            if c in self.nodes.nodes and self.nodes.miswired(self.library, self.schema, cfg, [c])
         ]
-        wanted = list(dict.fromkeys(wanted))
+        for own in self.nodes.stop(stale):
+            self.parked.discard(own.node)
+            self.states.pop(own.component, None)
+        wanted = [c for c in joins if c not in self.nodes.nodes and c not in running]
         if not wanted:
             return
         try:
-            self.nodes.start(self.library, self.schema, configuration, wanted)
+            for cfg in dict.fromkeys(joins[c] for c in wanted):
+                group = [c for c in wanted if joins[c] == cfg]
+                self.nodes.start(self.library, self.schema, cfg, group)
         except ExternalToolError as exc:
             self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
             return
@@ -341,6 +361,24 @@ class Ros2Control:
                  standby=True)  # fmt: skip
         self.unready += wanted
 
+    def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
+        """Return managed alternative -> the configuration it would join after one failure."""
+        from rosreconf.solve.running import nearest_valid
+
+        joins: dict[str, Configuration] = {}
+        likely = sorted(
+            (c for c in configuration.components if c not in failed),
+            key=lambda c: -(self.library[c].failure_probability or 0.0),
+        )
+        for comp in likely:
+            new = nearest_valid(self.library, self.schema, failed | {comp}, configuration)
+            if new is None:
+                continue
+            for c in new.components:
+                if c not in configuration.components and self._managed(c):
+                    joins.setdefault(c, new)
+        return joins
+
     def tend(self) -> None:
         """Configure the standby nodes whose services have come up (never waits for one)."""
         self.unready = [c for c in self.unready if c in self.nodes.nodes]
@@ -350,7 +388,9 @@ class Ros2Control:
         ready = self._agent_call(lambda agent: agent.ready(nodes)) or set()
         up = [c for c in self.unready if self._node(c) in ready]
         self.unready = [c for c in self.unready if c not in up]
-        configured = self._transitions([(c, "configure") for c in up])
+        # short: tend runs on the watch loop's path, and a slow configure must never hold
+        # detection up; a configure that did not finish in time is tried on a later tick
+        configured = self.lifecycle.perform([(c, "configure") for c in up], 0.0, TEND_TIMEOUT)
         # A configure that timed out on a busy machine (or whose answer was lost while the
         # node's service was still being matched) is tried again on a later tick, a few times.
         for component in (c for c, ok in configured.items() if not ok):
@@ -365,7 +405,5 @@ class Ros2Control:
     def close(self) -> list[str]:
         """Stop every process started here and the lifecycle agent; return the components."""
         stopped = [own.component for own in self.nodes.close()]
-        if self._agent is not None:
-            self._agent.close()
-            self._agent = None
+        self.lifecycle.close()
         return stopped

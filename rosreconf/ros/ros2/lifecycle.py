@@ -110,17 +110,25 @@ class LifecycleAgent:
         return set(answer.get("ready", []))
 
     def transitions(
-        self, items: list[tuple[str, str]], appear: float | None = None
+        self,
+        items: list[tuple[str, str]],
+        appear: float | None = None,
+        timeout: float | None = None,
     ) -> list[Outcome]:
-        """Perform several (node, transition) at once, each confirmed with ``get_state``."""
+        """Perform several (node, transition) at once, each confirmed with ``get_state``.
+
+        ``timeout`` bounds each transition (default: the agent's); a caller on the watch
+        loop's path passes a short one, so that a slow node never holds detection up.
+        """
         if not items:
             return []
-        wait = self.timeout if appear is None else appear
+        each = self.timeout if timeout is None else timeout
+        wait = each if appear is None else appear
         start = time.monotonic()
-        request = {"op": "batch", "timeout": self.timeout, "appear": wait,
+        request = {"op": "batch", "timeout": each, "appear": wait,
                    "items": [{"node": n, "transition": t} for n, t in items]}  # fmt: skip
         try:
-            answer = self._ask(request, 2 * self.timeout + wait * len(items))
+            answer = self._ask(request, 2 * each + wait * len(items))
         except LifecycleError as exc:
             took = time.monotonic() - start
             return [Outcome(n, t, False, None, took, str(exc)) for n, t in items]

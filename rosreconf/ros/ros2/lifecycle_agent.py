@@ -59,6 +59,10 @@ GOAL = {
 }
 
 
+RESEND = 0.5
+"""Seconds before an unanswered ``get_state`` is asked again (``Agent._states``)."""
+
+
 class Agent:
     """One node holding a change_state and a get_state client per managed node."""
 
@@ -77,11 +81,22 @@ class Agent:
     def _states(
         self, items: list[dict[str, str]], which: list[int], timeout: float
     ) -> dict[int, Any]:
-        """Read several items' node states at once (None: no answer within the timeout)."""
-        reads = {
-            i: self._clients(items[i]["node"])[1].call_async(GetState.Request()) for i in which
-        }
-        self._spin(list(reads.values()), time.monotonic() + timeout)
+        """Read several items' node states at once (None: no answer within the timeout).
+
+        A read is asked again every ``RESEND`` s until answered: a node restarted under the
+        same name can be matched late (its predecessor's endpoints linger a moment), and a
+        request sent before it matched is lost, not queued. ``get_state`` changes nothing,
+        so asking twice is harmless.
+        """
+        deadline = time.monotonic() + timeout
+        reads: dict[int, Any] = {}
+        while True:
+            for i in which:
+                if i not in reads or not reads[i].done():
+                    reads[i] = self._clients(items[i]["node"])[1].call_async(GetState.Request())
+            self._spin(list(reads.values()), min(deadline, time.monotonic() + RESEND))
+            if all(r.done() for r in reads.values()) or time.monotonic() >= deadline:
+                break
         return {
             i: str(r.result().current_state.label) if r.done() else None for i, r in reads.items()
         }

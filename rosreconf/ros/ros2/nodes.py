@@ -31,10 +31,10 @@ from pathlib import Path
 from typing import Protocol
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import ComponentLibrary, Configuration, Interface, InteroperabilitySchema
+from rosreconf.model.wiring import node_live_name, used_interfaces
 from rosreconf.procs import start_program
 from rosreconf.procs.signals import signal_group
-from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.launchfiles import Remap, ros2_node_arguments, wiring
 from rosreconf.ros.ros2.runtime import (
     LEASE_SECONDS,
@@ -140,8 +140,12 @@ class NodeProcesses:
         library: ComponentLibrary,
         component: str,
         remaps: dict[str, list[Remap]],
+        uses: Mapping[str, frozenset[Interface]],
     ) -> list[str]:
-        """Return the command line that runs ``component``'s node (``remaps``: ``wiring``).
+        """Return the command line that runs ``component``'s node, wired for a configuration.
+
+        ``remaps`` (``launchfiles.wiring``) and ``uses`` (``model.wiring.used_interfaces``)
+        are the configuration's: a stand-in acts out only the options it is wired to.
 
         Raises:
             ExternalToolError: no ROS 2 Python (stand-ins), or no such executable (exit 3).
@@ -149,7 +153,7 @@ class NodeProcesses:
         args = ros2_node_arguments(library, component, remaps)
         comp = library[component]
         if self.stand_ins:
-            spec = json.dumps(ros2_standin_spec(comp))
+            spec = json.dumps(ros2_standin_spec(comp, uses.get(component, frozenset())))
             return [ros2_python(self.env), str(STANDIN_SCRIPT), spec, *args]
         launch = comp.launch
         assert launch is not None  # the watcher refuses components without a ros: entry
@@ -169,10 +173,9 @@ class NodeProcesses:
             ExternalToolError: a program is missing or cannot be run (those started stay).
         """
         env = self._node_env()
-        remaps = wiring(library, schema, configuration)
         runs = [
-            (self.command(library, name, remaps), self.directory / f"{name}.log")
-            for name in components
+            (argv, self.directory / f"{name}.log")
+            for name, argv in self.commands(library, schema, configuration, components).items()
         ]
         started = []
         for name, (argv, _), program in zip(components, runs, self._start(runs, env), strict=True):
@@ -182,6 +185,39 @@ class NodeProcesses:
             self.nodes[name] = own
             started.append(own)
         return started
+
+    def commands(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        configuration: Configuration,
+        components: Collection[str],
+    ) -> dict[str, list[str]]:
+        """Return per component the command line that runs it wired for ``configuration``.
+
+        Raises:
+            ExternalToolError: as ``command``.
+        """
+        remaps = wiring(library, schema, configuration)
+        uses = used_interfaces(library, schema, configuration.mapping)
+        return {c: self.command(library, c, remaps, uses) for c in components}
+
+    def miswired(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        configuration: Configuration,
+        components: Collection[str],
+    ) -> list[str]:
+        """Return the components whose running process was started with other wiring.
+
+        ROS names are fixed when a process starts: such a node must restart to be wired for
+        ``configuration`` (a kept consumer whose providers changed, a standby started for
+        another failure).
+        """
+        own = [c for c in components if c in self.nodes]
+        wanted = self.commands(library, schema, configuration, own)
+        return [c for c in own if tuple(wanted[c]) != self.nodes[c].argv]
 
     def _start(self, runs: list[tuple[list[str], Path]], env: Mapping[str, str]) -> list[Program]:
         """Start one process per (argv, log): forked by the zygote (stand-ins), else each alone."""

@@ -1,0 +1,125 @@
+"""Perform lifecycle transitions through rosreconf's lifecycle agent, and say each one.
+
+``Ros2Control`` decides which managed node goes to which state; this module owns the
+talking: the agent process (``rosreconf.ros.ros2.lifecycle.LifecycleAgent``, started on
+first use and not retried once it could not start), one batch request per group of
+transitions, each confirmed by reading the state back, and one ``lifecycle`` event per
+outcome. Nothing here raises for a failed transition: a failure is said and returned.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.ros.ros2.lifecycle import TIMEOUT, LifecycleAgent, Outcome
+
+
+@dataclass
+class Transitions:
+    """The lifecycle agent of one watcher, and the states it read back.
+
+    Attributes:
+        env: the environment the agent runs in (ROS_DOMAIN_ID set).
+        directory: where the agent's log goes.
+        say: receives every event.
+        node_of: component -> its live node name.
+        timeout: seconds each transition may take.
+        states: component -> the lifecycle state last read back.
+    """
+
+    env: Mapping[str, str]
+    directory: Path
+    say: Callable[..., None]
+    node_of: Callable[[str], str]
+    timeout: float = TIMEOUT
+    states: dict[str, str] = field(default_factory=dict)
+    _agent: LifecycleAgent | None = None
+    _agent_error: str | None = None
+
+    def agent(self) -> LifecycleAgent:
+        """Return the lifecycle agent, started on first use."""
+        if self._agent is None:
+            if self._agent_error is not None:  # said once; not retried on every call
+                raise ExternalToolError(self._agent_error)
+            self.directory.mkdir(parents=True, exist_ok=True)
+            try:
+                self._agent = LifecycleAgent(
+                    self.env, self.directory / "lifecycle-agent.log", self.timeout
+                )
+            except ExternalToolError as exc:
+                self._agent_error = str(exc)
+                raise
+        return self._agent
+
+    def call(self, call: Callable[[LifecycleAgent], Any]) -> Any:
+        """Ask the lifecycle agent something; a failure is said (never raised), None returned."""
+        try:
+            return call(self.agent())
+        except ExternalToolError as exc:
+            self.say("lifecycle", f"lifecycle agent: {exc}", ok=False, error=str(exc))
+            return None
+
+    def perform(
+        self,
+        steps: list[tuple[str, str]],
+        appear: float | None = None,
+        timeout: float | None = None,
+    ) -> dict[str, bool]:
+        """Perform several (component, transition) at once; say each; component -> ok.
+
+        ``timeout``: seconds each may take (default: ``self.timeout``).
+        """
+        if not steps:
+            return {}
+        nodes = {self.node_of(c): c for c, _ in steps}
+        items = [(self.node_of(c), t) for c, t in steps]
+        try:
+            outcomes = self.agent().transitions(items, appear, timeout)
+        except ExternalToolError as exc:
+            return {c: self._failed(c, t, str(exc)) for c, t in steps}
+        return {nodes[o.node]: self._said(nodes[o.node], o) for o in outcomes}
+
+    def _failed(self, component: str, transition: str, error: str) -> bool:
+        node = self.node_of(component)
+        self.say(
+            "lifecycle",
+            f"{node}: {transition} failed: {error}",
+            component=component,
+            node=node,
+            transition=transition,
+            ok=False,
+            error=error,
+        )
+        return False
+
+    def _said(self, component: str, outcome: Outcome) -> bool:
+        """Say how one transition went (event ``lifecycle``); return whether it held."""
+        if outcome.state is not None:
+            self.states[component] = outcome.state
+        result = (
+            f"now {outcome.state} ({outcome.seconds * 1000:.0f} ms)"
+            if outcome.ok
+            else f"failed: {outcome.error}"
+        )
+        self.say(
+            "lifecycle",
+            f"{outcome.node}: {outcome.transition} {result}",
+            component=component,
+            node=outcome.node,
+            transition=outcome.transition,
+            ok=outcome.ok,
+            state=outcome.state,
+            seconds=round(outcome.seconds, 4),
+            **({"error": outcome.error} if outcome.error else {}),
+        )
+        return bool(outcome.ok)
+
+    def close(self) -> None:
+        """End the agent, if it was started."""
+        if self._agent is not None:
+            self._agent.close()
+            self._agent = None
