@@ -15,7 +15,7 @@ from rosreconf.formats.loader import Source, check_loaded, load_bundled, load_so
 from rosreconf.model import Component, Configuration, RosLaunch
 from rosreconf.ros.conformance import compare, interface_live_name, node_live_name
 from rosreconf.ros.importer import component_name, draft_library
-from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.ros.launchfiles import RosVersion, launch_file, wiring
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, to_json
 from rosreconf.ros.standins import STANDIN_PACKAGE, standin_spec
 
@@ -84,10 +84,14 @@ def test_topics_are_checked_for_publishers_subscribers_and_types() -> None:
     mobile = next(s for s in BUNDLE.schemas if s.name == "indoor_navigation")
     config = Configuration.of(mobile.name, mobile.nominal, mobile.graph.roles)
     live = []
+    # each subscriber wired to its publisher's name, as the launch file's remappings do (a
+    # stand-in subscribes under its own label, which is not the publisher's name: /odom)
+    remaps = wiring(LIB, mobile, config)
     for c in config.components:
         spec: dict[str, Any] = standin_spec(LIB[c])
         pubs = tuple(p["topic"] for p in spec["publish"])
-        subs = tuple(p["topic"] for p in spec["subscribe"])
+        wired = {f"/{old}": "/" + new.lstrip("/") for old, new, _ in remaps.get(c, [])}
+        subs = tuple(wired.get(p["topic"], p["topic"]) for p in spec["subscribe"])
         serves = tuple(p["service"] for p in spec["serve"])
         live.append(LiveNode(node_live_name(LIB[c]), "http://x:1/", 1, pubs, subs, serves))
     types = {p["topic"]: p["type"] for c in config.components
