@@ -20,6 +20,7 @@ import socket
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from importlib.resources import as_file
 from pathlib import Path
 from typing import Any
@@ -391,8 +392,24 @@ def test_ros1_actionlib_topics_of_stand_ins_make_a_conformant_graph() -> None:
         "/rpp/follow_path": ("nav2_msgs/FollowPath", ("/rpp_controller",)),
         "/navigate_to_pose": ("nav2_msgs/NavigateToPose", ("/BT_NAVIGATOR",)),
     }
-    # a stand-in calls an action by its own name, as it uses its own topic names (no remaps)
+    # a stand-in calls an action by its own name, as it uses its own topic names (no remaps):
+    # unwired, as the controller serves it as /rpp/follow_path; its goals reach nobody
     assert actions["/follow_path"].clients == ("/BT_NAVIGATOR",)
+    unwired = compare(config, library, schema, live)
+    assert [(f.code, f.component, f.live_name) for f in unwired.findings] == [
+        ("unwired", "BT_NAVIGATOR", "/follow_path")
+    ]
+    assert "-r follow_path:=/rpp/follow_path" in unwired.findings[0].message
+    # wired as its launch file remaps it (roslaunch remaps the action's namespace)
+    nodes = [
+        replace(n, publishes=tuple(t.replace("/follow_path/", "/rpp/follow_path/")
+                                   for t in n.publishes),
+                subscribes=tuple(t.replace("/follow_path/", "/rpp/follow_path/")
+                                 for t in n.subscribes))
+        if n.name == "/BT_NAVIGATOR" else n
+        for n in nodes
+    ]  # fmt: skip
+    live = replace(live, nodes=tuple(nodes))
     assert compare(config, library, schema, live).ok
     # the navigator stops sending goals to the controller: it is no longer its client
     quiet = [
@@ -418,10 +435,14 @@ def test_ros1_stand_ins_act_out_actions_on_a_real_master(
     files = ["--library", str(CASE / "lib.yaml"), "--schema", str(CASE / "task.yaml")]
     result = runner.invoke(app, ["inspect", "--master", ros_master.uri, *files, "--json"])
     doc = json.loads(result.stdout)
-    # the three action-wired nodes run; every action of the nominal is served and called
-    assert not [f for f in doc["findings"] if "action" in f["code"]], doc["findings"]
+    # the three action nodes run; every action of the nominal is served and called, but the
+    # navigator's stand-in, started without remappings, sends its follow_path goals to its own
+    # /follow_path while the controller serves /rpp/follow_path: unwired
+    acting = [(f["code"], f["live_name"]) for f in doc["findings"]
+              if "action" in f["code"] or f["code"] == "unwired"]  # fmt: skip
+    assert acting == [("unwired", "/follow_path")], doc["findings"]
     codes = {f["code"] for f in doc["findings"]}
-    assert codes <= {"missing-node", "unmet-requirement", "missing-topic"}, doc["findings"]
+    assert codes <= {"missing-node", "unmet-requirement", "missing-topic", "unwired"}, doc
     draft = tmp_path / "draft.yaml"
     result = runner.invoke(app, ["import", "--master", ros_master.uri, "-o", str(draft)])
     assert result.exit_code == 0, result.output

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from datetime import UTC, datetime
 from pathlib import Path
 from types import MappingProxyType
@@ -15,7 +16,7 @@ from rosreconf.formats.loader import Source, check_loaded, load_bundled, load_so
 from rosreconf.model import Component, Configuration, RosLaunch
 from rosreconf.ros.conformance import compare, interface_live_name, node_live_name
 from rosreconf.ros.importer import component_name, draft_library
-from rosreconf.ros.launchfiles import RosVersion, launch_file
+from rosreconf.ros.launchfiles import RosVersion, launch_file, wiring
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, to_json
 from rosreconf.ros.standins import STANDIN_PACKAGE, standin_spec
 
@@ -84,10 +85,14 @@ def test_topics_are_checked_for_publishers_subscribers_and_types() -> None:
     mobile = next(s for s in BUNDLE.schemas if s.name == "indoor_navigation")
     config = Configuration.of(mobile.name, mobile.nominal, mobile.graph.roles)
     live = []
+    # each subscriber wired to its publisher's name, as the launch file's remappings do (a
+    # stand-in subscribes under its own label, which is not the publisher's name: /odom)
+    remaps = wiring(LIB, mobile, config)
     for c in config.components:
         spec: dict[str, Any] = standin_spec(LIB[c])
         pubs = tuple(p["topic"] for p in spec["publish"])
-        subs = tuple(p["topic"] for p in spec["subscribe"])
+        wired = {f"/{old}": "/" + new.lstrip("/") for old, new, _ in remaps.get(c, [])}
+        subs = tuple(wired.get(p["topic"], p["topic"]) for p in spec["subscribe"])
         serves = tuple(p["service"] for p in spec["serve"])
         live.append(LiveNode(node_live_name(LIB[c]), "http://x:1/", 1, pubs, subs, serves))
     types = {p["topic"]: p["type"] for c in config.components
@@ -166,3 +171,77 @@ def test_launch_files_real_and_stand_in() -> None:
     assert spec["serve"] == [
         {"service": "/arm_servo/elbow/servo_command", "type": "robot_arm_msgs/DigitalServoCommand"}
     ]
+
+
+def _ros2_nodes(config: Configuration, wired_for: Configuration | None) -> dict[str, LiveNode]:
+    """Return ROS 2 stand-ins of ``config``, each consumer wired for ``wired_for`` (None: not)."""
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    remaps = wiring(LIB, SCHEMA, wired_for) if wired_for is not None else {}
+    out = {}
+    for c in config.components:
+        spec = ros2_standin_spec(LIB[c])
+        rule = {f"/{a}": "/" + b.lstrip("/") for a, b, _ in remaps.get(c, [])}
+        out[c] = LiveNode(
+            node_live_name(LIB[c]), None, None, tuple(p["topic"] for p in spec["publish"]),
+            tuple(rule.get(p["topic"], p["topic"]) for p in spec["subscribe"]),
+            tuple(p["service"] for p in spec["serve"]),
+            tuple(rule.get(p["service"], p["service"]) for p in spec["call"]), alive=True,
+        )  # fmt: skip
+    return out
+
+
+def _ros2(nodes: Any) -> LiveGraph:
+    return LiveGraph("ros2://domain/1", WHEN, tuple(nodes), ros_version=2)
+
+
+def test_a_kept_consumer_wired_for_the_old_arm_is_unwired_and_its_old_calls_dangle() -> None:
+    dc = Configuration.of(SCHEMA.name, {**SCHEMA.nominal, **{
+        r: c for r, c in zip(("base_joint", "shoulder_joint", "elbow_joint", "wrist_joint",
+                              "gripper_joint", "positioning", "grasping", "carrying", "placing"),
+                             ("NDC1", "NDC2", "NDC3", "NDC4", "NDC5", "NFB11", "NFB12", "NFB13",
+                              "NFB14"), strict=True)}}, SCHEMA.graph.roles)  # fmt: skip
+    nodes = _ros2_nodes(dc, dc)
+    assert compare(dc, LIB, SCHEMA, _ros2(nodes.values())).ok  # NREA's own servo names: excused
+    nodes["NREA"] = _ros2_nodes(NOMINAL, NOMINAL)["NREA"]  # kept through the repair
+    result = compare(dc, LIB, SCHEMA, _ros2(nodes.values()))
+    found = sorted((f.code, f.live_name) for f in result.findings)
+    joints = ("base", "elbow", "gripper", "shoulder", "wrist")
+    assert found == sorted([("unwired", f"/{j}/dc_servo_command") for j in joints]
+                           + [("unserved-client", f"/arm_servo/{j}/servo_command")
+                              for j in joints])  # fmt: skip
+    elbow = next(f for f in result.findings if f.live_name == "/arm_servo/elbow/servo_command")
+    assert "NSM3's name for it" in elbow.message
+
+
+def test_dangling_uses_count_when_tied_to_a_requirement_or_a_call() -> None:
+    nodes = _ros2_nodes(NOMINAL, NOMINAL)
+    nvp = nodes["NVP1"]
+    nodes["NVP1"] = replace(nvp, subscribes=(*nvp.subscribes, "/initialpose"),
+                            clients=(*nvp.clients, "/camera2/image"))  # fmt: skip
+    result = compare(NOMINAL, LIB, SCHEMA, _ros2(nodes.values()))
+    assert [(f.code, f.component, f.live_name) for f in result.findings] == [
+        ("unserved-client", "NVP1", "/camera2/image")
+    ]  # NCA2's name for NVP1's camera_image; /initialpose is not the configuration's
+    assert "NCA2's name for it" in result.findings[0].message
+    assert "NCA1 serves it as /camera1/image" in result.findings[0].message
+    assert ("/NVP1", "/camera2/image") in result.checked.calls
+
+
+def test_not_managed_is_ros2_only() -> None:
+    managed = LIB["NSM3"].launch
+    assert managed is not None
+    lib = replace(LIB, components=tuple(
+        replace(c, launch=replace(managed, lifecycle=True)) if c.name == "NSM3" else c
+        for c in LIB.components))  # fmt: skip
+    nodes = _ros2_nodes(NOMINAL, NOMINAL)
+    codes = [
+        (f.code, f.component) for f in compare(NOMINAL, lib, SCHEMA, _ros2(nodes.values())).findings
+    ]
+    assert codes == [("not-managed", "NSM3")]
+    ros1 = LiveGraph(
+        "http://127.0.0.1:11311/",
+        WHEN,
+        tuple(replace(n, alive=None, pid=1) for n in nodes.values()),
+    )
+    assert compare(NOMINAL, lib, SCHEMA, ros1).ok

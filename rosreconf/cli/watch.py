@@ -37,7 +37,7 @@ from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
-from rosreconf.ros.sources import open_source
+from rosreconf.ros.sources import Ros2Source, open_source
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
@@ -114,6 +114,9 @@ def watch_command(
         master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
     )
     ros2 = source.ros_version is RosVersion.ROS2
+    if isinstance(source, Ros2Source):
+        source.empty_ok = apply  # it starts the nodes itself: an empty domain is where it starts
+        source.on_note = lambda text: stderr.print(text, markup=False)
     if (standby or ros2_launch) and not (ros2 and apply):
         raise UsageError("--standby and --ros2-launch are for --ros2 --apply")
     if stand_ins and ros2_launch:

@@ -15,29 +15,46 @@ So NSM3 is ``/NSM3`` and its ``elbow/digital_servo_command`` is ``/arm_servo/elb
 (its remapping); a component with ``namespace: /arm`` and no remapping for ``joint_states``
 publishes ``/arm/joint_states``.
 
-The comparison reports (``Finding.code``): ``missing-node`` (not registered), ``dead-node``
-(registered but its API does not answer: SIGKILLed nodes linger in the master),
-``extra-node`` (alive, not plumbing, not in the configuration), ``missing-service`` /
-``missing-topic`` (an expected node does not serve, publish or subscribe what its ROS-graph
-edges say), ``wrong-type`` (the master's type of an expected topic differs), and
-``unmet-requirement`` (Lemma 4: an interface a running expected node uses along its
-ROS-graph edges is served or published by no live node). A ROS 2 graph (DDS discovery) also
-knows the services a node calls and every endpoint's QoS, which adds ``missing-client`` (an
-expected node does not call a service its edges say it calls) and ``qos-incompatible`` (the
-provider's publisher offers a QoS the consumer's subscription cannot accept, by
-``rosreconf.model.qos.incompatibilities``; both sides are named). ROS 2 types
-(``pkg/msg/Name``) equal the library's ``pkg/Name`` (``rosreconf.model.type_key``).
-Actions (``rosreconf.ros.liveactions``, ROS 1 and 2) add ``missing-action`` (the provider
-does not serve it), ``missing-action-client`` (the consumer does not call it), and
-``wrong-type`` and ``unmet-requirement`` as for topics.
+It reads the wiring, never assumes it: along an edge provider P -> interface (label L) ->
+consumer C of the ROS-graph, C must use P's live name ``interface_live_name(P, L)`` on the
+live graph; its own name for L counts only when it is that name. Findings (``Finding.code``)::
 
-A ROS 2 graph keeps every endpoint's own type, so ``wrong-type`` names each node whose
-publisher, subscription, server or client of an expected topic or service has another type,
-whichever started first. It also adds ``unserved-client`` (a live node calls a service no
-live node serves), ``duplicate-node`` (two nodes announce one name; ROS 2 allows it, but
-calls and parameters reach either; they are judged together) and ``not-active`` (a
-component marked ``ros.lifecycle`` whose managed node is not in the active state; the
-state is said).
+    code                      ROS   what
+    ------------------------  ----  ------------------------------------------------------------
+    missing-node              1, 2  a node of the configuration is not running
+    dead-node                 1     registered but its API does not answer (SIGKILLed nodes
+                                    linger in a ROS 1 master)
+    extra-node                1, 2  alive, not plumbing, not in the configuration
+    duplicate-node            2     two nodes announce one name (calls reach either; judged
+                                    together)
+    missing-service /         1, 2  a provider does not serve / publish / subscribe what its
+    missing-topic                   ROS-graph edges say
+    missing-client            2     a consumer does not call a service its edges say it calls
+    missing-action /          1, 2  a provider does not serve the action / a consumer does not
+    missing-action-client           send it goals
+    unwired                   1, 2  a consumer uses another name it may have for an edge's
+                                    interface (its own, or another library provider's), not the
+                                    provider's: no call or message can flow (the -r rule said)
+    unmet-requirement         1, 2  Lemma 4: an interface a running node uses along its edges is
+                                    served or published by no live node
+    unserved-client           2     a node of the configuration calls a service nobody serves
+    unpublished-subscription  1, 2  ... subscribes to a topic nobody publishes, and
+    unserved-action-client    1, 2  ... sends goals to an action nobody serves: both only for
+                                    names tied to its requirements (``rosreconf.ros.dangling``)
+    wrong-type                1, 2  an endpoint's type differs from the library's (ROS 2: every
+                                    node's own; ROS 1: the master's one per topic)
+    qos-incompatible          2     the publisher offers a QoS the subscription cannot accept
+                                    (``rosreconf.model.qos.incompatibilities``; both named)
+    not-active                2     a managed node (``ros.lifecycle``) is not in the active
+                                    state (the state is said)
+    not-managed               2     ``ros.lifecycle: true`` but the node is live as a plain node
+                                    (it serves no ``<node>/get_state``)
+
+Dangling uses name who serves or publishes the interface instead. A node's own name for an
+unchosen alternative of an ``any_of`` requirement is not a finding while another option of it
+is on the node's edges (a node that can use either arm keeps both clients). ROS 2 types
+(``pkg/msg/Name``) equal the library's ``pkg/Name`` (``rosreconf.model.type_key``); actions
+are read by ``rosreconf.ros.liveactions``. ``Conformance.checked`` says what was judged.
 """
 
 from __future__ import annotations
@@ -45,18 +62,21 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any
 
-from rosreconf.model import (
-    ComponentLibrary,
-    Configuration,
-    Interface,
-    InterfaceKind,
-    InteroperabilitySchema,
-)
-from rosreconf.ros.edgechecks import edge_findings, unserved_findings
+from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.validity import ros_graph
+from rosreconf.ros.dangling import dangling_findings
+from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
-from rosreconf.ros.livenames import Finding, interface_live_name, node_live_name, same_type
+from rosreconf.ros.livenames import (
+    Finding,
+    interface_live_name,
+    library_providers,
+    node_live_name,
+    same_type,
+)
 
 __all__ = [
+    "Checked",
     "Conformance",
     "Finding",
     "compare",
@@ -64,6 +84,38 @@ __all__ = [
     "node_live_name",
     "same_type",
 ]
+
+
+@dataclass(frozen=True)
+class Checked:
+    """What a comparison judged, so that "conformant" says what it stands on.
+
+    Attributes:
+        nodes: the configuration's live node names that were found answering.
+        edges: how many provider -> interface -> consumer edges of the ROS-graph were checked.
+        calls: (node, service) of every service call of those nodes (ROS 2 graphs show them).
+        subscriptions: (node, topic) of each subscription tied to their requirements.
+        actions: (node, action) of each action they send goals to, tied to their requirements.
+        states: managed node -> the lifecycle state read (``unknown`` when none answered).
+    """
+
+    nodes: tuple[str, ...] = ()
+    edges: int = 0
+    calls: tuple[tuple[str, str], ...] = ()
+    subscriptions: tuple[tuple[str, str], ...] = ()
+    actions: tuple[tuple[str, str], ...] = ()
+    states: tuple[tuple[str, str], ...] = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON shape of ``checked`` in ``inspect --json`` (docs/json.md)."""
+        return {
+            "nodes": list(self.nodes),
+            "edges": self.edges,
+            "calls": [{"node": n, "service": s} for n, s in self.calls],
+            "subscriptions": [{"node": n, "topic": t} for n, t in self.subscriptions],
+            "actions": [{"node": n, "action": a} for n, a in self.actions],
+            "lifecycle_states": dict(self.states),
+        }
 
 
 @dataclass(frozen=True)
@@ -76,6 +128,7 @@ class Conformance:
         live: the live graph compared (plumbing included, as read).
         expected_nodes: component -> its live node name.
         findings: every difference, in a stable order.
+        checked: what was judged (nodes, edges, calls, subscriptions, actions, states).
     """
 
     schema: str
@@ -83,6 +136,7 @@ class Conformance:
     live: LiveGraph
     expected_nodes: dict[str, str]
     findings: tuple[Finding, ...]
+    checked: Checked = Checked()
 
     @property
     def ok(self) -> bool:
@@ -113,6 +167,7 @@ class Conformance:
                 }
                 for f in self.findings
             ],
+            "checked": self.checked.to_dict(),
         }
 
 
@@ -128,11 +183,40 @@ def compare(
     for n in graph.nodes:
         if n.answered:
             answering[n.name] = _merge(answering[n.name], n) if n.name in answering else n
-    registered = {n.name for n in graph.nodes}
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
+    found = _node_findings(configuration, graph, answering, names)
+    found += _lifecycle_findings(live, answering, comps, names)
+    expected = ros_graph(configuration, library, schema)
+    providers = library_providers(library)
+    edges = edge_findings(expected, graph, answering, comps, providers)
+    uses = dangling_findings(expected, graph, answering, comps, providers, edges.judged)
+    found += edges.findings + uses.findings
+    checked = Checked(
+        nodes=tuple(n for n in names.values() if n in answering),
+        edges=edges.edges,
+        calls=tuple(uses.calls),
+        subscriptions=tuple(uses.subscriptions),
+        actions=tuple(uses.actions),
+        states=tuple(
+            (name, state)
+            for c, name in names.items()
+            if (state := _state(comps[c], answering.get(name))) is not None
+        ),
+    )
+    return Conformance(schema.name, configuration, live, names, tuple(found), checked)
+
+
+def _node_findings(
+    configuration: Configuration,
+    graph: LiveGraph,
+    answering: dict[str, LiveNode],
+    names: dict[str, str],
+) -> list[Finding]:
+    """Report nodes of one name, and missing, dead and extra nodes."""
     found: list[Finding] = []
     owner = {name: c for c, name in names.items()}
+    registered = {n.name for n in graph.nodes}
     for name in graph.duplicates:
         count = sum(1 for n in graph.nodes if n.name == name)
         why = (
@@ -140,16 +224,6 @@ def compare(
             "parameters reach either one; give each its own name)"
         )
         found.append(Finding("duplicate-node", why, owner.get(name), name))
-    for c, name in names.items():
-        launch, node = comps[c].launch, answering.get(name)
-        if launch is None or not launch.lifecycle or node is None:
-            continue
-        if node.lifecycle_state not in (None, "active"):
-            why = (
-                f"{c}: managed node {name} is {node.lifecycle_state}, not active: it does "
-                f"nothing until activated (ros2 lifecycle set {name} activate)"
-            )
-            found.append(Finding("not-active", why, c, name))
     for c, name in names.items():
         role = next(r for r, x in configuration.assignment if x == c)
         if name in answering:
@@ -163,26 +237,51 @@ def compare(
         found.append(
             Finding("extra-node", f"{name} runs but is not in the configuration", None, name)
         )
-    # Calls the library declares (every option of a service requirement, under the component's
-    # own name for it or under the name of any library component providing that option, as a
-    # launch remapping wires it) are judged along the edges, not as unserved calls: a node
-    # kept through a repair still calls the alternative it was first wired to.
-    servers: dict[Interface, set[str]] = {}
-    for comp in library.components:
-        for iface in comp.provides:
-            if iface.kind is InterfaceKind.SERVICE:
-                servers.setdefault(iface, set()).add(interface_live_name(comp, iface.label))
-    wired = {
-        (names[c], called)
-        for c, comp in comps.items()
-        for req in comp.requires
-        for option in req.options
-        if option.kind is InterfaceKind.SERVICE
-        for called in (interface_live_name(comp, option.label), *servers.get(option, ()))
-    }
-    found += edge_findings(configuration, library, schema, graph, answering, comps, wired)
-    found += unserved_findings(answering, owner, wired)
-    return Conformance(schema.name, configuration, live, names, tuple(found))
+    return found
+
+
+def _lifecycle_findings(
+    live: LiveGraph,
+    answering: dict[str, LiveNode],
+    comps: dict[str, Component],
+    names: dict[str, str],
+) -> list[Finding]:
+    """Report managed nodes out of the active state, and plain nodes the library calls managed.
+
+    Lifecycle is ROS 2's: a ROS 1 graph has none. A node is managed when it serves
+    ``<node>/get_state`` (read from ``live``: the plumbing-free graph has no lifecycle services).
+    """
+    if live.ros_version != 2:
+        return []
+    found: list[Finding] = []
+    managed = {n.name for n in live.nodes if f"{n.name}/get_state" in n.serves}
+    for c, name in names.items():
+        launch, node = comps[c].launch, answering.get(name)
+        if launch is None or not launch.lifecycle or node is None:
+            continue
+        if name not in managed:
+            why = (
+                f"{c}: {name} is a plain node, but the library says it is managed "
+                f"(ros.lifecycle: true): it serves no {name}/get_state, so it cannot be "
+                "configured, activated or deactivated (start its managed executable, or "
+                "set ros.lifecycle: false)"
+            )
+            found.append(Finding("not-managed", why, c, name))
+        elif node.lifecycle_state not in (None, "active"):
+            why = (
+                f"{c}: managed node {name} is {node.lifecycle_state}, not active: it does "
+                f"nothing until activated (ros2 lifecycle set {name} activate)"
+            )
+            found.append(Finding("not-active", why, c, name))
+    return found
+
+
+def _state(comp: Component, node: LiveNode | None) -> str | None:
+    """Return the lifecycle state read of a managed component's node (None: none read)."""
+    launch = comp.launch
+    if node is None or launch is None or not launch.lifecycle:
+        return None
+    return node.lifecycle_state
 
 
 def _merge(a: LiveNode, b: LiveNode) -> LiveNode:

@@ -2,53 +2,204 @@
 
 ``rosreconf.ros.conformance.compare`` checks the nodes; this module checks every topic,
 service and action vertex of the configuration's ROS-graph (Def. 1): who serves, publishes,
-subscribes and calls it, its type at every endpoint, QoS along topic edges (ROS 2), and the
-live calls that no expected service edge explains.
+subscribes and calls it, its type at every endpoint, and QoS along topic edges (ROS 2).
+
+It reads the wiring, never assumes it. Along an edge provider P -> interface (label L) ->
+consumer C, P's live name is N = ``interface_live_name(P, L)``, and C must use N on the live
+graph (subscribe to it, call it, send goals to it). C's own name for L counts only when it is
+N. When C uses another name it may have for L instead (its own, or another library
+provider's, as an old launch remapping set it), no call or message can flow along the edge:
+that is ``unwired``, naming the name C uses, who serves N, and the ``-r`` rule that wires it.
+A ROS 1 master does not list the services a node calls, so service edges are judged there by
+their server alone.
 """
 
 from __future__ import annotations
 
-from rosreconf.model import (
-    Component,
-    ComponentLibrary,
-    Configuration,
-    InteroperabilitySchema,
-    VertexKind,
-)
+from collections.abc import Set
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from rosreconf.model import Component, Interface, InterfaceKind, VertexKind
 from rosreconf.model.qos import incompatibilities
-from rosreconf.model.validity import ros_graph
 from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.livenames import Finding, interface_live_name, node_live_name, same_type
+from rosreconf.ros.livenames import (
+    Finding,
+    Providers,
+    interface_live_name,
+    node_live_name,
+    option_names,
+    remap_source,
+    same_type,
+)
 
-ACTION_SERVICES = ("send_goal", "cancel_goal", "get_result")
-"""The services a ROS 2 action ``<a>`` is made of, each ``<a>/_action/<part>``."""
+if TYPE_CHECKING:
+    from rosreconf.model import RosGraph
+
+USE = {VertexKind.TOPIC: "subscribes to", VertexKind.SERVICE: "calls", VertexKind.ACTION: "calls"}
+"""How a consumer uses each kind of interface, in a finding's words."""
+OFFER = {VertexKind.TOPIC: "publishes", VertexKind.SERVICE: "serves", VertexKind.ACTION: "serves"}
+"""How a provider offers each kind of interface, in a finding's words."""
 
 
-def unserved_findings(
-    answering: dict[str, LiveNode], owner: dict[str, str], wired: set[tuple[str, str]]
-) -> list[Finding]:
-    """Report every live call of a service that no live node serves (a ROS 2 graph only).
+@dataclass
+class EdgeCheck:
+    """What the edge checks found, and what they judged (the dangling checks skip it).
 
-    Calls along the configuration's own service edges (``wired``: consumer node, the name it
-    calls) are judged there (``unmet-requirement``, with the consumer's own name accepted as
-    a launch remapping would set it), not again here. Only the configuration's nodes
-    (``owner``) are judged: a node outside it is an ``extra-node`` already, or one held out
-    of service on purpose (a parked standby of ``watch``), whose calls are not the
-    configuration's.
+    Attributes:
+        findings: every difference, in a stable order.
+        judged: (consumer node, kind, live name) of each use an edge explains: the provider's
+            name N, and each other name reported ``unwired``.
+        edges: how many provider -> interface -> consumer edges were checked.
     """
-    served = {s for n in answering.values() for s in n.serves}
-    out = []
-    for node in answering.values():
-        comp = owner.get(node.name)
-        if comp is None:
+
+    findings: list[Finding] = field(default_factory=list)
+    judged: set[tuple[str, VertexKind, str]] = field(default_factory=set)
+    edges: int = 0
+
+
+@dataclass(frozen=True)
+class _Live:
+    """The live graph as the edge checks read it: nodes by name, what is offered, actions."""
+
+    graph: LiveGraph
+    answering: dict[str, LiveNode]
+    served: frozenset[str]
+    published: frozenset[str]
+    actions: dict[str, LiveAction]
+    providers: Providers
+
+    def offered(self, kind: VertexKind) -> frozenset[str]:
+        """Return every live name some node publishes (topics) or serves (services, actions)."""
+        if kind is VertexKind.TOPIC:
+            return self.published
+        if kind is VertexKind.SERVICE:
+            return self.served
+        return frozenset(a for a, act in self.actions.items() if act.servers)
+
+    def uses(self, node: LiveNode, kind: VertexKind) -> Set[str] | None:
+        """Return the names ``node`` subscribes to, calls, or sends goals to (None: unknown)."""
+        if kind is VertexKind.TOPIC:
+            return set(node.subscribes)
+        if kind is VertexKind.ACTION:
+            return {a for a, act in self.actions.items() if node.name in act.clients}
+        return set(node.clients) if self.graph.ros_version == 2 else None
+
+
+def edge_findings(
+    expected: RosGraph,
+    graph: LiveGraph,
+    answering: dict[str, LiveNode],
+    comps: dict[str, Component],
+    providers: Providers,
+) -> EdgeCheck:
+    """Check every topic, service and action vertex of ``expected`` against the live nodes."""
+    live = _Live(
+        graph,
+        answering,
+        frozenset(s for n in answering.values() for s in n.serves),
+        frozenset(t for n in answering.values() for t in n.publishes),
+        live_actions(graph),
+        providers,
+    )
+    out = EdgeCheck()
+    for vertex, data in sorted(expected.nodes(data=True)):
+        kind = vertex[0]
+        if kind is VertexKind.NODE:
             continue
-        for service in node.clients:
-            if service in served or (node.name, service) in wired:
-                continue
-            msg = f"{node.name} calls service {service}, which no live node serves"
-            out.append(Finding("unserved-client", msg, comp, service))
+        label, typ = str(data["label"]), str(data["type"])
+        option = Interface(InterfaceKind(str(kind)), label, typ)
+        consumers = sorted(c for _, c in expected.successors(vertex))
+        # a topic may have several chosen publishers (Nav2's controller_server and
+        # behavior_server both publish cmd_vel_nav): each is checked
+        for provider in sorted(p for _, p in expected.predecessors(vertex)):
+            out.findings += _provider(live, comps[provider], option, typ)
+            for consumer in consumers:
+                out.edges += 1
+                out.findings += _consumer(live, comps, (provider, consumer), option, typ, out)
+    out.findings = list(dict.fromkeys(out.findings))  # two publishers under one name: once
     return out
+
+
+def _provider(live: _Live, comp: Component, option: Interface, typ: str) -> list[Finding]:
+    """Check that the provider offers its live name of ``option``, with the library's type."""
+    kind, label = VertexKind(str(option.kind)), option.label
+    name = interface_live_name(comp, label)
+    node = live.answering.get(node_live_name(comp))
+    found: list[Finding] = []
+    if kind is VertexKind.ACTION:
+        act = live.actions.get(name)
+        if node is not None and (act is None or node.name not in act.servers):
+            msg = f"{comp.name} does not serve action {name} ({label})"
+            found.append(Finding("missing-action", msg, comp.name, name))
+        if act is not None and act.type is not None and not same_type(act.type, typ):
+            msg = f"action {name} ({label}) has type {act.type}, not {typ}"
+            found.append(Finding("wrong-type", msg, comp.name, name))
+        return found
+    what = str(kind)
+    if node is not None and name not in (node.publishes if what == "topic" else node.serves):
+        msg = f"{comp.name} does not {OFFER[kind][:-1]} {what} {name} ({label})"
+        found.append(Finding(f"missing-{what}", msg, comp.name, name))
+    using = [
+        n.name
+        for n in live.graph.nodes
+        if name in (*n.publishes, *n.subscribes, *n.serves, *n.clients)
+    ]
+    return found + _wrong_types(what, name, label, typ, comp.name, live.graph, using)
+
+
+def _consumer(
+    live: _Live,
+    comps: dict[str, Component],
+    pair: tuple[str, str],
+    option: Interface,
+    typ: str,
+    out: EdgeCheck,
+) -> list[Finding]:
+    """Check that the consumer uses the provider's live name N of ``option``, and that N lives.
+
+    Records in ``out.judged`` the names of the consumer this edge explains.
+    """
+    provider, consumer = pair
+    kind, label = VertexKind(str(option.kind)), option.label
+    comp = comps[consumer]
+    name = interface_live_name(comps[provider], label)
+    user = live.answering.get(node_live_name(comp))
+    if user is None:
+        return []  # a missing or dead node: said once, as such
+    out.judged.add((user.name, kind, name))
+    found: list[Finding] = []
+    uses = live.uses(user, kind)
+    offered = live.offered(kind)
+    if uses is not None and name not in uses:
+        wrong = sorted(n for n in option_names(comp, option, live.providers) if n in uses)
+        for used in wrong:
+            out.judged.add((user.name, kind, used))
+            nobody = "" if used in offered else f", which nothing live {OFFER[kind]}"
+            msg = (
+                f"{consumer} {USE[kind]} {used} ({label}){nobody}; {provider} {OFFER[kind]} "
+                f"it as {name}: {consumer} is not wired to it (start {consumer} with "
+                f"-r {remap_source(comp, label)}:={name})"
+            )
+            found.append(Finding("unwired", msg, consumer, used))
+        if not wrong:
+            verb = {VertexKind.TOPIC: "subscribe to topic", VertexKind.SERVICE: "call service"}
+            what = verb.get(kind, "call action")
+            code = {VertexKind.TOPIC: "missing-topic", VertexKind.SERVICE: "missing-client"}
+            msg = f"{consumer} does not {what} {name} ({label})"
+            found.append(Finding(code.get(kind, "missing-action-client"), msg, consumer, name))
+    elif kind is VertexKind.TOPIC:
+        node = live.answering.get(node_live_name(comps[provider]))
+        if node is not None:
+            found += _qos(provider, node, consumer, user, name, label)
+    if name not in offered:
+        msg = (
+            f"{consumer} uses {kind} {name} ({label}, {typ}) of {provider}, "
+            f"which nothing live {OFFER[kind]} (Lemma 4)"
+        )
+        found.append(Finding("unmet-requirement", msg, consumer, name))
+    return found
 
 
 def _wrong_types(
@@ -83,137 +234,12 @@ def _wrong_types(
     ]
 
 
-def edge_findings(
-    configuration: Configuration,
-    library: ComponentLibrary,
-    schema: InteroperabilitySchema,
-    graph: LiveGraph,
-    answering: dict[str, LiveNode],
-    comps: dict[str, Component],
-    wired: set[tuple[str, str]],
-) -> list[Finding]:
-    """Check every topic/service vertex of the expected ROS-graph against the live nodes.
-
-    Adds to ``wired`` each (consumer node, service name) an expected service edge explains.
-    """
-    found: list[Finding] = []
-    served = {s for n in answering.values() for s in n.serves}
-    published = {t for n in answering.values() for t in n.publishes}
-    expected = ros_graph(configuration, library, schema)
-    actions = live_actions(graph)
-    for vertex, data in sorted(expected.nodes(data=True)):
-        kind = vertex[0]
-        if kind is VertexKind.NODE:
-            continue
-        label, typ = str(data["label"]), str(data["type"])
-        consumers = sorted(c for _, c in expected.successors(vertex))
-        # a topic may have several chosen publishers (Nav2's controller_server and
-        # behavior_server both publish cmd_vel_nav): each is checked
-        for provider in sorted(p for _, p in expected.predecessors(vertex)):
-            if kind is VertexKind.ACTION:
-                node = answering.get(node_live_name(comps[provider]))
-                name = interface_live_name(comps[provider], label)
-                users = {
-                    c: (
-                        answering.get(node_live_name(comps[c])),
-                        interface_live_name(comps[c], label),
-                    )
-                    for c in consumers
-                }
-                found += _action(provider, node, users, actions, name, label, typ)
-                wired |= {  # its goal, cancel and result calls are the action's findings
-                    (user.name, f"{action}/_action/{part}")
-                    for user, own in users.values()
-                    if user is not None
-                    for action in (name, own)
-                    for part in ACTION_SERVICES
-                }
-                continue
-            found += _interface(
-                graph,
-                answering,
-                comps,
-                (served, published),
-                provider,
-                consumers,
-                (label, typ, kind),
-                wired,
-            )
-    return list(dict.fromkeys(found))  # two publishers under one name: one finding each
-
-
-def _interface(
-    graph: LiveGraph,
-    answering: dict[str, LiveNode],
-    comps: dict[str, Component],
-    live: tuple[set[str], set[str]],
-    provider: str,
-    consumers: list[str],
-    vertex: tuple[str, str, VertexKind],
-    wired: set[tuple[str, str]],
-) -> list[Finding]:
-    """Check one provider's topic or service, and its consumers, against the live nodes.
-
-    ``live`` is what every answering node serves and publishes; ``vertex`` the interface's
-    label, type and kind. Adds to ``wired`` each (consumer node, service name) it explains.
-    """
-    label, typ, kind = vertex
-    found: list[Finding] = []
-    served, published = live
-    name = interface_live_name(comps[provider], label)
-    node = answering.get(node_live_name(comps[provider]))
-    what = "service" if kind is VertexKind.SERVICE else "topic"
-    if node is not None and name not in (node.serves if what == "service" else node.publishes):
-        verb = "serve" if what == "service" else "publish"
-        msg = f"{provider} does not {verb} {what} {name} ({label})"
-        found.append(Finding(f"missing-{what}", msg, provider, name))
-    using = [
-        n.name for n in graph.nodes if name in (*n.publishes, *n.subscribes, *n.serves, *n.clients)
-    ]
-    found += _wrong_types(what, name, label, typ, provider, graph, using)
-    for consumer in consumers:
-        user = answering.get(node_live_name(comps[consumer]))
-        own = interface_live_name(comps[consumer], label)
-        if what == "service":
-            wired |= {
-                (node_live_name(comps[consumer]), name),
-                (node_live_name(comps[consumer]), own),
-            }
-        if what == "topic" and user is not None and not {name, own} & set(user.subscribes):
-            msg = f"{consumer} does not subscribe to topic {name} ({label})"
-            found.append(Finding("missing-topic", msg, consumer, name))
-        if (
-            what == "service"
-            and graph.ros_version == 2
-            and user is not None
-            and not {name, own} & set(user.clients)
-        ):
-            msg = f"{consumer} does not call service {name} ({label})"
-            found.append(Finding("missing-client", msg, consumer, name))
-        if what == "topic" and node is not None and user is not None:
-            found += _qos(provider, node, consumer, user, name, own, label)
-        if user is not None and name not in (served if what == "service" else published):
-            how = "serves" if what == "service" else "publishes"
-            msg = (
-                f"{consumer} uses {what} {name} ({label}, {typ}) of {provider}, "
-                f"which nothing live {how} (Lemma 4)"
-            )
-            found.append(Finding("unmet-requirement", msg, consumer, name))
-    return found
-
-
 def _qos(
-    provider: str,
-    node: LiveNode,
-    consumer: str,
-    user: LiveNode,
-    name: str,
-    own: str,
-    label: str,
+    provider: str, node: LiveNode, consumer: str, user: LiveNode, name: str, label: str
 ) -> list[Finding]:
-    """Report a publisher's offered QoS that the consumer's subscription cannot accept."""
+    """Report a publisher's offered QoS that the consumer's subscription of ``name`` refuses."""
     offered = node.publish_qos.get(name)
-    requested = user.subscribe_qos.get(name, user.subscribe_qos.get(own))
+    requested = user.subscribe_qos.get(name)
     if offered is None or requested is None:
         return []  # ROS 1, or an endpoint missing (reported as such)
     why = incompatibilities(offered, requested)
@@ -224,41 +250,3 @@ def _qos(
         f"[{requested}]: {'; '.join(w.message for w in why)} (no messages will flow)"
     )
     return [Finding("qos-incompatible", msg, consumer, name)]
-
-
-def _action(
-    provider: str,
-    node: LiveNode | None,
-    users: dict[str, tuple[LiveNode | None, str]],
-    actions: dict[str, LiveAction],
-    name: str,
-    label: str,
-    typ: str,
-) -> list[Finding]:
-    """Check one action of the expected ROS-graph: its server, its type, its clients.
-
-    A consumer calls it by the provider's name (remapped) or by its own, as for topics.
-    """
-    found: list[Finding] = []
-    live = actions.get(name)
-    servers = live.servers if live is not None else ()
-    if node is not None and node.name not in servers:
-        msg = f"{provider} does not serve action {name} ({label})"
-        found.append(Finding("missing-action", msg, provider, name))
-    if live is not None and live.type is not None and not same_type(live.type, typ):
-        msg = f"action {name} ({label}) has type {live.type}, not {typ}"
-        found.append(Finding("wrong-type", msg, provider, name))
-    for consumer, (user, own) in users.items():
-        if user is None:
-            continue
-        clients = {c for a in {name, own} if a in actions for c in actions[a].clients}
-        if user.name not in clients:
-            msg = f"{consumer} does not call action {name} ({label})"
-            found.append(Finding("missing-action-client", msg, consumer, name))
-        if not servers:
-            msg = (
-                f"{consumer} uses action {name} ({label}, {typ}) of {provider}, "
-                "which nothing live serves (Lemma 4)"
-            )
-            found.append(Finding("unmet-requirement", msg, consumer, name))
-    return found

@@ -8,9 +8,10 @@ uses global ROS names. ``node_live_name`` and ``interface_live_name`` are the on
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
-from rosreconf.model import Component, type_key
+from rosreconf.model import Component, ComponentLibrary, Interface, type_key
 
 
 def _join(namespace: str, name: str) -> str:
@@ -42,15 +43,56 @@ def interface_live_name(component: Component, label: str) -> str:
     return _join((launch.namespace if launch else None) or "/", target)
 
 
+def remap_source(component: Component, label: str) -> str:
+    """Return the name a ``-r FROM:=TO`` rule of ``component`` would rewrite for ``label``.
+
+    Its own remapping target if the library gives one, else the label itself: the name the
+    node's code asks for, which a launch remapping (``rosreconf.ros.launchfiles.wiring``)
+    points at the provider's live name.
+    """
+    launch = component.launch
+    return launch.remappings.get(label, label) if launch is not None else label
+
+
+Providers = Mapping[Interface, tuple[tuple[str, str, str], ...]]
+"""Interface -> (component, its node's live name, the interface's live name) of every
+provision of it in a library."""
+
+
+def library_providers(library: ComponentLibrary) -> Providers:
+    """Return who in ``library`` provides each interface, and under which live name."""
+    found: dict[Interface, set[tuple[str, str, str]]] = {}
+    for comp in library.components:
+        node = node_live_name(comp)
+        for iface in comp.provides:
+            live = interface_live_name(comp, iface.label)
+            found.setdefault(iface, set()).add((comp.name, node, live))
+    return {i: tuple(sorted(v)) for i, v in found.items()}
+
+
+def option_names(component: Component, option: Interface, providers: Providers) -> dict[str, str]:
+    """Return every live name ``component`` may be using for its requirement option ``option``.
+
+    Name -> whose it is: the component's own name for it (its own name as the value), and
+    each library provider's live name (that provider), which a launch remapping may have
+    pointed it at. A name both are keeps the component's own.
+    """
+    names = {name: who for who, _, name in providers.get(option, ())}
+    names[interface_live_name(component, option.label)] = component.name
+    return names
+
+
 @dataclass(frozen=True)
 class Finding:
     """One way the live graph differs from the expected ROS-graph.
 
     Attributes:
         code: ``missing-node``, ``dead-node``, ``extra-node``, ``missing-service``,
-            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, ``missing-action``,
-            ``missing-action-client``, and from a ROS 2 graph ``missing-client``,
-            ``qos-incompatible``, ``unserved-client``, ``duplicate-node`` and ``not-active``.
+            ``missing-topic``, ``wrong-type``, ``unmet-requirement``, ``unwired``,
+            ``unpublished-subscription``, ``missing-action``, ``missing-action-client``,
+            ``unserved-action-client``, and from a ROS 2 graph ``missing-client``,
+            ``qos-incompatible``, ``unserved-client``, ``duplicate-node``, ``not-active``
+            and ``not-managed`` (the table is in ``rosreconf.ros.conformance``).
         message: the difference in plain words.
         component: the component concerned, if any (None for extra nodes).
         live_name: the global ROS name concerned (node, topic, service or action).

@@ -22,7 +22,7 @@ Any reply on the topic tells the state, whoever asked. Nothing here prints.
 from __future__ import annotations
 
 import time
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from rosreconf.ros.livegraph import LiveGraph
@@ -56,50 +56,65 @@ def _types(dds: Any) -> tuple[Any, Any]:
     return request, response
 
 
-def read_states(
-    session: Ros2Discovery, nodes: dict[str, bytes], *, timeout: float = 3.0
-) -> dict[str, str]:
-    """Ask each managed node its lifecycle state; return node -> state label.
+@dataclass
+class StateReader:
+    """Ask managed nodes their state, poll after poll, with one request/reply pair per node.
 
-    ``nodes`` maps a node's global name to the participant GUID of its ``get_state`` server.
-    A node whose server is not Fast DDS's, or that does not answer within ``timeout`` s,
-    is ``unknown``.
+    A pair (a request writer, a reply reader) is made once per node and kept while the node
+    stays on the same participant: making them on every poll would wait for DDS to match
+    them again (hundreds of ms). Each read drains replies, asks once more, and waits at most
+    ``timeout`` s for the answers; a node that does not answer in time keeps the state it
+    last answered on the same participant, else it is ``unknown``.
     """
-    states = {n: UNKNOWN for n in nodes}
-    asked = {n: p for n, p in nodes.items() if p.startswith(EPROSIMA)}
-    if not asked:
+
+    _pairs: dict[str, tuple[bytes, Any, Any]] = field(default_factory=dict)
+    _known: dict[str, tuple[bytes, str]] = field(default_factory=dict)
+    _types: tuple[Any, Any] | None = None
+
+    def read(
+        self, session: Ros2Discovery, nodes: dict[str, bytes], *, timeout: float
+    ) -> dict[str, str]:
+        """Return node -> state label for ``nodes`` (global name -> ``get_state`` participant)."""
+        for node in [n for n, (p, _, _) in self._pairs.items() if nodes.get(n) != p]:
+            del self._pairs[node]  # gone, or restarted in another process
+        asked = {n: p for n, p in nodes.items() if p.startswith(EPROSIMA)}
+        if asked:
+            self._ask(session, asked, timeout)
+        states = {}
+        for node, participant in nodes.items():
+            known = self._known.get(node)
+            states[node] = known[1] if known is not None and known[0] == participant else UNKNOWN
         return states
-    dds = load_dds()
-    policy, dp = dds.qos.Policy, session.participant
-    request, response = _types(dds)
-    qos = dds.qos.Qos(
-        policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1)),
-        policy.Durability.Volatile,
-        policy.History.KeepLast(1),
-        policy.DataRepresentation(use_cdrv0_representation=True),
-    )
-    pending: dict[str, tuple[Any, Any]] = {}
-    for node in asked:
-        writer = dds.pub.DataWriter(
-            dp, dds.topic.Topic(dp, f"rq{node}/get_stateRequest", request), qos=qos
-        )
-        reader = dds.sub.DataReader(
-            dp, dds.topic.Topic(dp, f"rr{node}/get_stateReply", response), qos=qos
-        )
-        pending[node] = (writer, reader)
-    sent: dict[str, float] = {}
-    deadline = time.monotonic() + timeout
-    while pending and time.monotonic() < deadline:
-        now = time.monotonic()
-        for node, (writer, reader) in list(pending.items()):
-            for sample in reader.take(N=16):
-                if hasattr(sample, "current_state"):
-                    state = sample.current_state
-                    states[node] = STATES.get(int(state.id), str(state.label) or UNKNOWN)
+
+    def _ask(self, session: Ros2Discovery, asked: dict[str, bytes], timeout: float) -> None:
+        """Ask each node once more; record the answers that come within ``timeout`` s."""
+        dds = load_dds()
+        if self._types is None:
+            self._types = _types(dds)
+        request, response = self._types
+        dp = session.participant
+        for node, participant in asked.items():
+            if node not in self._pairs:
+                topics = (f"rq{node}/get_stateRequest", f"rr{node}/get_stateReply")
+                writer = dds.pub.DataWriter(
+                    dp, dds.topic.Topic(dp, topics[0], request), qos=_qos(dds)
+                )
+                reader = dds.sub.DataReader(
+                    dp, dds.topic.Topic(dp, topics[1], response), qos=_qos(dds)
+                )
+                self._pairs[node] = (participant, writer, reader)
+        pending = dict.fromkeys(asked, -RESEND)
+        for node in asked:
+            self._answer(node, drain=True)  # a late answer to an older request: not now's
+        deadline = time.monotonic() + timeout
+        while pending and time.monotonic() < deadline:
+            now = time.monotonic()
+            for node, sent in list(pending.items()):
+                if sent >= 0 and self._answer(node):
                     del pending[node]
-                    break
-            else:
-                if now - sent.get(node, -RESEND) < RESEND or not (
+                    continue
+                _, writer, reader = self._pairs[node]
+                if now - sent < RESEND or not (
                     writer.get_publication_matched_status().current_count
                     and reader.get_subscription_matched_status().current_count
                 ):
@@ -107,16 +122,37 @@ def read_states(
                 # Ask (again): the server may not have matched our reply reader yet when we
                 # matched its endpoints, and then its answer reaches no one.
                 writer.write(request(structure_needs_at_least_one_member=0))
-                sent[node] = now
-        time.sleep(0.01)
-    return states
+                pending[node] = now
+            time.sleep(0.005)
+
+    def _answer(self, node: str, *, drain: bool = False) -> bool:
+        """Take ``node``'s replies; record the newest state; tell whether one came."""
+        participant, _, reader = self._pairs[node]
+        got = False
+        for sample in reader.take(N=16):
+            if hasattr(sample, "current_state"):
+                state = sample.current_state
+                label = STATES.get(int(state.id), str(state.label) or UNKNOWN)
+                self._known[node] = (participant, label)
+                got = True
+        return got and not drain
 
 
-def with_states(session: Ros2Discovery, graph: LiveGraph, *, timeout: float = 3.0) -> LiveGraph:
-    """Return ``graph`` with every managed node's lifecycle state read (others: None).
+def _qos(dds: Any) -> Any:
+    """Return the QoS of a request writer and reply reader (as rmw's services use)."""
+    policy = dds.qos.Policy
+    return dds.qos.Qos(
+        policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1)),
+        policy.Durability.Volatile,
+        policy.History.KeepLast(1),
+        policy.DataRepresentation(use_cdrv0_representation=True),
+    )
 
-    A managed node is one serving ``<node>/get_state`` (its request reader on
-    ``rq<node>/get_stateRequest``, as the session's last read saw it).
+
+def managed_servers(session: Ros2Discovery, graph: LiveGraph) -> dict[str, bytes]:
+    """Return node -> participant GUID of each node of ``graph`` serving ``<node>/get_state``.
+
+    Read from the request readers the session's last read saw (``rq<node>/get_stateRequest``).
     """
     servers: dict[str, bytes] = {}
     for e in session.last_endpoints.values():
@@ -126,6 +162,23 @@ def with_states(session: Ros2Discovery, graph: LiveGraph, *, timeout: float = 3.
         if named[1].endswith(_GET_STATE):
             servers[named[1][: -len(_GET_STATE)]] = e.participant
     names = {n.name for n in graph.nodes}
-    states = read_states(session, {n: p for n, p in servers.items() if n in names}, timeout=timeout)
+    return {n: p for n, p in servers.items() if n in names}
+
+
+def with_states(
+    session: Ros2Discovery,
+    graph: LiveGraph,
+    *,
+    timeout: float = 3.0,
+    reader: StateReader | None = None,
+) -> LiveGraph:
+    """Return ``graph`` with every managed node's lifecycle state read (others: None).
+
+    A managed node is one serving ``<node>/get_state``. ``reader`` keeps what it asked with
+    from one read to the next (a fresh one: every pair made anew).
+    """
+    states = (reader or StateReader()).read(
+        session, managed_servers(session, graph), timeout=timeout
+    )
     nodes = tuple(replace(n, lifecycle_state=states.get(n.name)) for n in graph.nodes)
     return replace(graph, nodes=nodes)
