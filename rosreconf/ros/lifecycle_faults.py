@@ -68,8 +68,9 @@ class LifecycleFaults:
 
 
 def checked(check: Conformance) -> dict[str, Any]:
-    """Return what a conformance check read and found met, for the ``conformant`` event."""
-    summary = getattr(check, "checked", None)
-    if summary is not None:
-        return {"checked": summary}
-    return {"checked": {"nodes": sorted(check.expected_nodes.values())}}
+    """Return what a conformance check judged (``Conformance.checked``), for ``conformant``.
+
+    Nodes, the ROS-graph edges, every call, subscription and action of the configuration's
+    nodes and the managed nodes' states: the event says what the confirmation stands on.
+    """
+    return {"checked": check.checked.to_dict()}

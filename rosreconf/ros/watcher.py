@@ -189,7 +189,9 @@ class Watcher:
                     f"unregistered dead node(s) {', '.join(purged)} from the master",
                     nodes=list(purged),
                 )
-        self._inactive(check)
+        # a managed node out of 'active' is a fault, re-activated with apply (lifecycle_faults)
+        if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
+            self._pending = time.monotonic()
         if self.failed & set(self.current.components):
             if self._replan():
                 return self._confirm()
@@ -212,11 +214,6 @@ class Watcher:
             check = self._compare(self._read())
         self._follow(check)
         return check
-
-    def _inactive(self, check: Conformance) -> None:
-        """Act on managed nodes of the configuration that left ``active`` (``lifecycle_faults``)."""
-        if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
-            self._pending = time.monotonic()
 
     def _follow(self, check: Conformance) -> None:
         """Confirm a repair made since the last replan, by rosreconf or by a person."""

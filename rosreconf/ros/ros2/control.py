@@ -39,12 +39,8 @@ from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
 from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.standby import Standbys
 from rosreconf.ros.ros2.transitions import Transitions
-
-TEND_TIMEOUT = 0.5
-"""Seconds a standby's configure may take on the watch loop's path (tried again later)."""
-STANDBY_TRIES = 5
-"""Configure attempts for one standby node before it is left unconfigured (and said so)."""
 
 Say = Callable[..., None]
 """Receives one event: its kind, its message, and its data as keyword arguments."""
@@ -67,8 +63,7 @@ class Ros2Control:
         dead: live names of nodes whose process rosreconf saw exit.
         states: component -> the lifecycle state last read back.
         left: the nodes last said to be left for a person to stop.
-        unready: standby components started and not yet configured (``tend`` does it).
-        tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
+        standbys: the standby nodes (``rosreconf.ros.ros2.standby``).
     """
 
     library: ComponentLibrary
@@ -84,8 +79,7 @@ class Ros2Control:
     dead: set[str] = field(default_factory=set)
     states: dict[str, str] = field(init=False)
     left: tuple[str, ...] = ()
-    unready: list[str] = field(default_factory=list)
-    tries: dict[str, int] = field(default_factory=dict)
+    standbys: Standbys = field(init=False)
     nodes: NodeProcesses = field(init=False)
     lifecycle: Transitions = field(init=False)
 
@@ -93,6 +87,9 @@ class Ros2Control:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
         self.lifecycle = Transitions(self.env, self.directory, self.say, self._node, self.timeout)
         self.states = self.lifecycle.states
+        self.standbys = Standbys(
+            self.library, self.schema, self.nodes, self.lifecycle, self.parked, self.say
+        )
 
     def _managed(self, component: str) -> bool:
         launch = self.library[component].launch
@@ -192,7 +189,7 @@ class Ros2Control:
         """
         self._rewire(configuration, components)
         fresh = [c for c in components if c not in self.nodes.nodes]
-        self.unready = [c for c in self.unready if c not in components]
+        self.standbys.unready = [c for c in self.standbys.unready if c not in components]
         ok = True
         if fresh:
             try:
@@ -324,83 +321,13 @@ class Ros2Control:
         )
 
     def prepare_standby(self, configuration: Configuration, failed: Collection[str]) -> None:
-        """Start and configure managed alternatives, each wired for the configuration it joins.
-
-        For every running component, the configuration that would replace it were it to fail
-        (``rosreconf.solve.running.nearest_valid``, the watcher's own replan) names the
-        alternatives that would start; each is started wired for that configuration (the
-        likeliest failure first, by failure probability), so activating it at a failover
-        leaves nothing dangling. A standby running with other wiring is started again.
-        """
-        if not self.standby:
-            return
-        running = set(configuration.components)
-        joins = self._joins(configuration, set(failed))
-        stale = [
-            c
-            for c, cfg in joins.items()
-            if c in self.nodes.nodes and self.nodes.miswired(self.library, self.schema, cfg, [c])
-        ]
-        for own in self.nodes.stop(stale):
-            self.parked.discard(own.node)
-            self.states.pop(own.component, None)
-        wanted = [c for c in joins if c not in self.nodes.nodes and c not in running]
-        if not wanted:
-            return
-        try:
-            for cfg in dict.fromkeys(joins[c] for c in wanted):
-                group = [c for c in wanted if joins[c] == cfg]
-                self.nodes.start(self.library, self.schema, cfg, group)
-        except ExternalToolError as exc:
-            self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
-            return
-        self.parked |= {self._node(c) for c in wanted}
-        self._agent_call(lambda agent: agent.watch([self._node(c) for c in wanted]))
-        self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
-                 "as it is up, so a failover is one activate)", components=wanted,
-                 standby=True)  # fmt: skip
-        self.unready += wanted
-
-    def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
-        """Return managed alternative -> the configuration it would join after one failure."""
-        from rosreconf.solve.running import nearest_valid
-
-        joins: dict[str, Configuration] = {}
-        likely = sorted(
-            (c for c in configuration.components if c not in failed),
-            key=lambda c: -(self.library[c].failure_probability or 0.0),
-        )
-        for comp in likely:
-            new = nearest_valid(self.library, self.schema, failed | {comp}, configuration)
-            if new is None:
-                continue
-            for c in new.components:
-                if c not in configuration.components and self._managed(c):
-                    joins.setdefault(c, new)
-        return joins
+        """Start managed alternatives wired for the configuration each would join (standby)."""
+        if self.standby:
+            self.standbys.prepare(configuration, failed)
 
     def tend(self) -> None:
         """Configure the standby nodes whose services have come up (never waits for one)."""
-        self.unready = [c for c in self.unready if c in self.nodes.nodes]
-        if not self.unready:
-            return
-        nodes = [self._node(c) for c in self.unready]
-        ready = self._agent_call(lambda agent: agent.ready(nodes)) or set()
-        up = [c for c in self.unready if self._node(c) in ready]
-        self.unready = [c for c in self.unready if c not in up]
-        # short: tend runs on the watch loop's path, and a slow configure must never hold
-        # detection up; a configure that did not finish in time is tried on a later tick
-        configured = self.lifecycle.perform([(c, "configure") for c in up], 0.0, TEND_TIMEOUT)
-        # A configure that timed out on a busy machine (or whose answer was lost while the
-        # node's service was still being matched) is tried again on a later tick, a few times.
-        for component in (c for c, ok in configured.items() if not ok):
-            self.tries[component] = self.tries.get(component, 0) + 1
-            if self.tries[component] < STANDBY_TRIES:
-                self.unready.append(component)
-            else:
-                self.say("lifecycle", f"{self._node(component)}: not a ready standby after "
-                         f"{STANDBY_TRIES} configure attempts; left unconfigured",
-                         component=component, node=self._node(component))  # fmt: skip
+        self.standbys.tend()
 
     def close(self) -> list[str]:
         """Stop every process started here and the lifecycle agent; return the components."""

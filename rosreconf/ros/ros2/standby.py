@@ -1,0 +1,135 @@
+"""Keep managed alternatives configured and wired, so that a failover is one ``activate``.
+
+With ``watch --standby``, for every running component the watcher's own replan says which
+configuration would replace it were it to fail; the managed alternatives that configuration
+starts are started now, wired for it (its remappings, and a stand-in's options), held
+``inactive`` and out of the graph's judgement (``parked``). The likeliest failure (by
+failure probability) decides when two would wire one alternative differently; one running
+with other wiring is started again. Configuring them happens on the watch loop's path, so
+each ``configure`` waits at most ``TEND_TIMEOUT`` and is tried again on a later tick.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection
+from dataclasses import dataclass, field
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.wiring import node_live_name
+from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.transitions import Transitions
+
+TEND_TIMEOUT = 0.5
+"""Seconds a standby's configure may take on the watch loop's path (tried again later)."""
+STANDBY_TRIES = 5
+"""Configure attempts for one standby node before it is left unconfigured (and said so)."""
+
+
+@dataclass
+class Standbys:
+    """The standby nodes of one watcher (see the module docstring).
+
+    Attributes:
+        library, schema: what the configuration is made of.
+        nodes: the watcher's node processes (standbys are among them).
+        lifecycle: the lifecycle agent's transitions.
+        parked: live names of the nodes held out of service (shared with the watcher's control).
+        say: receives every event.
+        unready: standby components started and not yet configured (``tend`` does it).
+        tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
+    """
+
+    library: ComponentLibrary
+    schema: InteroperabilitySchema
+    nodes: NodeProcesses
+    lifecycle: Transitions
+    parked: set[str]
+    say: Callable[..., None]
+    unready: list[str] = field(default_factory=list)
+    tries: dict[str, int] = field(default_factory=dict)
+
+    def node_of(self, component: str) -> str:
+        """Return the live node name of ``component``."""
+        return node_live_name(self.library[component])
+
+    def _managed(self, component: str) -> bool:
+        launch = self.library[component].launch
+        return launch is not None and launch.lifecycle
+
+    def prepare(self, configuration: Configuration, failed: Collection[str]) -> None:
+        """Start and configure managed alternatives, each wired for the configuration it joins.
+
+        For every running component, the configuration that would replace it were it to fail
+        (``rosreconf.solve.running.nearest_valid``, the watcher's own replan) names the
+        alternatives that would start; each is started wired for that configuration (the
+        likeliest failure first, by failure probability), so activating it at a failover
+        leaves nothing dangling. A standby running with other wiring is started again.
+        """
+        running = set(configuration.components)
+        joins = self._joins(configuration, set(failed))
+        stale = [
+            c
+            for c, cfg in joins.items()
+            if c in self.nodes.nodes and self.nodes.miswired(self.library, self.schema, cfg, [c])
+        ]
+        for own in self.nodes.stop(stale):
+            self.parked.discard(own.node)
+            self.lifecycle.states.pop(own.component, None)
+        wanted = [c for c in joins if c not in self.nodes.nodes and c not in running]
+        if not wanted:
+            return
+        try:
+            for cfg in dict.fromkeys(joins[c] for c in wanted):
+                group = [c for c in wanted if joins[c] == cfg]
+                self.nodes.start(self.library, self.schema, cfg, group)
+        except ExternalToolError as exc:
+            self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
+            return
+        self.parked |= {self.node_of(c) for c in wanted}
+        self.lifecycle.call(lambda agent: agent.watch([self.node_of(c) for c in wanted]))
+        self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
+                 "as it is up, so a failover is one activate)", components=wanted,
+                 standby=True)  # fmt: skip
+        self.unready += wanted
+
+    def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
+        """Return managed alternative -> the configuration it would join after one failure."""
+        from rosreconf.solve.running import nearest_valid
+
+        joins: dict[str, Configuration] = {}
+        likely = sorted(
+            (c for c in configuration.components if c not in failed),
+            key=lambda c: -(self.library[c].failure_probability or 0.0),
+        )
+        for comp in likely:
+            new = nearest_valid(self.library, self.schema, failed | {comp}, configuration)
+            if new is None:
+                continue
+            for c in new.components:
+                if c not in configuration.components and self._managed(c):
+                    joins.setdefault(c, new)
+        return joins
+
+    def tend(self) -> None:
+        """Configure the standby nodes whose services have come up (never waits for one)."""
+        self.unready = [c for c in self.unready if c in self.nodes.nodes]
+        if not self.unready:
+            return
+        nodes = [self.node_of(c) for c in self.unready]
+        ready = self.lifecycle.call(lambda agent: agent.ready(nodes)) or set()
+        up = [c for c in self.unready if self.node_of(c) in ready]
+        self.unready = [c for c in self.unready if c not in up]
+        # short: tend runs on the watch loop's path, and a slow configure must never hold
+        # detection up; a configure that did not finish in time is tried on a later tick
+        configured = self.lifecycle.perform([(c, "configure") for c in up], 0.0, TEND_TIMEOUT)
+        # A configure that timed out on a busy machine (or whose answer was lost while the
+        # node's service was still being matched) is tried again on a later tick, a few times.
+        for component in (c for c, ok in configured.items() if not ok):
+            self.tries[component] = self.tries.get(component, 0) + 1
+            if self.tries[component] < STANDBY_TRIES:
+                self.unready.append(component)
+            else:
+                self.say("lifecycle", f"{self.node_of(component)}: not a ready standby after "
+                         f"{STANDBY_TRIES} configure attempts; left unconfigured",
+                         component=component, node=self.node_of(component))  # fmt: skip
