@@ -121,6 +121,7 @@ class Watcher:
                 self.library, self.schema, self.env, self._launcher.directory, self._say,
                 stand_ins=self.stand_ins, standby=self.standby,
             )  # fmt: skip
+            self._lifecycle.reactivate = self._control.reactivate
 
     @property
     def launches(self) -> list[Background]:
