@@ -1,0 +1,106 @@
+"""Memory that grew with the answer, held under a real cap (issue 32: N5, S13, out of memory).
+
+Each command runs as its own process under an address-space cap (``prlimit --as``), and its
+peak resident memory (whole process, ``RUSAGE_CHILDREN``) is compared between two sizes of
+the same shape: the growth, not an absolute number, is what the defects were.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+CAP = 1_500_000_000
+"""Address-space cap of the child processes (bytes)."""
+
+MEASURE = """
+import resource, subprocess, sys
+done = subprocess.run(sys.argv[1:], capture_output=True, text=True)
+peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+print(f"{done.returncode} {peak}")
+sys.stdout.write(done.stdout)
+sys.stderr.write(done.stderr)
+"""
+"""Run a command; print its exit code and peak RSS (KiB, whole process), then its output."""
+
+HUB_P = (0.1, 0.2, 0.3)
+"""Failure probabilities of the hub's three candidates."""
+CONSUMER_P = 1e-4
+"""Failure probability of each single-candidate consumer."""
+
+
+def measured(argv: list[str], cap: int = CAP) -> tuple[int, int, str, str]:
+    """Run ``rosreconf argv`` under ``cap``: exit code, peak RSS (KiB), stdout, stderr."""
+    command = [sys.executable, "-m", "rosreconf", *argv]
+    done = subprocess.run(
+        ["prlimit", f"--as={cap}", "--", "timeout", "300", sys.executable, "-c", MEASURE,
+         *command],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    head, _, out = done.stdout.partition("\n")
+    code, peak = (int(x) for x in head.split())
+    return code, peak, out, done.stderr
+
+
+def write_hub(folder: Path, consumers: int, *, probabilities: bool = True) -> Path:
+    """Write a hub role of 3 candidates whose topic ``consumers`` one-candidate roles need.
+
+    Its 3 configurations are each ``consumers + 1`` components long: the shape whose analysis
+    held memory quadratic in that length.
+    """
+    (folder / "libraries").mkdir(parents=True)
+    (folder / "schemas").mkdir(parents=True)
+    topic = "{topic: /h, type: std_msgs/Empty}"
+    lib = ["format: rosreconf/component-library", "version: 1", "name: hub", "components:"]
+    for j, p in enumerate(HUB_P):
+        lib += [f"  - name: HUB{j}", "    abstraction: hub", f"    provides: [{topic}]"]
+        lib += [f"    failure_probability: {p}"] if probabilities else []
+    for i in range(consumers):
+        lib += [f"  - name: C{i}", f"    abstraction: c{i}", f"    requires: [{topic}]"]
+        lib += [f"    failure_probability: {CONSUMER_P}"] if probabilities else []
+    sch = [
+        "format: rosreconf/interoperability-schema",
+        "version: 1",
+        "name: hub",
+        "skill: Serve one topic to many.",
+        "environment: A synthetic world.",
+        "roles:",
+        "  - {name: hub, abstraction: hub}",
+        *(f"  - {{name: c{i}, abstraction: c{i}}}" for i in range(consumers)),
+        "edges:",
+        *(f"  - {{consumer: c{i}, providers: [hub]}}" for i in range(consumers)),
+    ]
+    (folder / "libraries" / "hub.yaml").write_text("\n".join(lib) + "\n")
+    (folder / "schemas" / "hub.yaml").write_text("\n".join(sch) + "\n")
+    return folder
+
+
+def _analyse(folder: Path) -> tuple[int, int, dict[str, object], str]:
+    argv = ["analyse", "--json", "-l", str(folder / "libraries"), "-s", str(folder / "schemas")]
+    code, peak, out, err = measured(argv)
+    [schema] = json.loads(out)["schemas"] if code in (0, 1) and out else [{}]
+    return code, peak, schema, err
+
+
+def test_analyse_memory_does_not_grow_with_the_square_of_a_configurations_length(
+    tmp_path: Path,
+) -> None:
+    """Case N5: a hub of 3 consumed by M roles took 343 MB at M = 2,000, 1.1 GB at 4,000."""
+    peaks = {}
+    for m in (500, 2000):
+        code, peak, schema, err = _analyse(write_hub(tmp_path / f"hub{m}", m))
+        assert code == 0, err
+        reliability = schema["reliability"]
+        assert isinstance(reliability, dict)
+        # Some hub candidate works, and every consumer works: independent events.
+        expected = (1 - math.prod(HUB_P)) * (1 - CONSUMER_P) ** m
+        assert reliability["probability"] == pytest.approx(expected, rel=1e-9)
+        assert str(reliability["method"]).startswith("exact")
+        peaks[m] = peak
+    # KiB. The library grows by about 15 MB per 1,000 roles; before, 4x the roles cost 4x^2.
+    assert peaks[2000] < peaks[500] + 60 * 1024, peaks
