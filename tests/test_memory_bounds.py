@@ -135,3 +135,17 @@ def test_simulate_json_memory_does_not_grow_with_the_document(tmp_path: Path) ->
         peaks[n], sizes[n] = peak, len(out)
     assert sizes[1200] > sizes[300] + 20_000_000  # the document grows by 27 MB ...
     assert peaks[1200] < peaks[300] + 30 * 1024, peaks  # ... memory did by 99 MB (KiB)
+
+
+def test_out_of_memory_is_exit_3_with_one_line_and_no_file(tmp_path: Path) -> None:
+    """Out of memory was a MemoryError traceback and exit 1 ("the check failed")."""
+    out = tmp_path / "out"
+    # 200,000 components need about 550 MB; 400 MB is enough to start, not to finish.
+    code, _, stdout, stderr = measured(
+        ["generate", "--roles", "200000", "--candidates", "1", "-o", str(out)], cap=400_000_000
+    )
+    assert code == 3, stderr
+    assert stderr.startswith("rosreconf: error: out of memory")
+    assert "Traceback" not in stderr and len(stderr.splitlines()) == 1
+    assert stdout == ""
+    assert not list(out.rglob("*.yaml"))
