@@ -24,7 +24,8 @@ class ExitCode(enum.IntEnum):
     USAGE = 2
     """The command line was wrong: unknown option, missing file, bad value."""
     PLANNER = 3
-    """An external program (planner, graphviz, roslaunch) is missing, failed or timed out."""
+    """An external program (planner, graphviz, roslaunch) is missing, failed or timed out, or
+    rosreconf itself ran out of memory (or of disk for a document it spools)."""
     INTERRUPTED = 130
     """Stopped by Ctrl-C or SIGINT (128 + SIGINT, as the shell reports it)."""
     TERMINATED = 143
@@ -125,5 +126,15 @@ class UsageError(RosreconfError):
 
 class ExternalToolError(RosreconfError):
     """An external program is missing, failed, or ran out of time or memory."""
+
+    exit_code = ExitCode.PLANNER
+
+
+class OutOfResourcesError(RosreconfError):
+    """The run needed more memory (or spool disk) than the machine or its limits allow.
+
+    Exit 3, as an external program that ran out of memory: the input was not wrong (exit 1
+    would say "the check failed") and the command line was not (exit 2).
+    """
 
     exit_code = ExitCode.PLANNER

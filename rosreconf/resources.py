@@ -15,6 +15,11 @@ from pathlib import Path
 
 _CHECKOUT = Path(__file__).resolve().parent.parent
 
+MAX_YAML_BYTES = 64 * 1024 * 1024
+"""Largest YAML file rosreconf reads: room for a 10,000-role, 10-candidate library (27 MB as
+``rosreconf generate`` writes it). Here, below both, so that the loader that reads files
+(``formats.yamlsource.MAX_BYTES``) and ``generate`` that writes them share one limit."""
+
 
 class Bundle(enum.StrEnum):
     """The folders of bundled files."""

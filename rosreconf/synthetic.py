@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rosreconf.outfiles import output_folder, write_atomic
+from rosreconf.resources import MAX_YAML_BYTES as MAX_BYTES
 
 LAYERS = ("sen", "per", "ctl", "act")
 """Layer prefixes in the order information flows (Fig. 2)."""
@@ -302,12 +303,32 @@ def _schema_text(
     return "\n".join(out) + "\n"
 
 
+def check_file_sizes(generated: Generated) -> None:
+    """Refuse files that ``validate`` would refuse for their size, before either is written.
+
+    ``MAX_COMPONENTS`` bounds the components, not the bytes: 100,000 roles of 2 candidates
+    with dynamics made a 79.6 MB library that every other command refuses (issue 32, S16).
+
+    Raises:
+        ValueError: a file is over ``resources.MAX_YAML_BYTES``; says its size and the limit.
+    """
+    for kind, text in (("library", generated.library), ("schema", generated.schema)):
+        size = len(text.encode("utf-8"))
+        if size > MAX_BYTES:
+            raise ValueError(
+                f"the {kind} would be {size:,} bytes ({size / 2**20:.1f} MiB), over the "
+                f"{MAX_BYTES:,} bytes ({MAX_BYTES // 2**20} MiB) rosreconf reads "
+                "(fewer roles or candidates); nothing was written"
+            )
+
+
 def write(generated: Generated, directory: Path) -> tuple[Path, Path]:
     """Write ``libraries/generated.yaml`` and ``schemas/generated.yaml`` under ``directory``.
 
     Each file is written to a temporary name beside it and renamed, so a reader never sees
-    half a file.
+    half a file; files too large for rosreconf to read are refused first (ValueError).
     """
+    check_file_sizes(generated)
     paths = (
         directory / "libraries" / "generated.yaml",
         directory / "schemas" / "generated.yaml",

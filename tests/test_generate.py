@@ -135,3 +135,27 @@ def test_whatever_generate_writes_its_own_validate_accepts(
     result = runner.invoke(app, ["validate", str(out), "--json"])
     report = json.loads(result.stdout)
     assert (result.exit_code, report["errors"], report["warnings"]) == (0, 0, 0), result.stdout
+
+
+def test_generate_never_writes_a_library_that_validate_refuses_for_its_size(
+    runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Case S16: --roles 100000 -k 2 --dynamics wrote 79.6 MB, over validate's 64 MiB.
+
+    Here the one limit both read is lowered to 2 MiB (as for a real 64 MiB, which takes
+    15 s and 600 MB to reach): 4,000 roles of 2 make a 3.1 MB library, 2,000 make 1.6 MB.
+    """
+    limit = 2 * 1024 * 1024
+    monkeypatch.setattr("rosreconf.formats.yamlsource.MAX_BYTES", limit)
+    monkeypatch.setattr("rosreconf.synthetic.MAX_BYTES", limit, raising=False)
+    big, small = tmp_path / "big", tmp_path / "small"
+    result = runner.invoke(app, ["generate", "-r", "4000", "-k", "2", "--dynamics", "-o", str(big)])
+    assert result.exit_code == 2, result.output
+    assert f"{limit:,} bytes (2 MiB)" in result.stderr
+    assert "the library would be 3," in result.stderr  # its size, in bytes
+    assert not big.exists()  # nothing written, not even the folder
+    result = runner.invoke(
+        app, ["generate", "-r", "2000", "-k", "2", "--dynamics", "-o", str(small)]
+    )
+    assert result.exit_code == 0, result.output
+    assert runner.invoke(app, ["validate", str(small)]).exit_code == 0

@@ -78,6 +78,19 @@ def test_plan_timeout_is_range_checked(runner: CliRunner, value: str) -> None:
     assert "--timeout" in result.stderr
 
 
+@pytest.mark.parametrize("verb", ["plan", "watch", "whatif"])
+@pytest.mark.parametrize("value", ["nan", "inf", "0"])
+def test_search_time_must_be_a_finite_number_of_seconds(
+    runner: CliRunner, verb: str, value: str
+) -> None:
+    """--search-time nan acted as about 0 seconds (issue 32, N7); it is refused like inf."""
+    extra = {"plan": ["--fail", "NSM3"], "watch": ["--master", "http://127.0.0.1:9/"]}
+    result = runner.invoke(app, [verb, *extra.get(verb, []), "--search-time", value])
+    assert result.exit_code == 2, result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert "--search-time" in result.stderr
+
+
 def test_counts_of_any_size_print_in_text_and_json() -> None:
     """A 10,000-role library has counts of thousands of digits; Python refuses str() of an
     int over 4,300 digits unless told otherwise. Both outputs must print it in full."""

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 from rosreconf.analysis.marginals import marginals
 from rosreconf.analysis.reliability import (
+    EXACT_CELLS,
     Reliability,
     exact_probability,
     grouped_exact,
@@ -34,7 +35,8 @@ from rosreconf.solve.instance import Instance, compile_instance
 from rosreconf.solve.solver import ClingoEngine
 
 EXACT_LIMIT = 5_000
-"""Most configurations the exact probability (and usable-candidate) analysis lists."""
+"""Most configurations the exact probability (and usable-candidate) analysis lists; fewer
+when they are long (``EXACT_CELLS``)."""
 
 PAIR_LIMIT = 80
 """Most relevant components for which every failure pair is checked (whatif scales further)."""
@@ -142,7 +144,8 @@ def analyse(
         )
     if valid == 0:
         return result
-    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if valid <= EXACT_LIMIT else []
+    listable = valid <= EXACT_LIMIT and valid * len(inst.roles) <= EXACT_CELLS
+    listed = list(ClingoEngine().configurations(inst, EXACT_LIMIT)) if listable else []
     configs = [frozenset(c.components) for c in listed]
     dead = frozenset(failed)
 

@@ -24,6 +24,11 @@ from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.optimum import minimise
 from rosreconf.solve.solver import ClingoEngine
 
+EXACT_CELLS = 2_000_000
+"""Most (configuration, role) cells the exact analysis lists: 5,000 configurations of 400
+roles, or 3 of 600,000. Past it the configurations are not listed, whatever their number,
+so that their length alone cannot exhaust memory (issue 32, N5)."""
+
 MC_BLOCK = 1_000
 """Failure states drawn as one array (1,000 x 10,000 components is 10 MB)."""
 
@@ -70,10 +75,15 @@ def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) ->
     configuration is the product of its components' chances. The expansion runs on an
     explicit stack: it is as deep as a configuration is long, and a chain of 500 roles
     overflowed Python's recursion limit (issue 22).
+
+    The configurations are first reduced by ``_merge_alike``: without it the memo held one
+    state per component of a long configuration, each as long as the configuration, and a
+    hub of 3 candidates with 10,000 consumers ran out of 6 GB (issue 32, N5).
     """
     memo: dict[State, float] = {}
     splits: dict[State, tuple[str, State, State]] = {}
-    root = _absorb(configs)
+    merged, p = _merge_alike(configs, p)
+    root = _absorb(merged)
     stack = [root]
     while stack:
         state = stack[-1]
@@ -96,6 +106,37 @@ def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) ->
         del splits[state]
         stack.pop()
     return memo[root]
+
+
+def _merge_alike(
+    configs: Iterable[frozenset[str]], p: dict[str, float]
+) -> tuple[list[frozenset[str]], dict[str, float]]:
+    """Return the configurations with alike components merged, and the merged probabilities.
+
+    A component that never fails (p = 0) cannot decide whether a configuration survives, so
+    it is dropped. Components in exactly the same configurations are always all needed
+    together, and fail independently: they act as one component that works when all of them
+    work. Each such class becomes its first member's name, failing with 1 - prod(1 - p). The
+    answer is unchanged, and a configuration is left with at most as many parts as there are
+    distinct sets of configurations its parts belong to: its length (a long chain of
+    single-candidate roles) no longer matters. Linear in the total size of the input.
+    """
+    listed = list(dict.fromkeys(configs))
+    where: dict[str, list[int]] = {}
+    for i, cfg in enumerate(listed):
+        for c in cfg:
+            if p[c] > 0:
+                where.setdefault(c, []).append(i)
+    classes: dict[tuple[int, ...], list[str]] = {}
+    for c in sorted(where):
+        classes.setdefault(tuple(where.pop(c)), []).append(c)
+    parts: list[list[str]] = [[] for _ in listed]
+    q: dict[str, float] = {}
+    for found_in, members in classes.items():
+        q[members[0]] = 1 - math.prod(1 - p[c] for c in members)
+        for i in found_in:
+            parts[i].append(members[0])
+    return [frozenset(part) for part in parts], q
 
 
 def _leaf(state: State, p: dict[str, float]) -> float | None:
@@ -247,13 +288,15 @@ def grouped_exact(
     With one component per group (``Twins.grouped``) the configurations are those of the
     groups; when at most ``limit`` of them remain, factoring over them is exact. Returns the
     probability, the number of group configurations and of groups; None when there are
-    more than ``limit`` (or the system graph is too dense to count them).
+    more than ``limit``, more than ``EXACT_CELLS`` cells to list, or the system graph is
+    too dense to count them.
     """
     small, q = Twins(library, schema).grouped(dead, p)
     with paused_gc():
         inst = compile_instance(small, schema, dead)
     try:
-        if count(inst) > limit:
+        n = count(inst)
+        if n > limit or n * len(inst.roles) > EXACT_CELLS:
             return None
     except TooHard:
         return None

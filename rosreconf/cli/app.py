@@ -108,8 +108,15 @@ COMMANDS: dict[str, Verb] = {
 """Every verb, in the order ``rosreconf --help`` lists them."""
 
 
+OUT_OF_MEMORY = (
+    "rosreconf: error: out of memory: this run needs more than the machine or its limits "
+    "(ulimit -v) allow; ask for less (--limit, --only, a smaller library) or allow more"
+)
+"""The one line an exhausted memory ends with (exit 3: not a failed check, not usage)."""
+
+
 def guard(command: Callable[P, R]) -> Callable[P, R]:
-    """Run a command body, turning rosreconf errors, Ctrl-C and SIGTERM into exit codes."""
+    """Run a command body, turning rosreconf errors, memory, Ctrl-C and SIGTERM into exit codes."""
 
     @functools.wraps(command)
     def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
@@ -122,6 +129,11 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
         except RosreconfError as exc:
             stderr.print(f"rosreconf: error: {exc}", markup=False)
             raise typer.Exit(exc.exit_code) from None
+        except MemoryError:
+            # Raised where an allocation failed, anywhere in rosreconf or numpy; by now the
+            # frames that held the memory are gone, so the message can be printed.
+            stderr.print(OUT_OF_MEMORY, markup=False)
+            raise typer.Exit(ExitCode.PLANNER) from None
         except KeyboardInterrupt:
             stderr.print("rosreconf: interrupted", markup=False)
             raise typer.Exit(ExitCode.INTERRUPTED) from None

@@ -38,6 +38,14 @@ __all__ = [  # the input the options select, then the options
     "weights_of",
 ]
 
+
+def finite(value: float | None) -> float | None:
+    """Refuse NaN and infinity for a float option (typer's ``min``/``max`` let NaN through)."""
+    if value is not None and not math.isfinite(value):
+        raise typer.BadParameter(f"{value} is not a finite number")
+    return value
+
+
 LibraryOption = Annotated[
     list[Path] | None,
     typer.Option(
@@ -173,6 +181,7 @@ SearchTimeOption = Annotated[
         "--search-time",
         min=1,
         max=7 * 24 * 3600.0,
+        callback=finite,
         help="The most seconds spent on that search (then exit 3, saying what was tried).",
     ),
 ]
@@ -204,10 +213,3 @@ def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
         if not sep or not name.strip():
             raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
     return weights
-
-
-def finite(value: float | None) -> float | None:
-    """Refuse NaN and infinity for a float option (typer's ``min``/``max`` let NaN through)."""
-    if value is not None and not math.isfinite(value):
-        raise typer.BadParameter(f"{value} is not a finite number")
-    return value

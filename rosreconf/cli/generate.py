@@ -10,7 +10,7 @@ from rosreconf.cli.common import finite
 from rosreconf.cli.console import write_stdout
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.outfiles import output_folder
-from rosreconf.synthetic import MAX_COMPONENTS, check_sizes, generate, write
+from rosreconf.synthetic import MAX_COMPONENTS, check_file_sizes, check_sizes, generate, write
 
 
 def generate_command(
@@ -59,8 +59,11 @@ def generate_command(
         check_sizes(roles, candidates, coupling)  # before the folder is made
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    folder = output_folder(output)
     generated = generate(roles, candidates, coupling, seed, dynamics=dynamics)
-    lib, schema = write(generated, folder)
+    try:
+        check_file_sizes(generated)  # before the folder is made, too
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    lib, schema = write(generated, output_folder(output))
     write_stdout(f"wrote {lib} and {schema}\n")
     raise typer.Exit(ExitCode.OK)

@@ -15,7 +15,7 @@ from rosreconf.cli.common import (
     SchemaOption,
     select,
 )
-from rosreconf.cli.console import stderr, stdout, write_stdout
+from rosreconf.cli.console import stderr, stdout, write_stdout_pieces
 from rosreconf.errors import ExitCode
 
 TOP = 20
@@ -82,7 +82,7 @@ def simulate_command(
 
         draw_sweep(plot, sel.library, result)
     if as_json:
-        write_stdout(document(result))
+        write_stdout_pieces(document(result))
     else:
         for note in result.notes:
             stderr.print(f"rosreconf: {note}", markup=False)

@@ -18,7 +18,14 @@ from rich.progress import (
 )
 
 from rosreconf.analysis.whatif import SWEEP_TIME, SchemaProgress, sweep
-from rosreconf.cli.common import JsonOption, LibraryOption, OnlyOption, SchemaOption, select
+from rosreconf.cli.common import (
+    JsonOption,
+    LibraryOption,
+    OnlyOption,
+    SchemaOption,
+    finite,
+    select,
+)
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
 from rosreconf.model import InteroperabilitySchema
@@ -46,6 +53,7 @@ def whatif_command(
             "--search-time",
             min=1,
             max=7 * 24 * 3600.0,
+            callback=finite,
             help="The most seconds the sweep takes (then exit 3, saying which failure sets "
             "were decided).",
         ),

@@ -34,10 +34,11 @@ from rosreconf.formats.nodes import (
     value,
 )
 from rosreconf.model import Span
+from rosreconf.resources import MAX_YAML_BYTES
 
-MAX_BYTES = 64 * 1024 * 1024
-"""Largest YAML file rosreconf reads: room for a 10,000-role, 10-candidate library (27 MB as
-``rosreconf generate`` writes it); the loader reads no more than this of any file."""
+MAX_BYTES = MAX_YAML_BYTES
+"""Largest YAML file rosreconf reads (``resources.MAX_YAML_BYTES``, which ``generate`` keeps
+to); the loader reads no more than this of any file."""
 
 MAX_DEPTH = 32
 """Deepest nesting accepted; rosreconf's formats need 6 levels."""
