@@ -114,7 +114,7 @@ def test_components_without_ros_entry_are_named() -> None:
         launch_file(bare, t.schema, t.configuration, RosVersion.ROS1)
 
 
-def test_ros2_string_parameters_that_look_like_numbers_are_quoted() -> None:
+def test_ros2_parameters_carry_their_type() -> None:
     sel = select(None, None, [], [SCHEMA])
     (t,) = targets(sel, None)
     comps = []
@@ -126,8 +126,13 @@ def test_ros2_string_parameters_that_look_like_numbers_are_quoted() -> None:
     lib = ComponentLibrary(sel.library.name, tuple(comps))
     root = ET.fromstring(launch_file(lib, t.schema, t.configuration, RosVersion.ROS2).text)
     (node,) = [n for n in root.iter("node") if n.get("name") == "NCA1"]
-    values = {p.get("name"): p.get("value") for p in node.iter("param")}
-    assert values == {"device": "'1'", "flag": "true", "gain": "0.5", "text": "it's"}
+    values = {p.get("name"): (p.get("value"), p.get("type")) for p in node.iter("param")}
+    assert values == {
+        "device": ("1", "str"),
+        "flag": ("true", "bool"),
+        "gain": ("0.5", "float"),
+        "text": ("it's", "str"),
+    }
 
 
 def test_launch_needs_one_version_and_one_schema(tmp_path: Path, runner: CliRunner) -> None:

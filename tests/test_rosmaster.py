@@ -105,7 +105,13 @@ def test_killed_node_lingers_until_purged(ros_master_uri: str, standin: StartSta
     assert alive(before)
     os.killpg(victim.process.pid, signal.SIGKILL)
     victim.process.wait(5)
-    time.sleep(2.0)  # the master never drops it by itself (measured: still there after 30 s)
+    # The master never drops it by itself (measured: still there after 30 s); wait only
+    # until the graph reads it as dead (its XML-RPC server gone), not a fixed 2 s.
+    ros_harness.wait_until(
+        lambda: not alive(read_live_graph(ros_master_uri).node("/listener")),
+        10,
+        "the killed listener read as dead",
+    )
     graph = read_live_graph(ros_master_uri)
     dead = graph.node("/listener")
     assert dead.subscribes == ("/a",) and dead.pid is None and not alive(dead)
@@ -301,6 +307,18 @@ def test_snapshot_cuts_an_endless_answer_at_the_given_cap(runner: CliRunner) -> 
     assert "with more than 1 MiB" in result.stderr and result.stdout == ""
 
 
+ARGVS = (["/usr/lib/rosout/rosout", "__name:=stray_rosout"], ["sleep", "300"])
+
+
+def _runs(process: subprocess.Popen[bytes], program: str) -> bool:
+    """Tell whether ``process`` runs ``program`` now (its /proc command line names it)."""
+    try:
+        cmdline = Path(f"/proc/{process.pid}/cmdline").read_bytes()
+    except OSError:
+        return False
+    return Path(cmdline.split(b"\0")[0].decode()).name == Path(program).name
+
+
 @pytest.mark.ros
 def test_the_harness_kills_a_stray_rosout_and_still_reports_any_other_leftover(
     tmp_path: Path,
@@ -316,9 +334,13 @@ def test_the_harness_kills_a_stray_rosout_and_still_reports_any_other_leftover(
         ros_harness.running_master(home) as master,
     ):
         env = ros_harness.ros_env(master.uri, home)
-        for argv in (["/usr/lib/rosout/rosout", "__name:=stray_rosout"], ["sleep", "300"]):
+        for argv in ARGVS:
             started.append(subprocess.Popen(argv, env=env, start_new_session=True, **quiet))
-        time.sleep(0.5)  # both running, neither a descendant of roscore
+        ros_harness.wait_until(  # both running (exec'd), neither a descendant of roscore
+            lambda: all(_runs(p, argv[0]) for p, argv in zip(started, ARGVS, strict=True)),
+            10,
+            "the stray rosout and sleep running",
+        )
     codes = [p.wait(10) for p in started]
     assert codes == [-signal.SIGKILL, -signal.SIGKILL]  # both gone after teardown
     assert "sleep 300" in str(left.value)

@@ -10,7 +10,8 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ...)``, ``$(env ...)`` and ``$(find ...)`` in every attribute, so a library file could run
   Python on the robot. A value that really is a substitution must be marked as one:
   ``name: {substitution: "$(find my_pkg)/config.yaml"}``;
-- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit);
+- integer parameters outside what ROS 1 can carry (XML-RPC integers are 32-bit), and
+  subnormal float parameters, which ROS 2's rcl reads as strings (``strtod`` underflows);
 - integers too large for a float (a 401-digit coefficient) anywhere in a model's dynamics or
   a schema's simulation block, which could not even be built, and QoS depths and durations
   beyond DDS's 32-bit ``long``; the ranges a simulation computes correctly within are
@@ -161,7 +162,7 @@ def _number(value: nodes.Plain, high: float, what: str, node: nodes.Node | None)
 
 
 def _parameter(key: str, value: nodes.Plain, tree: nodes.TreeOf, i: int) -> Iterator[Problem]:
-    """Refuse unmarked substitutions, non-finite floats and integers ROS 1 cannot carry.
+    """Refuse unmarked substitutions, non-finite or subnormal floats, integers ROS 1 cannot carry.
 
     A mapping (``{substitution: "..."}``) is marked by the user; its shape is the Schema's job.
     """
@@ -181,6 +182,16 @@ def _parameter(key: str, value: nodes.Plain, tree: nodes.TreeOf, i: int) -> Iter
             f"parameter '{key}' is {nodes.text_of(node)}, not a finite number",
             "give a finite number",
             code="not-finite",
+        )
+    elif isinstance(value, float) and value and abs(value) < sys.float_info.min:
+        node = _at(tree, "components", i, "ros", "parameters", key)
+        yield Problem(
+            nodes.span(node),
+            f"parameter '{key}' is {_shown(nodes.text_of(node))}, a subnormal number: ROS 2's "
+            "rcl reads no spelling of it as a double (strtod reports an underflow), and the "
+            "node would get a string",
+            f"give 0 or a number of at least {sys.float_info.min!r} in size",
+            code="out-of-range",
         )
     elif type(value) is int and not INT32[0] <= value <= INT32[1]:
         node = _at(tree, "components", i, "ros", "parameters", key)

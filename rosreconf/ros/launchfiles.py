@@ -38,8 +38,6 @@ import xml.etree.ElementTree as ET
 from collections.abc import Collection
 from dataclasses import dataclass
 
-import yaml
-
 from rosreconf.errors import RosreconfError
 from rosreconf.model import (
     Component,
@@ -252,29 +250,62 @@ def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersi
 ROS1_TYPES = {bool: "bool", int: "int", float: "double", str: "str"}
 """Python value type -> roslaunch ``<param type=...>`` (explicit, so "1" stays a string)."""
 
+ROS2_TYPES = {bool: "bool", int: "int", float: "float", str: "str"}
+"""Python value type -> ROS 2 launch XML ``<param type=...>`` (launch_ros, Humble and later)."""
+
 
 def _param(name: str, value: str | int | float | bool, version: RosVersion) -> dict[str, str]:
-    """Return a ``<param>``'s attributes, writing the value so each dialect reads its type."""
+    """Return a ``<param>``'s attributes: the value as text and its type, named explicitly.
+
+    Without ``type`` both dialects guess the type from the text, and ROS 2's launch guesses
+    with YAML twice (launch_xml's attribute coercion, then launch_ros's parameter
+    evaluation), so even a quoted ``'y'`` came back as a bool; with ``type`` each reads the
+    text as exactly that type. A marked substitution is left to the launcher's own rules.
+    """
     if isinstance(value, Substitution):  # marked by the user: the launcher evaluates it
         return {"name": name, "value": str(value)}
+    text = ("true" if value else "false") if isinstance(value, bool) else str(value)
+    types = ROS1_TYPES if version is RosVersion.ROS1 else ROS2_TYPES
+    return {"name": name, "value": text, "type": types[type(value)]}
+
+
+def rcl_value(value: str | int | float | bool) -> str:
+    """Write ``value`` so that rcl's ``-p name:=value`` parser reads back its type and value.
+
+    rcl types a plain scalar with rules of its own (rcl_yaml_param_parser ``get_value``), not
+    YAML 1.1's or 1.2's: ``y``/``n``/``yes``/``on`` are bools, anything ``strtol`` (base 0:
+    ``0x1F``, ``017``) reads whole an integer, anything ``strtod`` reads whole (``1e3``,
+    ``inf``, ``nan``, ``.5``) a double. Only a quoted scalar is always a string, so every
+    string is written double-quoted, with everything outside printable ASCII escaped:
+    a single-quoted scalar would fold a line break into a space, and libyaml refuses raw
+    control characters. Python writes a float always with ``.``, ``e``, ``inf`` or ``nan``,
+    which ``strtol`` does not read whole, so a float stays a double and an int an integer.
+    """
     if isinstance(value, bool):
-        text = "true" if value else "false"
-    elif isinstance(value, str) and version is RosVersion.ROS2 and _not_plain(value):
-        text = "'" + value.replace("'", "''") + "'"  # ROS 2 reads values as YAML
-    else:
-        text = str(value)
-    attrs = {"name": name, "value": text}
-    if version is RosVersion.ROS1:
-        attrs["type"] = ROS1_TYPES[type(value)]
-    return attrs
+        return "true" if value else "false"
+    if isinstance(value, Substitution):  # marked by the user: nothing evaluates it here
+        return str(value)
+    if isinstance(value, str):
+        return _yaml_double_quoted(value)
+    return repr(value)
 
 
-def _not_plain(value: str) -> bool:
-    """Tell whether YAML would read ``value`` as something other than this same string."""
-    try:
-        return bool(yaml.safe_load(value) != value)
-    except yaml.YAMLError:
-        return True
+def _yaml_double_quoted(text: str) -> str:
+    """Return ``text`` as a YAML double-quoted scalar that libyaml reads back exactly."""
+    out = []
+    for char in text:
+        code = ord(char)
+        if char in '"\\':
+            out.append("\\" + char)
+        elif 0x20 <= code < 0x7F:
+            out.append(char)
+        elif code < 0x100:
+            out.append(f"\\x{code:02x}")
+        elif code < 0x10000:
+            out.append(f"\\u{code:04x}")
+        else:
+            out.append(f"\\U{code:08x}")
+    return '"' + "".join(out) + '"'
 
 
 def _comment(text: str) -> str:
@@ -299,8 +330,8 @@ def ros2_node_arguments(
     """Return the ``--ros-args`` that start ``component``'s node as its launch file would.
 
     Node name, namespace, the remappings wiring it (``remaps``, from ``wiring``), and its
-    parameters (written as ROS 2 reads them, YAML), for running the executable directly as
-    ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
+    parameters (written so rcl reads each as the library's type, ``rcl_value``), for running
+    the executable directly as ``ros2 run`` does (``rosreconf.ros.ros2.nodes``).
     """
     c = library[component]
     args = ["--ros-args", "-r", f"__node:={c.node_name}"]
@@ -310,5 +341,5 @@ def ros2_node_arguments(
     for old, new, _ in remaps.get(component, []):  # rcl remaps an action's name as a topic's
         args += ["-r", f"{old}:={new}"]
     for name, value in sorted(launch.parameters.items()) if launch is not None else ():
-        args += ["-p", f"{name}:={_param(name, value, RosVersion.ROS2)['value']}"]
+        args += ["-p", f"{name}:={rcl_value(value)}"]
     return args

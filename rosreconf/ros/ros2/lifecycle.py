@@ -28,7 +28,7 @@ from typing import IO, Any
 from rosreconf.errors import ExternalToolError
 from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
-from rosreconf.ros.ros2.runtime import ros2_python, start_helper
+from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
 
 AGENT_SCRIPT = Path(__file__).with_name("lifecycle_agent.py")
 TIMEOUT = 5.0
@@ -66,15 +66,25 @@ class LifecycleAgent:
         assert self.process.stdout is not None
         threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
         self._log = log
-        first = self._answer(None, 60.0, "start")
+        self.name = f"the lifecycle agent ({python} {AGENT_SCRIPT.name})"
+        try:
+            first = self._answer(None, ANSWER_SECONDS, "start")
+        except ExternalToolError:
+            self.close()
+            raise
         if "ready" not in first:
             self.close()
-            raise ExternalToolError(f"the lifecycle agent did not start (see {log})")
+            raise ExternalToolError(f"{self.name} did not start: it said {first} (see {log})")
 
     def _read(self, stream: IO[bytes]) -> None:
         for line in stream:
-            with contextlib.suppress(ValueError):
-                self._answers.put(json.loads(line))
+            try:
+                said = json.loads(line)
+            except ValueError:
+                said = None
+            if not isinstance(said, dict):  # not the agent's protocol: name what it said
+                said = {"garbage": line.decode(errors="replace").strip()[:120]}
+            self._answers.put(said)
         self._answers.put({"eof": True})
 
     def _answer(self, wanted: int | None, timeout: float, what: str) -> dict[str, Any]:
@@ -83,9 +93,16 @@ class LifecycleAgent:
             try:
                 answer = self._answers.get(timeout=max(0.0, deadline - time.monotonic()))
             except queue.Empty:
-                raise LifecycleError(f"the lifecycle agent did not answer ({what})") from None
+                raise LifecycleError(
+                    f"{self.name} did not answer within {timeout:g} s ({what}; see {self._log})"
+                ) from None
             if answer.get("eof"):
-                raise LifecycleError(f"the lifecycle agent has exited (see {self._log})")
+                raise LifecycleError(f"{self.name} has exited (see {self._log})")
+            if "garbage" in answer:
+                raise LifecycleError(
+                    f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
+                    f"(see {self._log})"
+                )
             if wanted is None or answer.get("id") == wanted:
                 return answer
 
@@ -96,7 +113,7 @@ class LifecycleAgent:
             self.process.stdin.write((json.dumps({"id": self._next, **request}) + "\n").encode())
             self.process.stdin.flush()
         except OSError:
-            raise LifecycleError(f"the lifecycle agent has exited (see {self._log})") from None
+            raise LifecycleError(f"{self.name} has exited (see {self._log})") from None
         return self._answer(self._next, timeout + 2.0, str(request.get("op")))
 
     def watch(self, nodes: Collection[str]) -> None:

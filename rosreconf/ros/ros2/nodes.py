@@ -11,7 +11,8 @@ Fast DDS profile and its output in ``<directory>/<component>.log``.
 
 Stand-ins are forked by one warm process that has imported rclpy already
 (``rosreconf.ros.ros2.zygote``), which saves each about 0.5 s of CPU; ``ROSRECONF_STANDIN_ZYGOTE=0``
-starts each as a process of its own instead, and so does a zygote that cannot start.
+starts each as a process of its own instead, and so does a zygote that cannot start, once that
+start has failed with its reason (a helper that hangs or talks garbage is named, not hidden).
 
 Because rosreconf (or its zygote) is the parent, it sees a node's process exit at once
 (``exited``; ``wait`` returns as soon as one does), long before DDS would. Stopping is SIGINT
@@ -232,14 +233,20 @@ class NodeProcesses:
         return [start_program(argv, log=log, env=env) for argv, log in runs]
 
     def _warm(self, env: Mapping[str, str]) -> Zygote | None:
-        """Return the stand-in zygote, started on first use; None when it cannot be had."""
+        """Return the stand-in zygote, started on first use; None when it cannot be had.
+
+        Raises:
+            ExternalToolError: it failed to start, naming it and how (once: the stand-ins
+                start on their own from then on).
+        """
         if self._zygote_failed or env.get(DISABLE_ENV) == "0":
             return None
         if self._zygote is None:
             try:
                 self._zygote = Zygote(env, self.directory / "standin-zygote.log")
-            except ExternalToolError:  # said in its log; the stand-ins start on their own
+            except ExternalToolError:  # said once, as the start's error; then each alone
                 self._zygote_failed = True
+                raise
         return self._zygote
 
     def exited(self) -> list[tuple[OwnNode, int]]:

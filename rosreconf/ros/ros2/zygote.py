@@ -28,7 +28,7 @@ from typing import IO, Any
 from rosreconf.errors import ExternalToolError
 from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
-from rosreconf.ros.ros2.runtime import ros2_python, start_helper
+from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
 
 ZYGOTE_SCRIPT = Path(__file__).with_name("standin_zygote.py")
 TITLE_ROOM = 32768
@@ -91,6 +91,7 @@ class Zygote:
         python = ros2_python(env)
         argv = [python, str(ZYGOTE_SCRIPT), " " * TITLE_ROOM]
         self.log = log
+        self.name = f"the stand-in zygote ({python} {ZYGOTE_SCRIPT.name})"
         self.process, self._alive = start_helper(argv, env, log)
         self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
         self._codes: dict[int, int] = {}
@@ -100,17 +101,24 @@ class Zygote:
         self.orphans: list[ForkedProgram] = []
         assert self.process.stdout is not None
         threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
-        if "ready" not in self._answer(60.0):
+        try:
+            first = self._answer(ANSWER_SECONDS)
+        except ExternalToolError:
             self.close()
-            raise ExternalToolError(f"the stand-in zygote did not start (see {log})")
+            raise
+        if "ready" not in first:
+            self.close()
+            raise ExternalToolError(f"{self.name} did not start: it said {first} (see {log})")
 
     def _read(self, stream: IO[bytes]) -> None:
         for line in stream:
             try:
                 said = json.loads(line)
             except ValueError:
-                continue
-            if "exited" in said:
+                said = None
+            if not isinstance(said, dict):  # not the zygote's protocol: name what it said
+                self._answers.put({"garbage": line.decode(errors="replace").strip()[:120]})
+            elif "exited" in said:
                 with self._changed:
                     self._codes[int(said["exited"])] = int(said["code"])
                     self._changed.notify_all()
@@ -125,9 +133,16 @@ class Zygote:
         try:
             answer = self._answers.get(timeout=timeout)
         except queue.Empty:
-            raise ExternalToolError(f"the stand-in zygote is silent (see {self.log})") from None
+            raise ExternalToolError(
+                f"{self.name} did not answer within {timeout:g} s (see {self.log})"
+            ) from None
         if answer.get("eof"):
-            raise ExternalToolError(f"the stand-in zygote has exited (see {self.log})")
+            raise ExternalToolError(f"{self.name} has exited (see {self.log})")
+        if "garbage" in answer:
+            raise ExternalToolError(
+                f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
+                f"(see {self.log})"
+            )
         return answer
 
     def spawn(
@@ -149,7 +164,7 @@ class Zygote:
             self.process.stdin.write("".join(f"{line}\n" for line in lines).encode())
             self.process.stdin.flush()
         except OSError:
-            raise ExternalToolError(f"the stand-in zygote has exited (see {self.log})") from None
+            raise ExternalToolError(f"{self.name} has exited (see {self.log})") from None
         forked: dict[int, ForkedProgram] = {}
         failure = None
         for _ in programs:
@@ -162,7 +177,7 @@ class Zygote:
             forked[index] = ForkedProgram(Forked(int(answer["pid"]), self), tuple(argv), log)
         if failure is not None:
             self.orphans = list(forked.values())
-            raise ExternalToolError(f"the stand-in zygote cannot fork: {failure}")
+            raise ExternalToolError(f"{self.name} cannot fork: {failure}")
         return [forked[i] for i in range(len(programs))]
 
     def code(self, pid: int) -> int | None:
