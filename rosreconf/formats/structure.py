@@ -81,8 +81,8 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
-    """Return every structural problem of ``plain``, placed in ``tree()`` (asked only then).
+def structure_problems(tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
+    """Return every structural problem of ``plain``, each placed in ``tree``.
 
     Raises:
         ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).
@@ -93,7 +93,7 @@ def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plai
     root = json_schema(kind)
     found = [_Error(e, root).as_number(plain) for e in errors]
     ordered = sorted((f for f in found if f is not None), key=lambda e: list(map(str, e.path)))
-    return [_problem_of(f, tree()) for f in ordered]
+    return [_problem_of(f, tree) for f in ordered]
 
 
 class _Error:
