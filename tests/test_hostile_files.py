@@ -54,3 +54,37 @@ def test_a_mapping_as_a_mapping_key_is_one_error_in_every_command(
     done = _run([*command, "--library", "hostile.yaml"], tmp_path)
     _one_error(done, "hostile.yaml:1:3: error: ", "a mapping key must be a plain value")
     assert not (tmp_path / "out.launch.py").exists()
+
+
+TYPO = "{service: visual_perception, type: r?obot_arm_msgs/VisualPerception}"
+OK = "{service: visual_perception, type: robot_arm_msgs/VisualPerception}"
+WHERE = {
+    "provides": ("provides[0]", f"provides: [{TYPO}]"),
+    "requires": ("requires[0]", f"requires: [{TYPO}]"),
+    "any_of": ("requires[0].any_of[1]", f"requires: [{{any_of: [{OK}, {TYPO}]}}]"),
+}
+"""The same typo in a type, as a provision, a requirement and a requirement's option."""
+
+
+@pytest.mark.parametrize("where", WHERE)
+def test_a_typo_in_a_type_is_that_types_problem_wherever_it_is_written(
+    tmp_path: Path, where: str
+) -> None:
+    """Inside a requirement or an ``any_of`` option, as under ``provides``: the type's problem,
+    at the type's column, in the same words. A requirement once got "missing required key
+    'any_of'" at the item (the alternative it was not written as)."""
+    path, entry = WHERE[where]
+    line = f"    {entry}\n"
+    (tmp_path / "lib.yaml").write_text(
+        "format: rosreconf/component-library\nversion: 1\nname: lib\ncomponents:\n"
+        f"  - name: A\n    abstraction: a\n{line}"
+    )
+    column = line.index("r?obot") + 1
+    for command in (["validate", "lib.yaml"], ["enumerate", "--library", "lib.yaml"]):
+        done = _run(command, tmp_path)
+        _one_error(
+            done,
+            f"lib.yaml:7:{column}: error: 'components[0].{path}.type' text "
+            "'r?obot_arm_msgs/VisualPerception' is not valid (a ROS type written package/Type",
+            "",
+        )
