@@ -162,7 +162,7 @@ def main() -> None:
     run = Path(__file__).resolve().parent / "run.py"
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp) / "lib"
-        split = [sys.executable, str(run), "--child", f"split-{args.roles}x10", str(folder)]
+        split = [sys.executable, str(run), "--child", f"split:{args.roles}x10", str(folder)]
         subprocess.run(split, check=True, capture_output=True)
         result = loading(folder, args.runs)
     result["instance"] = f"{args.roles} x 10"
