@@ -3,8 +3,8 @@
 Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read and checked in
 at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
 that process (``time.process_time``), every stage the loader runs (``loader.load_sources``,
-what every command takes): YAML into plain data (a library: yaml-rs, checked by libyaml;
-a schema: PyYAML's composer over libyaml, with positions), the JSON Schema check
+what every command takes): YAML into the positioned tree and plain data (PyYAML's composer
+over libyaml, rosreconf's one reader, for every file), the JSON Schema check
 (jsonschema-rs), the value checks, model building, the semantic checks. Imports are excluded
 (the whole-process rows of ``run.py`` include them).
 
@@ -31,10 +31,8 @@ STAGES = ("read", "parse", "structure", "values", "build", "check")
 def child(folder: str) -> dict[str, float]:
     """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU).
 
-    As the loader does (``loader._load_one``): a library through ``read_plain`` (yaml-rs),
-    its positioned tree never composed (the files are clean); a schema composed first.
+    As the loader does (``loader._load_one``): every file composed once by ``yamlsource.read``.
     """
-    import functools
     import gc
 
     from rosreconf.formats import loader
@@ -53,38 +51,32 @@ def child(folder: str) -> dict[str, float]:
     seconds["read"] = clock() - t
     libraries, schemas = [], []
     interfaces: dict[Any, Any] = {}  # shared by the library files, as the loader shares it
-    trees: list[Any] = []
     for src in sources:
         t = clock()
-        plain = ys.read_plain(src.data)
-        library = kind_of(plain) is DocumentKind.LIBRARY
-        if not library:
-            node, plain = ys.read(src.data, src.name)
+        tree, plain = ys.read(src.data, src.name)
         seconds["parse"] += clock() - t
-        tree = functools.cache(lambda src=src: ys.read(src.data, src.name)[0])
-        trees.append(tree)
+        assert tree is not None, f"{src.name}: empty"
         t = clock()
         kind = kind_of(plain)
         assert kind is not None, f"{src.name}: format"
+        library = kind is DocumentKind.LIBRARY
         assert not structure_problems(tree, kind, plain), f"{src.name}: structure"
         seconds["structure"] += clock() - t
         t = clock()
-        found = value_problems(tree, plain) if library else duplicate_edges(node, plain)
+        found = value_problems(tree, plain) if library else duplicate_edges(tree, plain)
         assert not found, f"{src.name}: a value problem"
         seconds["values"] += clock() - t
         t = clock()
         if library:
             libraries.append(build_library(plain, src.name, tree, interfaces))
         else:
-            assert node is not None
-            schemas.append(build_schema(plain, node, src.name))
+            schemas.append(build_schema(plain, tree, src.name))
         seconds["build"] += clock() - t
     t = clock()
     problems = check(libraries, schemas, library_complete=True)
     seconds["check"] = clock() - t
     assert not problems, problems[:3]
     seconds["total"] = sum(seconds[s] for s in STAGES)
-    assert not any(t.cache_info().currsize for t in trees), "a clean file was composed"
 
     seconds["bytes"] = float(sum(len(s.data) for s in sources))
     seconds["libyaml_reader"] = float(ys.BASE_LOADER.__name__ == "CSafeLoader")
@@ -92,19 +84,17 @@ def child(folder: str) -> dict[str, float]:
     return seconds
 
 
-FLOORS = ("libyaml", "yaml_rs", "compose")
+FLOORS = ("libyaml", "compose")
 
 
 def floors(texts: list[bytes]) -> dict[str, float]:
     """Time what a reader over PyYAML's C binding pays before rosreconf's own work.
 
     ``libyaml``: libyaml parsing the texts with no Python object per event
-    (``CParser.raw_parse``); ``yaml_rs``: yaml-rs's plain data alone (``read_plain`` adds
-    libyaml's parse and its guards); ``compose``: PyYAML's ``yaml.compose`` over libyaml with
-    its own (YAML 1.1) resolver, the positioned tree a file with a problem is composed into.
+    (``CParser.raw_parse``); ``compose``: PyYAML's ``yaml.compose`` over libyaml with its own
+    (YAML 1.1) resolver: the positioned tree alone, without rosreconf's rules or plain data.
     """
     import yaml
-    import yaml_rs
 
     clock = time.process_time
     t = clock()
@@ -113,12 +103,8 @@ def floors(texts: list[bytes]) -> dict[str, float]:
     raw = clock() - t
     t = clock()
     for text in texts:
-        yaml_rs.loads(text.decode(), parse_datetime=False)
-    rust = clock() - t
-    t = clock()
-    for text in texts:
         yaml.compose(text, Loader=yaml.CSafeLoader)
-    return {"libyaml": raw, "yaml_rs": rust, "compose": clock() - t}
+    return {"libyaml": raw, "compose": clock() - t}
 
 
 def loading(folder: Path, runs: int) -> dict[str, Any]:
@@ -137,13 +123,9 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "bytes": int(results[0]["bytes"]),
         "seconds": medians,
         "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
-        "floors": (
-            "libyaml: CParser.raw_parse (no Python objects); yaml_rs: yaml_rs.loads alone; "
-            "compose: yaml.compose"
-        ),
+        "floors": ("libyaml: CParser.raw_parse (no Python objects); compose: yaml.compose"),
         "reader": (
-            "libraries: yaml-rs's plain data, checked by libyaml (read_plain); schemas: "
-            "PyYAML's composer over libyaml (yaml.CSafeLoader)"
+            "every file: PyYAML's composer over libyaml (yaml.CSafeLoader), YAML 1.2 plain data"
             if all(r["libyaml_reader"] for r in results)
             else "PyYAML's pure-Python composer (no libyaml)"
         ),
@@ -180,7 +162,7 @@ def main() -> None:
     run = Path(__file__).resolve().parent / "run.py"
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp) / "lib"
-        split = [sys.executable, str(run), "--child", f"split-{args.roles}x10", str(folder)]
+        split = [sys.executable, str(run), "--child", f"split:{args.roles}x10", str(folder)]
         subprocess.run(split, check=True, capture_output=True)
         result = loading(folder, args.runs)
     result["instance"] = f"{args.roles} x 10"

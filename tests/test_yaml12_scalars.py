@@ -11,14 +11,9 @@ import math
 from pathlib import Path
 
 import pytest
-from conftest import examples
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
-from rosreconf.errors import InvalidInputError
 from rosreconf.formats.loader import load_paths, problems_of
 from rosreconf.formats.nodes import Scalar, resolve_plain
-from rosreconf.formats.yamlsource import read, read_plain
 
 CORE_SCHEMA: list[tuple[str, Scalar]] = [
     ("", None),
@@ -93,70 +88,8 @@ def test_an_integer_too_long_for_int_is_infinite() -> None:
     assert resolve_plain("-" + "9" * 5000) == -math.inf
 
 
-# --- the fast reader answers as the reader of record, or leaves the file to it ---------------
-
-_WORD = st.text(alphabet="0123456789+-._eExXoObBiInNfFaAlLuUtTrsSyY~ ", min_size=1, max_size=7)
-_VALUE = st.one_of(
-    _WORD,
-    _WORD.map(lambda w: f"'{w}'"),
-    _WORD.map(lambda w: f"[{w}, {w}]"),
-    st.sampled_from(["|\n    a\n    b", '"q\\tx\\u00e9"', "x # 1_000", "{a: 1, b: no}", "é2"]),
-)
-_DOCUMENT = st.lists(st.tuples(st.sampled_from(["k", "1", "0x1", "n o", "k"]), _VALUE), max_size=4)
-
-
-def _same(a: object, b: object) -> bool:
-    """Tell whether two plain documents are equal, NaN equal to NaN, types exact."""
-    if type(a) is not type(b):
-        return False
-    if isinstance(a, float) and math.isnan(a):
-        return math.isnan(b)  # type: ignore[arg-type]
-    if isinstance(a, dict):
-        assert isinstance(b, dict)
-        return list(a) == list(b) and all(_same(a[k], b[k]) for k in a)
-    if isinstance(a, list):
-        assert isinstance(b, list)
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
-    return a == b
-
-
-@given(_DOCUMENT)
-@settings(max_examples=examples(600))
-def test_the_fast_reader_answers_as_the_reader_of_record_or_not_at_all(
-    pairs: list[tuple[str, str]],
-) -> None:
-    """``read_plain`` (yaml-rs) gives ``read``'s data (libyaml, YAML 1.2), or None.
-
-    yaml-rs reads ``1_000``, ``0b101``, ``+0x1F`` and ``.iNf`` as numbers and a duplicate
-    key as a mistake of its own words; ``read`` is the reader of record.
-    """
-    text = "".join(
-        f"{key}{i}: {value}\n" if key != "k" else f"k: {value}\n"
-        for i, (key, value) in enumerate(pairs)
-    )
-    data = text.encode()
-    fast = read_plain(data)
-    try:
-        _, plain = read(data, "doc.yaml")
-    except InvalidInputError:
-        assert fast is None
-        return
-    assert fast is None or _same(fast, plain) or _number_keys(fast), (fast, plain)
-
-
-def _number_keys(plain: object) -> bool:
-    """Tell whether a mapping of ``plain`` has a key that is not text (jsonschema-rs refuses it).
-
-    ``read`` keeps a key as written (``1``, ``true``); yaml-rs reads it as YAML 1.2 does, and
-    the loader then reads the file with ``read`` (``loader._load_one``).
-    """
-    if isinstance(plain, dict):
-        return any(type(k) is not str or _number_keys(v) for k, v in plain.items())
-    return isinstance(plain, list) and any(_number_keys(v) for v in plain)
-
-
 @pytest.mark.parametrize("spelling", ["1_000", "0b101", "+0x1F", "0O17", ".iNf", "1" * 4100])
-def test_a_number_only_yaml_rs_reads_so_is_refused_as_yaml_1_2_reads_it(
+def test_a_number_only_yaml_1_1_or_python_reads_so_is_refused_as_yaml_1_2_reads_it(
     tmp_path: Path, spelling: str
 ) -> None:
     """A metric written ``1_000`` is text in YAML 1.2: refused at its line, not read as 1000."""
@@ -184,10 +117,7 @@ def _metric_library(tmp_path: Path, key: str) -> Path:
 def test_a_key_yaml_reads_as_a_number_is_refused_at_its_line_as_written(
     tmp_path: Path, key: str
 ) -> None:
-    """A metric named ``1`` is the text '1' to rosreconf, refused by the name pattern at 8:7.
-
-    yaml-rs reads such a key as a number; the file is then read by the reader of record.
-    """
+    """A metric named ``1`` is the text '1' to rosreconf, refused by the name pattern at 8:7."""
     problems = problems_of(load_paths([_metric_library(tmp_path, key)]))
     assert [(p.code, p.span.line, p.span.column) for p in problems] == [("bad-name", 8, 7)]
 

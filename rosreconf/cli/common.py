@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -164,27 +164,38 @@ CurrentOption = Annotated[
         show_default=False,
     ),
 ]
-SearchLimitOption = Annotated[
-    int,
-    typer.Option(
+
+
+def _search_limit(spent: str) -> Any:
+    """Return the ``--search-limit`` option, saying what happens when it is spent."""
+    return typer.Option(
         "--search-limit",
         min=1,
         max=10_000_000,
         help="When the fewest-change configuration fails the performance requirements: the "
-        "most configurations simulated to find one that meets them (then exit 3, saying what "
-        "was tried). Memory grows with it, not with the number of valid configurations.",
-    ),
-]
-SearchTimeOption = Annotated[
-    float,
-    typer.Option(
+        f"most configurations simulated to find one that meets them (then {spent}). Memory "
+        "grows with it, not with the number of valid configurations.",
+    )
+
+
+def _search_time(spent: str) -> Any:
+    """Return the ``--search-time`` option, saying what happens when it is spent."""
+    return typer.Option(
         "--search-time",
         min=1,
         max=7 * 24 * 3600.0,
         callback=finite,
-        help="The most seconds spent on that search (then exit 3, saying what was tried).",
-    ),
-]
+        help=f"The most seconds spent on that search (then {spent}).",
+    )
+
+
+_PLAN_SPENT = "exit 3, saying what was tried"
+_WATCH_SPENT = "log no-configuration, saying what was tried, and keep watching"
+SearchLimitOption = Annotated[int, _search_limit(_PLAN_SPENT)]
+SearchTimeOption = Annotated[float, _search_time(_PLAN_SPENT)]
+WatchSearchLimitOption = Annotated[int, _search_limit(_WATCH_SPENT)]
+"""``watch`` goes on watching when a search is spent: a later failure may have an answer."""
+WatchSearchTimeOption = Annotated[float, _search_time(_WATCH_SPENT)]
 ObjectiveOption = Annotated[
     list[str] | None,
     typer.Option(

@@ -134,7 +134,11 @@ def inspect_command(
     domain: DomainOption = 0,
     distro: DistroOption = None,
 ) -> None:
-    """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1."""
+    """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1.
+
+    Exit 3 when the live graph cannot be read: no master answering, or nothing ROS 2
+    readable on the domain.
+    """
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)

@@ -22,8 +22,8 @@ from rosreconf.cli.common import (
     OptionalMasterOption,
     Ros2Option,
     SchemaOption,
-    SearchLimitOption,
-    SearchTimeOption,
+    WatchSearchLimitOption,
+    WatchSearchTimeOption,
     finite,
     select,
 )
@@ -92,16 +92,20 @@ def watch_command(
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
-    search_limit: SearchLimitOption = SEARCH_LIMIT,
-    search_time: SearchTimeOption = SEARCH_TIME,
+    search_limit: WatchSearchLimitOption = SEARCH_LIMIT,
+    search_time: WatchSearchTimeOption = SEARCH_TIME,
 ) -> None:
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
     started (within 5 s; exit 130 or 143). With --apply, launch files and output are kept in a
     new directory rosreconf-watch-* under ROS's log directory (said at the start). ROS 2 nodes
-    and stand-ins run under ROSRECONF_ROS2_PYTHON or the first python3 with rclpy (exit 3 if
-    none). With --once: exit 0 if the system conforms at the end, else 1.
+    run as ros2 run starts them (<prefix>/lib/<package>/<executable>); stand-ins and
+    rosreconf's ROS 2 helpers run under ROSRECONF_ROS2_PYTHON or the first python3 with rclpy
+    (exit 3 if one is needed and none is found). When no configuration is found (none
+    exists, or the search for one meeting the performance requirements is spent), it logs
+    no-configuration and keeps watching. With --once: exit 0 if the system conforms at the
+    end, else 1.
     """
 
     sel = select(library, schema, None, [only] if only else None)

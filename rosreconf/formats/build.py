@@ -3,8 +3,8 @@
 The loader calls these only after a file passed its JSON Schema and value checks, so every
 key the Schema requires is present and every value has its type. Both formats are built
 from their plain data. Where a library's values are written is looked up in its positioned
-tree only when a check asks (``_Where``: a clean library never composes one); a schema, a
-small file, has its positions recorded at once (its roles and edges carry their spans).
+tree only when a check asks (``_Where``: a clean library's components never look); a schema,
+a small file, has its positions recorded at once (its roles and edges carry their spans).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from collections.abc import Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
-from rosreconf.formats.nodes import NUMBER, Plain, TreeOf, lookup, seq_of, text_of
+from rosreconf.formats.nodes import NUMBER, Plain, lookup, seq_of, text_of
 from rosreconf.formats.nodes import Node as YNode
 from rosreconf.formats.nodes import fields as map_of
 from rosreconf.formats.nodes import span as span_of
@@ -202,20 +202,20 @@ def component_where(node: Node) -> dict[str, Span]:
 
 
 class _Where(Mapping[str, Span]):
-    """A component's ``where``, looked up in its file's tree (composed then) when first read.
+    """A component's ``where``, looked up in its file's tree when first read.
 
     So positions cost nothing until a problem is reported; ``""`` is the component itself.
     """
 
     __slots__ = ("_found", "_index", "_tree")
 
-    def __init__(self, tree: TreeOf, index: int) -> None:
+    def __init__(self, tree: YNode, index: int) -> None:
         self._tree, self._index = tree, index
         self._found: dict[str, Span] | None = None
 
     def _spans(self) -> dict[str, Span]:
         if self._found is None:
-            self._found = component_where(lookup(self._tree(), ["components", self._index]))
+            self._found = component_where(lookup(self._tree, ["components", self._index]))
         return self._found
 
     def __getitem__(self, key: str) -> Span:
@@ -229,11 +229,11 @@ class _Where(Mapping[str, Span]):
 
 
 def build_library(
-    plain: Plain, name: str, tree: TreeOf, seen: Interfaces | None = None
+    plain: Plain, name: str, tree: YNode, seen: Interfaces | None = None
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``tree`` is asked for only when a position is (``_Where``). One ``seen`` for all the
+    ``tree`` is looked in only when a position is asked for (``_Where``). One ``seen`` for all the
     library files of a load makes every use of an interface the same object: a requirement
     and the provision meeting it then match by identity, without a comparison.
     """

@@ -1,9 +1,9 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file is read once into plain data (``yamlsource``), checked (``structure``, ``values``)
-and built (``build``). A library that yaml-rs reads with certainty has its positioned tree
-composed only when a problem needs a ``file:line:column``; every other file is composed
-first (``yamlsource.read``, which also says what is wrong with its YAML). The caller gets
+Each file is composed once into PyYAML's positioned tree and its plain data
+(``yamlsource.read``, which also says what is wrong with its YAML), checked (``structure``,
+``values``) and built (``build``); a problem is placed by looking its path up in the tree.
+The caller gets
 the model of every well-formed file *and* every problem, so ``validate`` reports everything
 in one run while ``enumerate`` can refuse to work on invalid input.
 """
@@ -11,7 +11,6 @@ in one run while ``enumerate`` can refuse to work on invalid input.
 from __future__ import annotations
 
 import contextlib
-import functools
 import gc
 import re
 from collections.abc import Iterable, Iterator, Sequence
@@ -104,25 +103,13 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
     Raises:
         InvalidInputError: the file is not YAML rosreconf reads, or names no known format.
     """
-    composed = functools.cache(lambda: ys.read(src.data, src.name))  # once, when needed
-
-    def tree() -> Node:
-        found = composed()[0]
-        assert found is not None, "asked only of a document that names its format"
-        return found
-
-    plain = ys.read_plain(src.data)
+    found, plain = ys.read(src.data, src.name)  # says what is wrong with the YAML itself
     kind = kind_of(plain)
-    structural = None
-    if kind is DocumentKind.LIBRARY:  # a schema records its positions at once: composed first
-        with contextlib.suppress(ValueError):  # a key yaml-rs read as a number: ``read`` says
-            structural = structure_problems(tree, kind, plain)
-    if structural is None:
-        root, plain = composed()
-        kind = kind_of(plain)
-        if kind is None:
-            raise InvalidInputError([format_problem(root, plain, src.name)])
-        structural = structure_problems(tree, kind, plain)
+    if kind is None:
+        raise InvalidInputError([format_problem(found, plain, src.name)])
+    assert found is not None, "a document that names its format has a tree"
+    tree: Node = found
+    structural = structure_problems(tree, kind, plain)
     loaded.problems.extend(todo_marks(src))
     if not structural and kind is DocumentKind.LIBRARY:
         structural = value_problems(tree, plain)
@@ -134,8 +121,8 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
     elif kind is DocumentKind.LIBRARY:
         loaded.libraries.append(build_library(plain, src.name, tree, interfaces))
     else:
-        loaded.problems.extend(duplicate_edges(tree(), plain))
-        loaded.schemas.append(build_schema(plain, tree(), src.name))
+        loaded.problems.extend(duplicate_edges(tree, plain))
+        loaded.schemas.append(build_schema(plain, tree, src.name))
 
 
 TODO_MARK = re.compile(rb"#.*?\bTODO\b|\bTODO_\w")

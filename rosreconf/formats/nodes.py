@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import TypeAlias
 
 from yaml.nodes import MappingNode as MappingNode
@@ -21,9 +21,6 @@ from rosreconf.model import Span
 
 Scalar: TypeAlias = str | int | float | bool | None
 Plain: TypeAlias = "Scalar | dict[str, Plain] | list[Plain]"
-TreeOf: TypeAlias = Callable[[], "Node"]
-"""A file's positioned tree, composed when first asked for (``loader``): positions are looked
-up when a problem is reported."""
 
 NUMBER = (int, float)
 """A tuple for isinstance: ``int | float`` in a test builds a union each time it runs."""

@@ -102,7 +102,7 @@ def schema_problems(s: InteroperabilitySchema) -> Iterator[Problem]:
 def _model(model: Dynamics, key: str, at: At, what: str) -> Iterator[Problem]:
     """Yield the problems of a transfer function or a state-space model written at ``key``.
 
-    ``at`` (which may compose the file's tree) is asked only for a problem's position.
+    ``at`` (a look-up in the file's tree) is asked only for a problem's position.
     """
     ss = isinstance(model, StateSpace)
     rows = (

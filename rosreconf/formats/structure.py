@@ -81,8 +81,8 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
-    """Return every structural problem of ``plain``, placed in ``tree()`` (asked only then).
+def structure_problems(tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
+    """Return every structural problem of ``plain``, each placed in ``tree``.
 
     Raises:
         ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).
@@ -92,12 +92,15 @@ def structure_problems(tree: nodes.TreeOf, kind: DocumentKind, plain: nodes.Plai
         return []
     root = json_schema(kind)
     found = [_Error(e, root).as_number(plain) for e in errors]
-    ordered = sorted((f for f in found if f is not None), key=lambda e: list(map(str, e.path)))
-    return [_problem_of(f, tree()) for f in ordered]
+    ordered = sorted((f for f in found if f is not None), key=_Error.path_key)
+    return [_problem_of(f, tree) for f in ordered]
 
 
 class _Error:
-    """One jsonschema-rs error with what the messages need: keyword, subschema, branches."""
+    """One jsonschema-rs error with what the messages need: keyword, subschema, branches.
+
+    The message is jsonschema-rs's own, except for the keywords ``_problem_of`` words itself.
+    """
 
     def __init__(self, error: Any, root: dict[str, Any], branch: int = 0) -> None:
         self.branch = branch  # which branch of the parent's oneOf or anyOf
@@ -110,16 +113,16 @@ class _Error:
             schema = schema[step]
         self.schema: dict[str, Any] = schema if isinstance(schema, dict) else {}
         self.validator_value = self.schema.get(self.validator)
-        if self.validator in _MESSAGES:  # jsonschema's words, which the pinned outputs keep
-            self.message = _MESSAGES[self.validator].format(self.instance, self.validator_value)
         self.many_valid = type(error.kind).__name__ == "OneOfMultipleValid"
         branches: list[Any] = getattr(error.kind, "context", None) or []
         self.context: list[_Error] = []
         if not self.many_valid:
-            for index, errors in enumerate(branches):  # in the JSON Schema's keyword order
-                found = [_Error(e, root, index) for e in errors]
-                found.sort(key=lambda e: e.keyword_rank())
-                self.context += found
+            for index, errors in enumerate(branches):
+                self.context += [_Error(e, root, index) for e in errors]
+
+    def path_key(self) -> list[str]:
+        """Order errors by where they are (the order problems are reported in)."""
+        return list(map(str, self.path))
 
     def as_number(self, plain: nodes.Plain) -> _Error | None:
         """Return this error as JSON Schema judges a YAML ``.inf`` or ``.nan``: a number.
@@ -154,19 +157,6 @@ class _Error:
                 return self
         return None
 
-    def keyword_rank(self) -> int:
-        """Return where this error's keyword is written in its subschema (jsonschema's order)."""
-        keys = list(self.schema)
-        return keys.index(self.validator) if self.validator in keys else len(keys)
-
-    def matches_type(self) -> bool:
-        """Tell whether the instance has the subschema's ``type`` (jsonschema's heuristic)."""
-        expected = self.schema.get("type")
-        if expected is None:
-            return False
-        names = [expected] if isinstance(expected, str) else list(expected)
-        return any(_is_type(self.instance, name) for name in names)
-
 
 _RANGES: dict[str, Callable[[float, float], bool]] = {
     "minimum": lambda x, limit: x < limit,
@@ -177,55 +167,35 @@ _RANGES: dict[str, Callable[[float, float], bool]] = {
 """How a number breaks each range keyword (false for NaN, as in every comparison)."""
 
 
-def _is_type(instance: Any, name: str) -> bool:
-    if name in ("number", "integer"):
-        number = isinstance(instance, int | float) and not isinstance(instance, bool)
-        return number and (name == "number" or float(instance).is_integer())
-    kinds = {"object": dict, "array": list, "string": str, "boolean": bool, "null": type(None)}
-    return name in kinds and isinstance(instance, kinds[name])
+def _blamed(alternative: _Error) -> tuple[_Error, bool]:
+    """Return the error to report for a value that fits none of its alternatives (oneOf, anyOf).
 
-
-def _best_match(errors: list[_Error], parent: _Error) -> _Error:
-    """Pick the error to blame among a ``oneOf``'s branches, as ``jsonschema.best_match`` does.
-
-    The same relevance: deeper and earlier instance paths, a keyword other than ``oneOf`` or
-    ``anyOf``, an instance of the subschema's type; ties keep the JSON Schema's order.
+    The alternative blamed is the one the value is closest to in shape: the fewest errors at
+    the value itself (a missing or unknown key, a wrong type), then the first written. A
+    requirement ``{service: s, type: r?obot/T}`` fits the interface, not ``any_of``: its
+    problem is its type's, at the type. The first error of that alternative is reported,
+    and True when it lies inside the value (the value's shape fits that alternative).
     """
+    by_branch: dict[int, list[_Error]] = {}
+    for e in alternative.context:
+        by_branch.setdefault(e.branch, []).append(e)
 
-    def relevance(e: _Error) -> tuple[Any, ...]:
-        relative = e.path[len(parent.path) :]
-        return (
-            -len(relative),
-            relative,
-            e.validator not in ("oneOf", "anyOf"),
-            False,
-            not e.matches_type(),
-        )
+    def at_value(errors: list[_Error]) -> int:
+        return sum(len(e.path) == len(alternative.path) for e in errors)
 
-    best = max(errors, key=relevance)
-    while best.context:
-        smallest = sorted(best.context, key=relevance)[:2]
-        if len(smallest) == 2 and relevance(smallest[0]) == relevance(smallest[1]):
-            return best
-        best = smallest[0]
-    return best
-
-
-_MESSAGES = {
-    "enum": "{0!r} is not one of {1!r}",
-    "exclusiveMinimum": "{0!r} is less than or equal to the minimum of {1!r}",
-    "exclusiveMaximum": "{0!r} is greater than or equal to the maximum of {1!r}",
-    "maxItems": "{0!r} is too long",
-    "minLength": "{0!r} is too short",
-}
-"""Messages reported in jsonschema-rs's words elsewhere, kept as rosreconf always wrote them."""
+    branch = min(by_branch, key=lambda b: (at_value(by_branch[b]), b))
+    errors = sorted(by_branch[branch], key=_Error.path_key)  # at the value itself first
+    return errors[0], at_value(by_branch[branch]) == 0
 
 
 def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     if error.validator in ("oneOf", "anyOf") and error.context:
-        hint = str(error.schema.get("x-hint", ""))
-        problem = _problem_of(_best_match(error.context, error), tree)
-        return Problem(problem.span, problem.message, hint or problem.hint, problem.code)
+        blamed, fits = _blamed(error)
+        problem = _problem_of(blamed, tree)
+        if fits:  # a value inside the alternative it fits: its own words, as anywhere else
+            return problem
+        hint = problem.hint or str(error.schema.get("x-hint", ""))  # else: the alternatives
+        return Problem(problem.span, problem.message, hint, problem.code)
     path = error.path
     node = nodes.lookup(tree, path)
     span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)

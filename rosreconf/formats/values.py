@@ -18,9 +18,8 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ``simchecks``'s, on the built model.
 
 Each check runs once, on the plain data, after its JSON Schema check passed and before model
-objects are built; only a value found wrong is looked up in the positioned tree (composed
-then, when the loader read the file without one) for its ``file:line:column`` and its text
-as written.
+objects are built; only a value found wrong is looked up in the positioned tree for its
+``file:line:column`` and its text as written.
 """
 
 from __future__ import annotations
@@ -52,7 +51,7 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
+def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Return the problems of a structurally valid library's numbers and launch values."""
     problems: list[Problem] = []
     components = plain.get("components") if isinstance(plain, dict) else None
@@ -82,7 +81,7 @@ def value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
     return problems
 
 
-def schema_value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Problem]:
+def schema_value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     """Return the integers of a schema's simulation block too large to become floats.
 
     Refused here, at their position, before they can stop the build.
@@ -91,12 +90,12 @@ def schema_value_problems(tree: nodes.TreeOf, plain: nodes.Plain) -> list[Proble
     return list(_huge(simulation, tree, "simulation"))
 
 
-def _at(tree: nodes.TreeOf, *path: str | int) -> nodes.Node | None:
-    """Return the node at ``path`` of the tree (composed when first asked for)."""
-    return nodes.lookup(tree(), path)
+def _at(tree: nodes.Node, *path: str | int) -> nodes.Node | None:
+    """Return the node at ``path`` of the tree."""
+    return nodes.lookup(tree, path)
 
 
-def _huge(plain: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[Problem]:
+def _huge(plain: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator[Problem]:
     """Refuse every integer under ``plain`` (at ``path``) too large for a float."""
     if type(plain) is int and abs(plain) > FLOAT_MAX:
         node = _at(tree, *path)
@@ -115,7 +114,7 @@ def _huge(plain: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[
             yield from _huge(child, tree, *path, i)
 
 
-def _qos(interface: nodes.Plain, tree: nodes.TreeOf, *path: str | int) -> Iterator[Problem]:
+def _qos(interface: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator[Problem]:
     """Refuse an interface's (and its options') QoS numbers beyond DDS's 32-bit ``long``."""
     if not isinstance(interface, dict):
         return
@@ -161,7 +160,7 @@ def _number(value: nodes.Plain, high: float, what: str, node: nodes.Node | None)
     )
 
 
-def _parameter(key: str, value: nodes.Plain, tree: nodes.TreeOf, i: int) -> Iterator[Problem]:
+def _parameter(key: str, value: nodes.Plain, tree: nodes.Node, i: int) -> Iterator[Problem]:
     """Refuse unmarked substitutions, non-finite or subnormal floats, integers ROS 1 cannot carry.
 
     A mapping (``{substitution: "..."}``) is marked by the user; its shape is the Schema's job.

@@ -6,30 +6,26 @@ library. rosreconf's rules: no tags but the string ones; duplicate keys are erro
 both lines; no anchors or aliases ("billion laughs"); at most ``MAX_BYTES`` and ``MAX_DEPTH``;
 plain scalars resolve with YAML 1.2's core schema (``nodes.resolve_plain``). What shows in
 libyaml's event stream alone (a tag, an anchor or alias, a second document, a syntax error)
-is found by one pass over it (``_event_problems``), made only when it may be there.
+is found by one pass over it (``_event_problems``), made only when it may be there: when the
+text holds ``!``, ``&`` or ``*``, or libyaml stopped at a syntax error.
 
-``read_plain`` is the fast way to the same plain data, without positions: yaml-rs (a YAML 1.2
-reader in Rust) makes the Python objects about eight times faster than composing the tree.
-It answers only when it is sure that ``read`` would give the same data and no problem;
-otherwise it returns None and the caller uses ``read``, which says what is wrong.
+This is rosreconf's one YAML reader: every file (libraries, schemas, configuration files) is
+composed once, here, and its problems placed with the marks of its nodes.
 """
 
 from __future__ import annotations
 
 import io
-import re
 from typing import Any
 
 import yaml
 
 from rosreconf.errors import InvalidInputError, Problem
 from rosreconf.formats.nodes import (
-    NUMBER,
     MappingNode,
     Node,
     Plain,
     ScalarNode,
-    resolve_plain,
     span,
     value,
 )
@@ -136,86 +132,6 @@ def read(data: bytes, file: str) -> tuple[Node | None, Plain]:
     return root, plain
 
 
-_UNSURE = (
-    b"!",
-    b"&",
-    b"*",
-    b"\n---",
-    b"\n...",
-    b"\xc2\x85",
-    b"\xe2\x80\xa8",
-    b"\xe2\x80\xa9",
-    b"\xef\xbb\xbf",
-)
-"""What ``read_plain`` leaves to ``read``: a tag, anchor or alias (refused with its position), a
-second document, and the YAML 1.1 line breaks (NEL, LS, PS) and byte order mark that
-libyaml reads differently from yaml-rs."""
-_WORDS = bytes.maketrans(b",[]{}:#'\"", b" " * 9)
-"""What ends a word that may be a number: flow indicators, a key's colon, comments, quotes."""
-_NUMBER_START = frozenset(b"0123456789+-._")
-"""The first characters of every word yaml-rs may read as a number (``1_000``, ``.iNf``...)."""
-_LONGEST_NUMBER = 100
-"""Longer numbers go to ``read`` (``resolve_plain`` reads integers over 4000 digits as
-infinite, yaml-rs as integers)."""
-
-
-def _numbers_agree(data: bytes) -> bool:
-    """Tell whether yaml-rs reads every word of ``data`` that may be a number as YAML 1.2 does.
-
-    yaml-rs also reads ``1_000``, ``0b1``, ``+0x1F`` or ``.iNf`` as numbers, which YAML 1.2
-    (``resolve_plain``) reads as text; a file with such a word, even in a comment or a quoted
-    value, is left to ``read``. A word YAML 1.2 reads as text (``640x480``, ``5-dof``) is
-    asked of yaml-rs alone: a scalar's reading does not depend on where it is written.
-    """
-    import yaml_rs
-
-    for word in set(data.translate(_WORDS).split()):
-        if word[0] not in _NUMBER_START or not _MAY_BE_NUMBER.search(word):
-            continue
-        text = word.decode("utf-8", "replace")
-        if len(word) > _LONGEST_NUMBER:
-            return False
-        if type(resolve_plain(text)) not in NUMBER:
-            try:
-                alone: Any = yaml_rs.loads(f"k: {text}", parse_datetime=False)
-                if type(alone["k"]) is not str:
-                    return False
-            except (ValueError, TypeError, KeyError):  # not a plain scalar alone: unsure
-                return False
-    return True
-
-
-_MAY_BE_NUMBER = re.compile(rb"[0-9]|(?i:inf|nan)")
-
-
-def read_plain(data: bytes) -> Plain | None:
-    """Return the plain data ``read`` would give, when it is sure of it; else None.
-
-    Sure: libyaml accepts the text (``raw_parse``, no Python objects), yaml-rs finds no
-    duplicate key, and the text holds nothing the two read differently (``_UNSURE``,
-    ``_numbers_agree``). Left to the caller: a mapping key YAML 1.2 reads as a number stays
-    one here, where ``read`` keeps its text; jsonschema-rs refuses it (``ValueError``).
-    """
-    if BASE_LOADER is yaml.SafeLoader or len(data) > MAX_BYTES or any(m in data for m in _UNSURE):
-        return None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        return None
-    if not _numbers_agree(data):
-        return None
-    import yaml_rs  # imported by the commands that read files, when they read one (cached)
-
-    try:
-        BASE_LOADER(data).raw_parse()  # libyaml must accept the text, as ``read`` would
-        plain: Any = yaml_rs.loads(
-            text, parse_datetime=False, duplicate_key_policy=yaml_rs.DuplicateKeyPolicy.Error
-        )
-    except (yaml.YAMLError, ValueError, RecursionError):
-        return None
-    return plain  # type: ignore[no-any-return]
-
-
 def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
     """Return ``node`` (a collection at ``depth``) as plain data; add key problems to ``problems``.
 
@@ -236,7 +152,8 @@ def _plain(node: Node, problems: list[Problem], depth: int) -> Plain:
     for key, item in node.value:
         if type(key) is not ScalarNode:
             message = "a mapping key must be a plain value, not a list or mapping"
-            problems.append(Problem(span(key), message, code="complex-key"))
+            fix = "write the key as a plain name or quoted text"
+            problems.append(Problem(span(key), message, fix, "complex-key"))
         elif key.value in out:
             first = next(k for k, _ in node.value if k.value == key.value).start_mark.line + 1
             message = f"duplicate key '{key.value}' (first written at line {first})"

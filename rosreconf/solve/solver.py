@@ -43,6 +43,7 @@ __all__ = [
     "ClingoEngine",
     "EliminationEngine",
     "Objective",
+    "asp_program",
     "best_configuration",
     "configurations",
     "optimise",
@@ -137,12 +138,20 @@ def _restart_facts(inst: Instance, objective: Objective, ids: dict[str, int]) ->
     return out
 
 
+def asp_program(inst: Instance, objective: Objective | None = None) -> str:
+    """Return the whole ASP program clingo solves for ``inst``: the rules, then its facts.
+
+    Public so that clingo can be run on it alone (``python -m clingo``), as the benchmarks'
+    reference does.
+    """
+    return PROGRAM + (OPTIMISE if objective is not None else "") + _facts(inst, objective)
+
+
 def _control(inst: Instance, objective: Objective | None, args: list[str]) -> clingo.Control:
     import clingo
 
     ctl = clingo.Control(["--warn=none", *args])
-    ctl.add("base", [], PROGRAM + (OPTIMISE if objective is not None else ""))
-    ctl.add("base", [], _facts(inst, objective))
+    ctl.add("base", [], asp_program(inst, objective))
     ctl.ground([("base", [])])
     return ctl
 
