@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Read a ROS 2 graph with rclpy itself, the tests' independent reference (run under rclpy).
 
-Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [NODE ...]. Prints one JSON document:
+Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [--until-wired] [NODE ...]. Prints one JSON
+document:
 {"nodes": [full names], "topics": {name: [types]}, "services": {name: [types]},
  "states": {node: lifecycle state label, via its get_state service},
  "dangling": {"calls": [[node, service]], "subscriptions": [[node, topic]]}}: each service a
@@ -41,7 +42,7 @@ def _dangling(node: Any) -> dict[str, list[list[str]]]:
     }  # servers only: the graph-wide service list holds clients' names too
     for name, ns in nodes:
         full = ns.rstrip("/") + "/" + name
-        if name == "_rosreconf_probe":
+        if name.startswith("_"):  # hidden: this probe, rosreconf's lifecycle agent
             continue
         for service, _ in node.get_client_names_and_types_by_node(name, ns):
             if service not in served:
@@ -59,6 +60,7 @@ def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("seconds", type=float)
     ap.add_argument("--wait-for", action="append", default=[])
+    ap.add_argument("--until-wired", action="store_true")
     ap.add_argument("nodes", nargs="*")
     args = ap.parse_intermixed_args()
     nodes = args.nodes
@@ -74,6 +76,12 @@ def main() -> int:
         seen = {*graph[0], *graph[1], *graph[2]}
         if set(args.wait_for) <= seen and time.monotonic() - since >= 1.0:
             break
+    # "nothing dangles" is a claim about the settled graph: a provider's endpoints that this
+    # reader has not discovered yet are read again until they are, or the deadline passes
+    dangling = _dangling(node)
+    while args.until_wired and any(dangling.values()) and time.monotonic() < deadline:
+        rclpy.spin_once(node, timeout_sec=0.2)
+        dangling = _dangling(node)
     names, topics, services = _graph(node)
     states = {}
     for name in nodes:
@@ -85,7 +93,7 @@ def main() -> int:
         rclpy.spin_until_future_complete(node, future, timeout_sec=10.0)
         states[name] = future.result().current_state.label if future.done() else None
     doc = {"nodes": names, "topics": topics, "services": services, "states": states}
-    doc["dangling"] = _dangling(node)
+    doc["dangling"] = dangling
     print(json.dumps(doc))
     rclpy.shutdown()
     return 0

@@ -126,6 +126,7 @@ def probe(
     *nodes: str,
     wait_for: Iterable[str] = (),
     python: Path | None = None,
+    until_wired: bool = False,
 ) -> dict[str, Any]:
     """Return rclpy's own view of the domain (tests/ros2_probe.py).
 
@@ -133,9 +134,10 @@ def probe(
     or after PROBE_SECONDS: a busy machine discovers slowly.
     """
     waits = [arg for name in {*wait_for, *nodes} for arg in ("--wait-for", name)]
+    wired = ["--until-wired"] if until_wired else []
+    argv = [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *wired, *nodes]
     out = subprocess.run(
-        [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *nodes],
-        env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
+        argv, env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
         timeout=PROBE_SECONDS + 60, check=True,
     )  # fmt: skip
     return dict(json.loads(out.stdout))
@@ -187,7 +189,8 @@ def test_kill_nsm3_replans_onto_the_dc_arm_stops_the_replaced_and_confirms(
         for name in REPLACED:
             assert not alive(pids[name]), name
         expected = {f"/{c}" for c in [*DC_ARM, "NCA1", "NCO1", "NVP1", "NREA"]}
-        seen = probe(watch.env, ros2_domain, wait_for=[*expected, "/arm_dc/elbow/servo_command"])
+        seen = probe(watch.env, ros2_domain, wait_for=[*expected, "/arm_dc/elbow/servo_command"],
+                     until_wired=True)  # fmt: skip
         assert expected <= set(seen["nodes"]), seen["nodes"]
         assert not {f"/{c}" for c in [*REPLACED, "NSM3"]} & set(seen["nodes"])
         types = seen["services"]["/arm_dc/elbow/servo_command"]
@@ -238,7 +241,10 @@ def test_standby_failover_is_activate_and_the_states_read_back(
         parked = {e["component"]: e for e in after if e.get("transition") == "deactivate"}
         assert sorted(parked) == sorted(REPLACED)  # out of service, a ready standby now
         assert all(e["ok"] and e["state"] == "inactive" for e in parked.values())
-        seen = probe(watch.env, ros2_domain, "/NDC3", "/NFB11", "/NSM1", "/NFB21", "/NREA")
+        served = [f"/arm_dc/{j}/servo_command" for j in ("base", "shoulder", "elbow", "wrist",
+                                                         "gripper")]  # fmt: skip
+        seen = probe(watch.env, ros2_domain, "/NDC3", "/NFB11", "/NSM1", "/NFB21", "/NREA",
+                     wait_for=served)  # fmt: skip
         assert seen["states"] == {"/NDC3": "active", "/NFB11": "active", "/NSM1": "inactive",
                                   "/NFB21": "inactive", "/NREA": "active"}  # fmt: skip
         dangling = seen["dangling"]["calls"]  # the parked standbys are no one's to call
@@ -354,21 +360,33 @@ def test_a_stand_in_announces_the_librarys_invented_types(
 def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
     ros2_domain: int, tmp_path: Path
 ) -> None:
+    """The team's own nodes, started as its launch file would (wired by -r rules), each
+    acting out its whole library entry as a real executable does. After NSM3 dies, watch
+    names the replaced ones to stop and the kept reasoner to restart with its new remappings;
+    a person does both, and watch confirms."""
     from rosreconf.formats.loader import load_bundled
+    from rosreconf.model import Configuration
+    from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
     from rosreconf.ros.ros2.runtime import lease_profile
     from rosreconf.ros.standin_spec import ros2_standin_spec
 
-    library = load_bundled().library
+    bundle = load_bundled()
+    library = bundle.library
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    remaps = wiring(library, schema, nominal)
     profile = tmp_path / "lease.xml"
     profile.write_text(lease_profile(2.0))  # a crash is seen by DDS within seconds
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain),
            "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}  # fmt: skip
     script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
-    ours = {
-        c: subprocess.Popen([str(_ros2_python()), str(script), json.dumps(ros2_standin_spec(
-            library[c]))], env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-        for c in NOMINAL
-    }  # fmt: skip
+
+    def start(c: str, args: list[str]) -> subprocess.Popen[bytes]:
+        spec = json.dumps(ros2_standin_spec(library[c]))
+        return subprocess.Popen([str(_ros2_python()), str(script), spec, *args], env=env,
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+
+    ours = {c: start(c, ros2_node_arguments(library, c, remaps)) for c in NOMINAL}
     watch: Watch | None = None
     try:
         for p in ours.values():  # all up before watch looks, or it would start its own
@@ -382,10 +400,17 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
         after = watch.events()[before:]
         by_hand = sorted(e["component"] for e in after if e["event"] == "stop-by-hand")
         assert by_hand == sorted(REPLACED)
-        assert sorted(left["nodes"]) == sorted(f"/{c}" for c in REPLACED)
+        (restart,) = (e for e in after if e["event"] == "restart-by-hand")
+        assert restart["component"] == "NREA"
+        assert "base/digital_servo_command:=/arm_servo/base/servo_command" not in restart[
+            "remappings"]  # fmt: skip
+        assert sorted(left["nodes"]) == sorted(f"/{c}" for c in [*REPLACED, "NREA"])
         assert not [e for e in after if e["event"] == "conformant"]
-        for c in REPLACED:  # a person stops them
+        for c in [*REPLACED, "NREA"]:  # a person stops them
             ours[c].send_signal(signal.SIGINT)
+            ours[c].wait(20)
+        rules = [a for r in restart["remappings"] for a in ("-r", r)]
+        ours["NREA"] = start("NREA", ["--ros-args", "-r", "__node:=NREA", *rules])
         done = watch.wait("conformant", after=before)
         assert done["configuration"]["elbow_joint"] == "NDC3"
     finally:
@@ -414,12 +439,14 @@ def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> N
     program.write_text("#!/bin/sh\n")
     program.chmod(0o755)
     nodes = NodeProcesses({"AMENT_PREFIX_PATH": f"/nonexistent:{prefix}"}, tmp_path)
+    from rosreconf.model.wiring import used_interfaces
     from rosreconf.ros.launchfiles import wiring
 
-    argv = nodes.command(bundle.library, "NDC1", wiring(bundle.library, schema, config))
+    uses = used_interfaces(bundle.library, schema, config.mapping)
+    argv = nodes.command(bundle.library, "NDC1", wiring(bundle.library, schema, config), uses)
     assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", "joint:=base"]
     with pytest.raises(ExternalToolError, match="robot_arm_servo was not found"):
-        nodes.command(bundle.library, "NSM1", {})
+        nodes.command(bundle.library, "NSM1", {}, {})
 
 
 def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(

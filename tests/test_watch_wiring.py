@@ -42,8 +42,13 @@ def _python(distro: str) -> Path:
     return python
 
 
-def _camera_switch(watch: Watch, domain: int, python: Path) -> dict[str, object]:
-    """Kill NCA1, wait for ``conformant``; return what happened and rclpy's view after."""
+def _camera_switch(
+    watch: Watch, domain: int, python: Path, until_wired: bool = True
+) -> dict[str, object]:
+    """Kill NCA1, wait for ``conformant``; return what happened and rclpy's view after.
+
+    ``until_wired``: rclpy's view is read again until nothing dangles (or its deadline).
+    """
     watch.wait("conformant")
     before = len(watch.events())
     os.kill(watch.pids()["NCA1"], signal.SIGKILL)
@@ -51,7 +56,8 @@ def _camera_switch(watch: Watch, domain: int, python: Path) -> dict[str, object]
     after = watch.events()[before:]
     (replanned,) = (e for e in after if e["event"] == "replanned")
     nodes = {f"/{c}" for c in done["configuration"].values() if c}  # type: ignore[union-attr]
-    seen = probe(watch.env, domain, wait_for=nodes, python=python)
+    wait_for = [*nodes, "/gripper2/feeling"]
+    seen = probe(watch.env, domain, wait_for=wait_for, python=python, until_wired=until_wired)
     return {"replanned": replanned, "after": after, "seen": seen, "nodes": nodes}
 
 
@@ -91,7 +97,7 @@ def test_standby_camera_switch_activates_standbys_started_wired(
         while not {*NOMINAL, *standby} <= watch.configured():
             watch.wait("lifecycle", after=len(watch.events()) - 1)
         python = _python("jazzy")
-        got = _camera_switch(watch, ros2_domain, python)
+        got = _camera_switch(watch, ros2_domain, python, until_wired=False)  # parked ones dangle
         after = got["after"]
         assert isinstance(after, list)
         launched = sorted(c for e in after if e["event"] == "launch" for c in e["components"])
@@ -152,7 +158,7 @@ def test_real_executables_are_restarted_with_their_new_remappings(
     try:
         watch.wait("conformant")
         nominal = probe(watch.env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL])
-        got = _camera_switch(watch, ros2_domain, python)
+        got = _camera_switch(watch, ros2_domain, python, until_wired=False)
         seen = got["seen"]
         assert isinstance(seen, dict)
         # the reasoner's DC-arm alternatives are its own, never wired (the servo arm runs):
