@@ -50,6 +50,7 @@ import jinja2
 
 from rosreconf.model import Configuration, Requirement
 from rosreconf.planning.pddl_names import PddlNameError, PddlNames, Step, label
+from rosreconf.planning.pddl_rewiring import rewiring
 from rosreconf.resources import Bundle, bundled
 from rosreconf.solve.emptyroles import as_candidate, as_chosen
 from rosreconf.solve.instance import Instance
@@ -148,7 +149,7 @@ def render(
     extra = {n for u in range(len(inst.roles)) for n in inst.excluded[u]}
     comps = {n: names.component(n) for n in sorted(candidates | extra | set(inst.failed))}
     t = _Tables(inst, roles, comps, _requirement_names(inst, names))
-    rewiring = _rewiring(inst, t, objective)
+    wires = rewiring(inst, t.roles, objective)
     actions = _choose_actions(inst, names, t, objective, _costs(inst, objective))
     actions += _connect_actions(inst, names, t)
     actions += _finish_actions(inst, names, t, objective, _costs(inst, objective).change)
@@ -168,8 +169,8 @@ def render(
         "current": [(names.role(r), c or "(empty)") for r, c in current.items()],
         "weights": dict(objective.weights),
         "forbid": [f[1:-1] for f in forbidden],
-        "rewired": bool(rewiring.needs),
-        "flags": rewiring.flags,
+        "rewired": bool(wires.needs),
+        "flags": wires.flags,
     }
     return PddlTask(
         _template("domain.pddl.j2").render(context),
@@ -260,54 +261,12 @@ def _requirement_names(inst: Instance, names: PddlNames) -> dict[Requirement, st
     }
 
 
-@dataclass
-class _Rewiring:
-    """``Objective.restarts`` as literals: what each choice adds, what a kept role needs.
-
-    Attributes:
-        adds: (provider role, candidate) -> the literals choosing it adds: ``(wire-U-K)`` for
-            each thing it wires the kept component of role U to that it is wired to now,
-            ``(rewired U)`` for anything else.
-        needs: consumer role -> the ``(wire-U-K)`` its kept component needs to stay as it is.
-    """
-
-    adds: dict[tuple[int, str], list[str]] = field(default_factory=dict)
-    needs: dict[int, list[str]] = field(default_factory=dict)
-
-    @property
-    def flags(self) -> list[str]:
-        """Return the 0-ary predicates the domain declares for it."""
-        return [f[1:-1] for fs in self.needs.values() for f in fs]
-
-
-def _rewiring(inst: Instance, t: _Tables, objective: Objective) -> _Rewiring:
-    """Compile ``Objective.restarts`` for the choose and finish actions (module docstring)."""
-    index, table, out = inst.role_index, objective.restarts, _Rewiring()
-    number: dict[int, dict[object, int]] = {}
-    for u, was in sorted(table.wired.items()):
-        if u in index:
-            number[index[u]] = {w: k for k, w in enumerate(sorted(was))}
-            out.needs[index[u]] = [f"(wire-{t.roles[index[u]]}-{k})" for k in range(len(was))]
-    for (u, v), offer in sorted(table.offers.items()):
-        if u not in index or v not in index:
-            continue
-        ui, known = index[u], number.get(index[u], {})
-        for name, pairs in offer.items():
-            adds = out.adds.setdefault((index[v], as_candidate(v, name)), [])
-            for w in sorted(pairs):
-                k = known.get(w)
-                adds.append(
-                    f"(rewired {t.roles[ui]})" if k is None else f"(wire-{t.roles[ui]}-{k})"
-                )
-    return out
-
-
 def _choose_actions(
     inst: Instance, names: PddlNames, t: _Tables, objective: Objective, costs: _Costs
 ) -> list[Action]:
     out = []
     roles, comps = t.roles, t.comps
-    rewires = _rewiring(inst, t, objective).adds
+    rewires = rewiring(inst, t.roles, objective).adds
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
         for c in dom:
@@ -386,7 +345,7 @@ def _finish_actions(
     """
     out = []
     roles, comps = t.roles, t.comps
-    needs = _rewiring(inst, t, objective).needs
+    needs = rewiring(inst, t.roles, objective).needs
     for u, dom in enumerate(inst.domains):
         role = inst.roles[u]
         kept = objective.current.get(role.name)

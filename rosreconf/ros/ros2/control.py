@@ -212,8 +212,10 @@ class Ros2Control:
         managed = [c for c in components if self._managed(c)]
         if managed:
             self._agent_call(lambda agent: agent.watch([self._node(c) for c in managed]))
-        groups = [c for c in managed if c in fresh], [c for c in managed if c not in fresh]
-        for group, appear in zip(groups, (APPEAR, None), strict=True):
+        # the ready standbys first (one activate each), then what had to start: a fresh node's
+        # services take a while to appear, and the standbys need not wait for them
+        groups = [c for c in managed if c not in fresh], [c for c in managed if c in fresh]
+        for group, appear in zip(groups, (None, APPEAR), strict=True):
             todo = [c for c in group if self.states.get(c, "unconfigured") == "unconfigured"]
             configured = self._transitions([(c, "configure") for c in todo], appear)
             ready = [c for c in group if c not in todo or configured.get(c)]
@@ -237,7 +239,10 @@ class Ros2Control:
             stale = self.nodes.miswired(self.library, self.schema, configuration, components)
         except ExternalToolError:
             stale = []  # said by start, which fails the same way
-        for own in self.nodes.stop(stale):
+        stopped = self.nodes.stop(stale)
+        if stopped:  # the agent's clients matched the old processes: made anew for the new
+            self._agent_call(lambda agent: agent.forget([own.node for own in stopped]))
+        for own in stopped:
             self.parked.discard(own.node)
             self.states.pop(own.component, None)
             self.say("stop", f"stopped {own.component} to restart it wired for the new "

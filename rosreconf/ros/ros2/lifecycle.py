@@ -121,6 +121,15 @@ class LifecycleAgent:
         if nodes:
             self._ask({"op": "watch", "nodes": sorted(nodes)}, self.timeout)
 
+    def forget(self, nodes: Collection[str]) -> None:
+        """Drop the clients of nodes whose process was stopped, to be made anew on next use.
+
+        A node restarted under the same name is then matched by fresh clients, not through
+        endpoints that were matched with its predecessor.
+        """
+        if nodes:
+            self._ask({"op": "forget", "nodes": sorted(nodes)}, self.timeout)
+
     def ready(self, nodes: Collection[str]) -> set[str]:
         """Return the nodes whose lifecycle services are matched now (no waiting)."""
         answer = self._ask({"op": "ready", "nodes": sorted(nodes)}, self.timeout)

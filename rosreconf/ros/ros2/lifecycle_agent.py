@@ -159,6 +159,11 @@ class Agent:
             for node in request.get("nodes", []):
                 self._clients(node)
             return {"ok": True}
+        if op == "forget":  # a node restarted under its name: new clients match it afresh
+            for node in request.get("nodes", []):
+                for client in self.clients.pop(node, ()):
+                    self.node.destroy_client(client)
+            return {"ok": True}
         if op == "ready":
             nodes = request.get("nodes", [])
             ready = [n for n in nodes if all(c.service_is_ready() for c in self._clients(n))]
