@@ -8,8 +8,8 @@ exit. Without pidfds (older kernels, other systems) it checks /proc every ``FALL
 
 A process stopped by SIGSTOP (or under a tracer) never exits, and its lease runs out only
 after 20 s: nothing on the network says it is hung sooner. Its state letter in
-/proc/<pid>/stat (``T``, ``t``) does, so each poll reads it for every watched process (a
-few microseconds each); a poll whose timeout is 0.1 s sees a stop within 0.1 s.
+/proc/<pid>/stat (``T``, ``t``) does, so a poll reads it for every watched process every
+``STOP_EVERY`` s while it waits.
 """
 
 from __future__ import annotations
@@ -25,6 +25,10 @@ from rosreconf.ros.ros2.hostprocs import PROC, ProcId, read_proc_id
 
 FALLBACK_STEP = 0.02
 """Seconds between /proc checks when pidfds are not available."""
+
+STOP_EVERY = 0.05
+"""Seconds between reads of the watched processes' states during a wait (a stop is seen
+within this; reading one /proc/<pid>/stat takes microseconds)."""
 
 STOPPED_STATES = frozenset("Tt")
 """/proc/<pid>/stat states of a process that runs no code until continued."""
@@ -159,29 +163,40 @@ class ProcessWatch:
             self.remove(proc)
 
     def poll(self, timeout: float) -> WatchEvents:
-        """Wait at most ``timeout`` s for a watched process to exit; report stops as well.
+        """Wait at most ``timeout`` s for a watched process to exit, stop or resume.
 
-        Returns at the first exit; stops and resumes are read once the wait ends.
+        Returns at the first exit (milliseconds: the kernel wakes the wait); stops and
+        resumes are read every ``STOP_EVERY`` s of the wait, so a long timeout still sees a
+        SIGSTOP within that.
         """
-        exited = list(self._gone)
-        self._gone.clear()
-        if not exited:
-            exited = self._wait(timeout)
-        for proc in exited:
-            self.remove(proc)
+        deadline = time.monotonic() + timeout
+        while True:
+            exited = list(self._gone)
+            self._gone.clear()
+            if not exited:
+                exited = self._wait(min(STOP_EVERY, max(0.0, deadline - time.monotonic())))
+            for proc in exited:
+                self.remove(proc)
+            stopped, resumed = self._states()
+            now = time.monotonic()
+            if exited or stopped or resumed or now >= deadline:
+                return WatchEvents(tuple(exited), tuple(stopped), tuple(resumed), now)
+
+    def _states(self) -> tuple[list[ProcId], list[ProcId]]:
+        """Return the watched processes newly stopped and newly running again."""
         stopped: list[ProcId] = []
         resumed: list[ProcId] = []
         for proc in sorted(self._watched):
             state = proc_state(proc.pid, self.proc_root)
             if state is None or state in "ZX":
-                continue  # exiting: the pidfd or the next poll reports it
+                continue  # exiting: the pidfd or the next wait reports it
             if state in STOPPED_STATES and proc not in self._stopped:
                 self._stopped.add(proc)
                 stopped.append(proc)
             elif state not in STOPPED_STATES and proc in self._stopped:
                 self._stopped.discard(proc)
                 resumed.append(proc)
-        return WatchEvents(tuple(exited), tuple(stopped), tuple(resumed), time.monotonic())
+        return stopped, resumed
 
     def _wait(self, timeout: float) -> list[ProcId]:
         """Return the processes that exited within ``timeout`` s (empty: none did)."""
