@@ -284,3 +284,31 @@ def test_two_processes_that_may_hold_a_participant_are_ambiguous(tmp_path: Path)
     assert where.found is Found.CONFIRMED and where.proc == ProcId(0x1234, 100)
     late = HostProcesses({0xABCD}, tmp_path).locate(guid, domain, seen_at=0.5)
     assert late.found is Found.NO_CANDIDATE  # started after the participant was seen
+
+
+@pytest.mark.parametrize("distro", ros2_real.DISTROS)
+def test_a_node_in_a_pid_namespace_is_found_by_its_host_pid(
+    distro: str, ros2_domain: int, tmp_path: Path
+) -> None:
+    """In a pid namespace (a container) the GUID carries pid 1: NSpid links it to this host's."""
+    if os.geteuid() != 0:
+        pytest.skip("needs root for unshare --pid")
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({"nodes": [{"name": "contained", "namespace": "/"}]}))
+    argv = ["unshare", "--pid", "--fork", "--kill-child"]
+    argv += [str(ros2_real.python_of(distro)), str(ros2_real.NODE), str(spec)]
+    env = ros2_real.node_env(ros2_domain, tmp_path / "home")
+    proc = ros2_harness.start_ready(argv, tmp_path / "err", env, "namespaced node")
+    try:
+        with Ros2Discovery(ros2_domain, distro) as session:
+            session.read()
+            located = locate_participants(session.participant_nodes, ros2_domain)
+        (where,) = located.values()
+        assert fastdds_ids.fastdds_fields(where.participant) == (fastdds_ids.this_host_id(), 1)
+        assert where.found is Found.CONFIRMED and where.proc is not None
+        status = Path(f"/proc/{where.proc.pid}/status").read_text()
+        assert f"NSpid:\t{where.proc.pid}\t1" in status
+        assert where.proc.pid != proc.pid  # unshare's child, not unshare itself
+    finally:
+        os.killpg(proc.pid, signal.SIGTERM)  # unshare ignores SIGTERM; its child does not
+        ros2_real.stop_all([proc])
