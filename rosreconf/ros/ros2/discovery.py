@@ -185,6 +185,12 @@ class Ros2Discovery:
         return dict(self._last_endpoints)
 
     @property
+    def participant_nodes(self) -> dict[bytes, tuple[str, ...]]:
+        """Return each alive participant's GUID -> its nodes (last read): one process each."""
+        alive = {e.participant for e in self._last_endpoints.values()}
+        return {k: tuple(n.full_name for n in v[1]) for k, v in self._infos.items() if k in alive}
+
+    @property
     def participant(self) -> Any:
         """Return this session's DDS participant (for request/reply on the same domain)."""
         if self._dp is None:
