@@ -88,6 +88,13 @@ class LiveSource(Protocol):
         """Return the command ``start`` runs for ``launch``."""
         ...
 
+    def participants(self) -> dict[bytes, tuple[str, ...]]:
+        """Return each alive participant's id -> its nodes, as last read (ROS 2; else empty).
+
+        One participant is one process: what finding a node's process starts from.
+        """
+        ...
+
     def close(self) -> None:
         """Release what reading holds (a DDS participant)."""
         ...
@@ -135,6 +142,10 @@ class MasterSource:
     def launch_command(self, launch: Path) -> list[str]:
         """Return the roslaunch command line."""
         return ["roslaunch", "--wait", str(launch)]
+
+    def participants(self) -> dict[bytes, tuple[str, ...]]:
+        """Return nothing: a ROS 1 master lists pids (``LiveNode.pid``), not participants."""
+        return {}
 
     def close(self) -> None:
         """Hold nothing: each read is its own XML-RPC calls."""
@@ -288,6 +299,10 @@ class Ros2Source:
     def launch_command(self, launch: Path) -> list[str]:
         """Return the ``ros2 launch`` command line."""
         return ["ros2", "launch", str(launch)]
+
+    def participants(self) -> dict[bytes, tuple[str, ...]]:
+        """Return each alive participant's GUID -> its nodes (the last read)."""
+        return {} if self._session is None else self._session.participant_nodes
 
     def close(self) -> None:
         """Leave the DDS domain."""

@@ -130,6 +130,8 @@ class Watcher:
 
     def _read(self) -> LiveGraph:
         graph = self.source.read()
+        if self._control is not None:  # outside nodes: their processes watched from now on
+            self._control.track(self.source.participants(), self.current)
         self._graph = graph if self._control is None else self._control.visible(graph)
         return self._graph
 
@@ -200,13 +202,13 @@ class Watcher:
             # What was launched and never came up is not launched again on every poll.
             stuck = [c for c in missing if c in self._launcher.launched] if self.apply else missing
             if stuck and tuple(stuck) != self._missing:
-                self._missing = tuple(stuck)
+                self._missing, where = tuple(stuck), self._launcher.directory
                 if not self.apply:
                     why = "use --apply to start"
                 elif self.launches or self._control is not None:
-                    why = f"launched but not running (see the launch output in {self._where})"
+                    why = f"launched but not running (see the launch output in {where})"
                 else:
-                    why = f"no launcher here: the launch file is in {self._where}"
+                    why = f"no launcher here: the launch file is in {where}"
                 self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
             fresh = [c for c in missing if c not in stuck]
             if fresh and self._start(fresh, "not running yet"):
@@ -255,10 +257,6 @@ class Watcher:
         self._seen.clear()
         self._missing = ()
         self._running = False
-
-    @property
-    def _where(self) -> Path:
-        return self._launcher.directory
 
     def _role(self, comp: str) -> str:
         return next(r for r, c in self.current.assignment if c == comp)
@@ -394,6 +392,6 @@ class Watcher:
             return  # a failure seen while confirming: replan now
         deadline = time.monotonic() + seconds
         while not self.stop_requested() and (left := deadline - time.monotonic()) > 0:
-            if self._control is not None and self._control.nodes.any_exited():
+            if self._control is not None and self._control.any_exited():
                 return
             time.sleep(min(left, 0.02))

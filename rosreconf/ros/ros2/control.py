@@ -39,6 +39,7 @@ from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
 from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.outside import OutsideNodes
 from rosreconf.ros.ros2.standby import Standbys
 from rosreconf.ros.ros2.transitions import Transitions
 
@@ -77,6 +78,7 @@ class Ros2Control:
     parked: set[str] = field(default_factory=set)
     by_hand: dict[str, str] = field(default_factory=dict)
     dead: set[str] = field(default_factory=set)
+    outside: OutsideNodes | None = field(init=False, default=None)
     states: dict[str, str] = field(init=False)
     left: tuple[str, ...] = ()
     standbys: Standbys = field(init=False)
@@ -85,6 +87,9 @@ class Ros2Control:
 
     def __post_init__(self) -> None:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
+        domain = self.env.get("ROS_DOMAIN_ID", "0")  # the nodes' domain: their ports prove pids
+        if domain.isdigit():
+            self.outside = OutsideNodes(int(domain), self.say)
         self.lifecycle = Transitions(self.env, self.directory, self.say, self._node, self.timeout)
         self.states = self.lifecycle.states
         self.standbys = Standbys(
@@ -119,9 +124,42 @@ class Ros2Control:
             gone.append((own.component, own.node, code))
         return gone
 
+    def track(self, participants: Mapping[bytes, tuple[str, ...]], current: Configuration) -> None:
+        """Watch the processes of ``current``'s nodes that rosreconf did not start."""
+        if self.outside is not None:
+            own = {self._node(c) for c in self.nodes.nodes}
+            self.outside.forget(own)
+            wanted = {self._node(c) for c in current.components} - own
+            self.outside.track(participants, wanted)
+
+    def any_exited(self) -> bool:
+        """Tell whether a watched process (own or outside) ended or hung, not yet said."""
+        outside = self.outside is not None and self.outside.poll()
+        return outside or self.nodes.any_exited()
+
+    def _outside_gone(self, current: Configuration, failed: Collection[str]) -> set[str]:
+        """Say which outside nodes' processes exited or hung; return the failed components."""
+        if self.outside is None:
+            return set()
+        comps = {self._node(c): (r, c) for r, c in current.assignment if c}
+        now = set()
+        for node, how in sorted(self.outside.take().items()):
+            self.dead.add(node)  # hidden from the graph: DDS shows it until its lease ends
+            if node not in comps or comps[node][1] in failed:
+                continue
+            role, comp = comps[node]
+            why = "its process exited" if how == "exited" else "its process is stopped (hung)"
+            self.say("failed", f"{comp} ({role}) is gone: {why}, seen by watching it: failed",
+                     component=comp, node=node, how=f"process-{how}", outside=True)  # fmt: skip
+            now.add(comp)
+        return now
+
     def exits(self, current: Configuration, failed: Collection[str]) -> set[str]:
-        """Say which own processes exited; return the components of ``current`` now failed."""
-        now: set[str] = set()
+        """Say which own processes exited; return the components of ``current`` now failed.
+
+        The outside nodes whose processes are watched (``track``) count too.
+        """
+        now = self._outside_gone(current, failed)
         for comp, node, code in self.exited():
             if comp in current.components and comp not in failed:
                 role = next(r for r, c in current.assignment if c == comp)
@@ -338,4 +376,6 @@ class Ros2Control:
         """Stop every process started here and the lifecycle agent; return the components."""
         stopped = [own.component for own in self.nodes.close()]
         self.lifecycle.close()
+        if self.outside is not None:
+            self.outside.close()
         return stopped

@@ -1,0 +1,150 @@
+"""Watch the processes of configuration nodes rosreconf did not start (issue 31, detection).
+
+A node the team's own launch files started is seen failing by DDS only when its lease runs
+out (Fast DDS: 20 s). On this host its process can be watched instead: ``hostprocs``
+confirms which process runs a participant (its Fast DDS GUID, proved through /proc, never
+guessed), and ``pidwatch`` sees that process exit in milliseconds (a pidfd) or stop (state
+``T``: SIGSTOP, a tracer). So::
+
+    node of the configuration                     how its failure is seen
+    --------------------------------------------  ------------------------------------------
+    started by rosreconf                          its process's exit (``nodes``), at once
+    outside, process confirmed on this host       its process's exit at once; stopped for
+                                                  ``HUNG_SECONDS``: hung, failed
+    outside, not confirmed (another host, another the DDS lease only; said once per node,
+    middleware, /proc not readable, ambiguous)     with why
+
+A process that runs several nodes (a component container, an executor with many nodes)
+fails them all at once. Nothing here signals a process: stopping outside nodes is not this
+module's business. Every decision is said through ``say``; nothing here prints.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass, field
+
+from rosreconf.ros.ros2.hostprocs import HostProcesses, ProcId, boot_seconds
+from rosreconf.ros.ros2.pidwatch import ProcessWatch
+
+HUNG_SECONDS = 1.0
+"""Seconds a watched process may stay stopped before its nodes count as hung (failed)."""
+
+
+@dataclass
+class OutsideNodes:
+    """The watched processes of one domain's outside nodes (see the module docstring).
+
+    Attributes:
+        domain: the DDS domain the participants are on (their ports prove their processes).
+        say: receives the ``watched`` events (by process, or by lease and why).
+        nodes: confirmed process -> the nodes it runs.
+        lease_only: node -> why it is watched by its DDS lease only.
+        seen_at: participant -> when it was first seen (seconds since boot), so that a
+            process started after it cannot be taken for it.
+        stopped_since: process -> when it was first found stopped (``time.monotonic``).
+        gone: node -> how its process ended (``exited`` or ``hung``), until ``take`` says it.
+        located: the participants whose process was looked for (each once: a node that
+            comes back has a participant of its own).
+    """
+
+    domain: int
+    say: Callable[..., None]
+    nodes: dict[ProcId, tuple[str, ...]] = field(default_factory=dict)
+    lease_only: dict[str, str] = field(default_factory=dict)
+    seen_at: dict[bytes, float] = field(default_factory=dict)
+    stopped_since: dict[ProcId, float] = field(default_factory=dict)
+    gone: dict[str, str] = field(default_factory=dict)
+    located: set[bytes] = field(default_factory=set)
+    _watch: ProcessWatch = field(default_factory=ProcessWatch)
+
+    @property
+    def watched(self) -> set[str]:
+        """Return the nodes watched by their process now."""
+        return {n for names in self.nodes.values() for n in names}
+
+    def track(self, participants: Mapping[bytes, tuple[str, ...]], wanted: Collection[str]) -> None:
+        """Find and watch the processes of ``wanted`` nodes not watched or explained yet.
+
+        ``participants``: each alive participant's GUID -> its nodes (the last read).
+        /proc is scanned only when such a node shows up, not on every poll.
+        """
+        now = boot_seconds()
+        for guid in participants:
+            self.seen_at.setdefault(guid, now)
+        new = {
+            g: ns
+            for g, ns in participants.items()
+            if g not in self.located and any(n in wanted for n in ns)
+        }
+        if not new:
+            return
+        host = HostProcesses()
+        for guid, names in sorted(new.items()):
+            self.located.add(guid)
+            found = host.locate(guid, self.domain, names, seen_at=self.seen_at[guid])
+            mine = [n for n in names if n in wanted]
+            if found.proc is not None:  # one that exited already: the next poll says so
+                self._watch.add(found.proc)
+                self.nodes[found.proc] = names
+                self.say(
+                    "watched",
+                    f"{', '.join(mine)}: watched by its process (pid {found.proc.pid}; "
+                    f"{found.detail}): a crash is seen at once, not after the DDS lease",
+                    nodes=list(names),
+                    pid=found.proc.pid,
+                    how="process",
+                )
+                continue
+            for n in mine:
+                self.lease_only[n] = found.detail
+            self.say(
+                "watched",
+                f"{', '.join(mine)}: watched by the DDS lease only ({found.detail})",
+                nodes=mine,
+                how="lease",
+                why=found.detail,
+            )
+
+    def poll(self) -> bool:
+        """Read the watched processes' exits and stops now; tell whether a node is gone."""
+        events = self._watch.poll(0.0)
+        for proc in events.exited:
+            self.stopped_since.pop(proc, None)
+            for n in self.nodes.pop(proc, ()):
+                self.gone[n] = "exited"
+        for proc in events.stopped:
+            self.stopped_since.setdefault(proc, time.monotonic())
+        for proc in events.resumed:
+            self.stopped_since.pop(proc, None)
+        for proc, since in list(self.stopped_since.items()):
+            if time.monotonic() - since >= HUNG_SECONDS:
+                del self.stopped_since[proc]
+                self._watch.remove(proc)
+                for n in self.nodes.pop(proc, ()):
+                    self.gone[n] = "hung"
+        return bool(self.gone)
+
+    def take(self) -> dict[str, str]:
+        """Return node -> ``exited`` or ``hung`` for the nodes found gone, and forget them.
+
+        A node that comes back (restarted by its team) is tracked afresh by ``track``: its
+        new process is a new participant.
+        """
+        self.poll()
+        gone, self.gone = self.gone, {}
+        return gone
+
+    def forget(self, nodes: Collection[str]) -> None:
+        """Stop watching these nodes' processes (replaced, or started by rosreconf now)."""
+        for proc, names in list(self.nodes.items()):
+            if set(names) & set(nodes):
+                del self.nodes[proc]
+                self._watch.remove(proc)
+        for n in nodes:
+            self.lease_only.pop(n, None)
+
+    def close(self) -> None:
+        """Release the pidfds."""
+        self._watch.close()

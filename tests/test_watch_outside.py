@@ -1,0 +1,74 @@
+"""``watch`` sees nodes it did not start fail by their processes, not by the DDS lease (issue 31).
+
+The team's own nodes are real rclpy processes started as their launch file would (wired by
+``-r`` rules), with Fast DDS's default 20 s lease: a crash that only the lease showed would
+be seen after 19-21 s. ``watch`` confirms each node's process through /proc and watches it,
+so a ``kill -9`` is ``failed`` by ``process-exited`` and a SIGSTOP by ``process-hung``, each
+said as seen by watching the process. No timing is asserted: ``make bench``'s.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+from pathlib import Path
+
+from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
+
+
+def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.model import Configuration
+    from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    remaps = wiring(bundle.library, schema, nominal)
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}  # Fast DDS's own 20 s lease
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+
+    def start(c: str) -> subprocess.Popen[bytes]:
+        spec = json.dumps(ros2_standin_spec(bundle.library[c]))
+        argv = [str(_ros2_python()), str(script), spec]
+        argv += ros2_node_arguments(bundle.library, c, remaps)
+        return subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+
+    ours = {c: start(c) for c in NOMINAL}
+    watch: Watch | None = None
+    try:
+        for p in ours.values():  # all up before watch looks, or it would start its own
+            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        watch.wait("running")
+        assert not watch.pids()  # it started none of them
+        while True:  # every node found and watched by its process
+            said = [e for e in watch.events() if e["event"] == "watched"]
+            by_process = {n: e["pid"] for e in said if e["how"] == "process" for n in e["nodes"]}
+            if set(by_process) >= {f"/{c}" for c in NOMINAL}:
+                break
+            watch.wait("watched", after=len(watch.events()))
+        assert all(by_process[f"/{c}"] == ours[c].pid for c in NOMINAL), by_process
+        before = len(watch.events())
+        os.kill(ours["NCA1"].pid, signal.SIGSTOP)  # hung: the process runs no more
+        hung = watch.wait("failed", after=before)
+        assert (hung["component"], hung["how"], hung["outside"]) == ("NCA1", "process-hung", True)
+        before = len(watch.events())
+        ours["NSM3"].kill()
+        crash = watch.wait("failed", after=before, timeout=15.0)  # well inside the 20 s lease
+        assert (crash["component"], crash["how"]) == ("NSM3", "process-exited")
+        # (no configuration is left without both NCA1 and NSM3 that meets the schema's
+        # performance requirements: watch says so and keeps watching)
+    finally:
+        if watch is not None:
+            watch.stop(signal.SIGKILL)
+        for p in ours.values():
+            if p.poll() is None:
+                os.kill(p.pid, signal.SIGCONT)
+                p.kill()
+            p.wait()
