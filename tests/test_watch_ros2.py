@@ -1,7 +1,7 @@
 """``watch --ros2 --apply`` repairs a live ROS 2 system made of real rclpy nodes (issue 23).
 
 Every node is a real rclpy process under the Jazzy venv (``make ros2-venvs``): rosreconf's
-stand-ins (``rosreconf/ros/ros2/standin_node.py``) posing as the library's invented types.
+stand-ins (``rosreconf/ros/ros2/scripts/standin_node.py``) posing as the library's invented types.
 ``watch`` runs as a real subprocess; what it did is read from its JSON log, and the end state
 from rclpy's own graph API and the nodes' ``get_state`` services (``tests/ros2_probe.py``),
 not from rosreconf's reader. No timing is asserted here: speed goals are ``make bench``'s.

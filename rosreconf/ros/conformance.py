@@ -1,7 +1,7 @@
 """Compare what a ROS master says is running with the ROS-graph a configuration should have.
 
 The expected ROS-graph (Def. 1) comes from ``rosreconf.model.validity.ros_graph``; the live one from
-``rosreconf.ros.rosmaster.read_live_graph``. They speak different names: the model names nodes
+``rosreconf.ros.ros1.rosmaster.read_live_graph``. They speak different names: the model names nodes
 after components and interfaces after labels (Omega), the master uses global ROS names. One
 pair of functions maps model names to live names, and everything here goes through them::
 

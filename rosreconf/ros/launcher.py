@@ -21,9 +21,9 @@ from pathlib import Path
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.procs import Background, stop_all
 from rosreconf.ros.launchfiles import RosVersion, launch_file
-from rosreconf.ros.rpc import printable
+from rosreconf.ros.printable import printable
+from rosreconf.ros.ros1.standins import write_standin_package
 from rosreconf.ros.sources import LiveSource
-from rosreconf.ros.standins import write_standin_package
 
 Say = Callable[..., None]
 """Receives one event: its kind, its message, and its data as keyword arguments."""

@@ -29,10 +29,7 @@ from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.procs import Background, start_program
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes
-from rosreconf.ros.ros2.graph import graph_uri
-from rosreconf.ros.ros2.lifecycle_state import StateReader, with_states
-from rosreconf.ros.rosmaster import (
+from rosreconf.ros.ros1.rosmaster import (
     DEFAULT_MAX_BYTES,
     DEFAULT_TIMEOUT,
     master_identity,
@@ -41,7 +38,10 @@ from rosreconf.ros.rosmaster import (
     read_live_graph,
     shutdown_node,
 )
-from rosreconf.ros.standins import start_roslaunch
+from rosreconf.ros.ros1.standins import start_roslaunch
+from rosreconf.ros.ros2.discovery import Ros2Discovery, check_domain, gid_sizes
+from rosreconf.ros.ros2.graph import graph_uri
+from rosreconf.ros.ros2.lifecycle_state import StateReader, with_states
 
 
 class LiveSource(Protocol):

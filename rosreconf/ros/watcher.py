@@ -4,8 +4,8 @@
 each ``Watcher.step`` reads the master, decides which components have failed, replans with
 the fewest changes (``rosreconf.ros.replanning``, current configuration first),
 and with ``apply`` stops the components that must go (their node API's ``shutdown``, as
-``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.standins``), then
-confirms with ``rosreconf.ros.conformance.compare``.
+``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.ros1.standins``),
+then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
 does not answer (SIGKILLed nodes linger in the master; they are then purged), or it was seen
@@ -49,8 +49,8 @@ from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import replan, stop_replaced
+from rosreconf.ros.ros1.rosmaster import known_identity, restart_event
 from rosreconf.ros.ros2.control import Ros2Control
-from rosreconf.ros.rosmaster import known_identity, restart_event
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
 

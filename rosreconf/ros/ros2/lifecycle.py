@@ -30,7 +30,7 @@ from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
 from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
 
-AGENT_SCRIPT = Path(__file__).with_name("lifecycle_agent.py")
+AGENT_SCRIPT = Path(__file__).parent / "scripts" / "lifecycle_agent.py"
 TIMEOUT = 5.0
 """Seconds one lifecycle service call may take."""
 APPEAR = 30.0

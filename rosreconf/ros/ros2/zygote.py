@@ -30,7 +30,7 @@ from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
 from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
 
-ZYGOTE_SCRIPT = Path(__file__).with_name("standin_zygote.py")
+ZYGOTE_SCRIPT = Path(__file__).parent / "scripts" / "standin_zygote.py"
 TITLE_ROOM = 32768
 """Bytes of argument the zygote is given, for its children's command lines (as its own)."""
 DISABLE_ENV = "ROSRECONF_STANDIN_ZYGOTE"
