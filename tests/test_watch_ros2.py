@@ -454,7 +454,7 @@ def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
 ) -> None:
     """Nav2-like servers as stand-ins: actions served and called, posed as nav2_msgs types."""
     from rosreconf.formats.loader import load_paths
-    from rosreconf.ros.conformance import node_live_name
+    from rosreconf.model.wiring import node_live_name
     from rosreconf.ros.liveactions import live_actions
     from rosreconf.ros.livegraph import from_json
 

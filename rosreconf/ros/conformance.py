@@ -64,24 +64,17 @@ from typing import Any
 
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import ros_graph
+from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.dangling import dangling_findings
 from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
-from rosreconf.ros.livenames import (
-    Finding,
-    interface_live_name,
-    library_providers,
-    node_live_name,
-    same_type,
-)
+from rosreconf.ros.livenames import Finding, library_providers, same_type
 
 __all__ = [
     "Checked",
     "Conformance",
     "Finding",
     "compare",
-    "interface_live_name",
-    "node_live_name",
     "same_type",
 ]
 

@@ -15,7 +15,7 @@ from collections.abc import Collection
 from typing import Any
 
 from rosreconf.model import Component, Interface, InterfaceKind
-from rosreconf.ros.conformance import interface_live_name
+from rosreconf.model.wiring import interface_live_name
 from rosreconf.ros.liveactions import ROS1_SERVER_PUBLISHES
 
 STANDIN_PACKAGE = "rosreconf_standin"
