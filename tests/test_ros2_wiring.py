@@ -26,7 +26,7 @@ from typer.testing import CliRunner
 from rosreconf.cli.app import app
 
 ROOT = Path(__file__).resolve().parent.parent
-STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 DATA = Path(__file__).with_name("data") / "wiring"
 PAIR = ["-l", str(DATA / "pair_library.yaml"), "-s", str(DATA / "pair_schema.yaml")]
 TRIGGER, STRING = "std_srvs/srv/Trigger", "std_msgs/msg/String"
