@@ -188,9 +188,15 @@ class LaunchActuator(Actuator):
     def __post_init__(self) -> None:
         a = self.acting
         self.launcher = Launcher(
-            self.source, a.library, a.schema, a.workdir, a.env, a.say,
-            stand_ins=a.stand_ins, launch_dir=a.launch_dir,
-        )  # fmt: skip
+            self.source,
+            a.library,
+            a.schema,
+            a.workdir,
+            a.env,
+            a.say,
+            stand_ins=a.stand_ins,
+            launch_dir=a.launch_dir,
+        )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` with one launch process (or say what would run)."""

@@ -1,11 +1,10 @@
 """Keep a running ROS system in a valid configuration when its nodes die (the paper's use case).
 
 "An operating autonomous system needs to self-reconfigure due to changes in own hardware":
-each ``Watcher.step`` reads the master, decides which components have failed, replans with
-the fewest changes (``rosreconf.ros.replanning``, current configuration first),
-and with ``apply`` stops the components that must go (their node API's ``shutdown``, as
-``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.ros1.standins``),
-then confirms with ``rosreconf.ros.conformance.compare``.
+each ``Watcher.step`` reads the live graph, decides which components have failed, replans
+with the fewest changes (``rosreconf.ros.replanning``, current configuration first), and
+with ``apply`` has its ``Actuator`` retire the components that must go and start the new
+ones, then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
 does not answer (SIGKILLed nodes linger in the master; they are then purged), or it was seen
@@ -13,8 +12,9 @@ alive by this watcher and is gone now. A component never seen is only *missing*:
 ``apply`` it is started (so a watcher can also bring a configuration up); without, it is
 only reported.
 
-A restarted master (new pid or ``/run_id``) is said, not counted as failures, and checked
-again (with ``apply``, the own roslaunch processes are stopped and the configuration restarted).
+A restarted master (new pid or ``/run_id``; ``LiveSource.restarted``) is said, not counted
+as failures, and checked again (with ``apply``, what the actuator started is stopped and the
+configuration restarted).
 
 The watcher decides; an ``Actuator`` (``rosreconf.ros.actuator``), made by the source, acts:
 roslaunch on ROS 1; on ROS 2 each node's own process (a process of its own that exits is a
@@ -27,7 +27,7 @@ logs ``conformant`` (with the seconds since the failure was seen) once the live 
 matches, with ``apply`` or after a person repaired it by hand. ``stop_requested`` is polled
 between steps and in every wait, so a signal stops the watcher within one poll slice.
 
-roslaunch's errors are handed on (``rosreconf.ros.launcher``); a component that was launched
+Launch errors are handed on (``rosreconf.ros.launcher``); a component that was launched
 and never came up is not launched again on every poll. Every decision is an ``Event``
 (``rosreconf.ros.events``) handed to the ``log`` callback; nothing here prints.
 """
@@ -107,10 +107,17 @@ class Watcher:
 
     def __post_init__(self) -> None:
         acting = Acting(
-            self.library, self.schema, self.workdir, self.env, self._say, apply=self.apply,
-            stand_ins=self.stand_ins, launch_dir=self.launch_dir, standby=self.standby,
+            self.library,
+            self.schema,
+            self.workdir,
+            self.env,
+            self._say,
+            apply=self.apply,
+            stand_ins=self.stand_ins,
+            launch_dir=self.launch_dir,
+            standby=self.standby,
             ros2_launch=self.ros2_launch,
-        )  # fmt: skip
+        )
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
 
@@ -149,9 +156,11 @@ class Watcher:
                 if comp not in self.failed:
                     why = "registered but not answering" if "dead-node" in codes else "gone"
                     self._say(
-                        "failed", f"{comp} ({self._role(comp)}) is {why}: failed", component=comp,
+                        "failed",
+                        f"{comp} ({self._role(comp)}) is {why}: failed",
+                        component=comp,
                         how="graph",
-                    )  # fmt: skip
+                    )
                     self.failed.add(comp)
             elif "missing-node" in codes:
                 missing.append(comp)

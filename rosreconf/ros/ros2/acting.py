@@ -40,9 +40,14 @@ class Ros2Actuator(Actuator):
     def __post_init__(self) -> None:
         a = self.acting
         self.control = Ros2Control(
-            a.library, a.schema, a.env, a.directory, a.say,
-            stand_ins=a.stand_ins, standby=a.standby,
-        )  # fmt: skip
+            a.library,
+            a.schema,
+            a.env,
+            a.directory,
+            a.say,
+            stand_ins=a.stand_ins,
+            standby=a.standby,
+        )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components``' processes (managed ones configured and activated)."""
