@@ -7,7 +7,7 @@ they run, and then checks that no process is left whose environment names this m
 private ROS_HOME (that also catches stand-ins a test forgot).
 
 Everything here talks to the master with raw ``xmlrpc.client`` so that a bug in
-``rosreconf.ros.rosmaster`` cannot hide behind the harness.
+``rosreconf.ros.ros1.rosmaster`` cannot hide behind the harness.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from rosreconf.procs import descendants
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 """Debian's Python, the one with rospy (the project's venv has none)."""
-STANDIN = Path(__file__).parents[1] / "rosreconf" / "ros" / "standin_node.py"
+STANDIN = Path(__file__).parents[1] / "rosreconf" / "ros" / "ros1" / "scripts" / "standin_node.py"
 MASTER_START_TIMEOUT = 20.0
 NODE_START_TIMEOUT = 15.0
 STOP_TIMEOUT = 5.0
@@ -298,7 +298,7 @@ class StandIn:
 
 
 def start_standin(master: Master, spec: dict[str, Any]) -> StandIn:
-    """Start ``rosreconf/ros/standin_node.py`` with ``spec``; return once the master lists it."""
+    """Start ROS 1's ``scripts/standin_node.py`` with ``spec``; return once the master lists it."""
     name = "/" + spec["name"].lstrip("/")
     spec_file = master.home / f"standin-{spec['name']}.json"
     spec_file.write_text(json.dumps(spec))

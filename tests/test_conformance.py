@@ -14,11 +14,12 @@ from rosreconf.cli.app import app
 from rosreconf.errors import Severity
 from rosreconf.formats.loader import Source, check_loaded, load_bundled, load_sources
 from rosreconf.model import Component, Configuration, RosLaunch
-from rosreconf.ros.conformance import compare, interface_live_name, node_live_name
+from rosreconf.model.wiring import interface_live_name, node_live_name
+from rosreconf.ros.conformance import compare
 from rosreconf.ros.importer import component_name, draft_library
 from rosreconf.ros.launchfiles import RosVersion, launch_file, wiring
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, to_json
-from rosreconf.ros.standins import STANDIN_PACKAGE, standin_spec
+from rosreconf.ros.ros1.standins import STANDIN_PACKAGE, standin_spec
 
 WHEN = datetime(2026, 1, 1, tzinfo=UTC)
 BUNDLE = load_bundled()

@@ -24,7 +24,7 @@ from rosreconf.cli.app import app
 from rosreconf.errors import Severity
 from rosreconf.formats.configfile import render_configurations
 from rosreconf.formats.loader import check_loaded, load_bundled, load_paths
-from rosreconf.ros.standins import standin_spec
+from rosreconf.ros.ros1.standins import standin_spec
 
 pytestmark = pytest.mark.ros
 

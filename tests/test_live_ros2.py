@@ -168,7 +168,7 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
     from dataclasses import replace
 
     from rosreconf.model import ComponentLibrary, Configuration
-    from rosreconf.ros.sources import Ros2Source
+    from rosreconf.ros.ros2.source import Ros2Source
     from rosreconf.ros.watcher import Event, Watcher
 
     library, schema = _nominal()

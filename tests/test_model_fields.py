@@ -18,9 +18,9 @@ from rosreconf.cli.app import app
 from rosreconf.errors import RosreconfError
 from rosreconf.formats.loader import load_bundled, load_paths
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.wiring import node_live_name
 from rosreconf.procs import run_program
 from rosreconf.resources import Bundle, bundled
-from rosreconf.ros.conformance import node_live_name
 from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, to_json

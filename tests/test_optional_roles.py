@@ -45,8 +45,9 @@ from rosreconf.model import (
     node_vertex,
 )
 from rosreconf.model.validity import is_valid, ros_graph
+from rosreconf.model.wiring import node_live_name
 from rosreconf.resources import Bundle, bundled
-from rosreconf.ros.conformance import compare, node_live_name
+from rosreconf.ros.conformance import compare
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
 from rosreconf.solve import dense
 from rosreconf.solve.counting import count

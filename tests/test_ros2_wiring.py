@@ -1,6 +1,6 @@
 """``inspect --ros2`` reads the wiring on real rclpy nodes, never assumes it (issue 29).
 
-Every node is a real rclpy process (rosreconf's stand-in, ``rosreconf/ros/ros2/standin_node.py``,
+Every node is a real rclpy process (rosreconf's stand-in, ``ros/ros2/scripts/standin_node.py``,
 run by the distribution's own venv), Jazzy and Kilted, on a private domain. A node is wired the
 way ROS 2 wires it: ``--ros-args -r FROM:=TO`` on its command line, which rcl applies when the
 node starts. The reference for what is unwired is the library file read by hand (the server's
@@ -26,7 +26,7 @@ from typer.testing import CliRunner
 from rosreconf.cli.app import app
 
 ROOT = Path(__file__).resolve().parent.parent
-STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 DATA = Path(__file__).with_name("data") / "wiring"
 PAIR = ["-l", str(DATA / "pair_library.yaml"), "-s", str(DATA / "pair_schema.yaml")]
 TRIGGER, STRING = "std_srvs/srv/Trigger", "std_msgs/msg/String"

@@ -1,4 +1,4 @@
-"""Tests of rosreconf.ros.rosmaster: against a real roscore (marked ros) and against fakes."""
+"""Tests of rosreconf.ros.ros1.rosmaster: against a real roscore (marked ros) and against fakes."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ from typer.testing import CliRunner
 from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.ros.livegraph import LiveNode, from_json, to_json, without_plumbing
-from rosreconf.ros.rosmaster import alive, purge_dead, read_live_graph
+from rosreconf.ros.ros1.rosmaster import alive, purge_dead, read_live_graph
 
 TALKER = {
     "name": "talker",

@@ -22,8 +22,8 @@ from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration
-from rosreconf.ros.sources import MasterSource
-from rosreconf.ros.standins import standin_spec
+from rosreconf.ros.ros1.source import MasterSource
+from rosreconf.ros.ros1.standins import standin_spec
 from rosreconf.ros.watcher import Event, Watcher
 
 pytestmark = pytest.mark.ros

@@ -31,7 +31,7 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
     nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     remaps = wiring(bundle.library, schema, nominal)
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}  # Fast DDS's own 20 s lease
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 
     def start(c: str) -> subprocess.Popen[bytes]:
         spec = json.dumps(ros2_standin_spec(bundle.library[c]))

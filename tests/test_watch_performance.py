@@ -25,7 +25,7 @@ from rosreconf.analysis.simulate import performance_of
 from rosreconf.formats.configfile import render_configurations
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration
-from rosreconf.ros.standins import standin_spec
+from rosreconf.ros.ros1.standins import standin_spec
 
 pytestmark = pytest.mark.ros
 

@@ -1,7 +1,7 @@
 """``watch --ros2 --apply`` repairs a live ROS 2 system made of real rclpy nodes (issue 23).
 
 Every node is a real rclpy process under the Jazzy venv (``make ros2-venvs``): rosreconf's
-stand-ins (``rosreconf/ros/ros2/standin_node.py``) posing as the library's invented types.
+stand-ins (``rosreconf/ros/ros2/scripts/standin_node.py``) posing as the library's invented types.
 ``watch`` runs as a real subprocess; what it did is read from its JSON log, and the end state
 from rclpy's own graph API and the nodes' ``get_state`` services (``tests/ros2_probe.py``),
 not from rosreconf's reader. No timing is asserted here: speed goals are ``make bench``'s.
@@ -330,7 +330,7 @@ def test_a_stand_in_announces_the_librarys_invented_types(
         pytest.fail(f"the {distro} venv is missing: run `make ros2-venvs`", pytrace=False)
     spec = ros2_standin_spec(load_bundled().library["NFB21"])  # serves, calls, subscribes
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain), "ROSRECONF_ROS2_PYTHON": ""}
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
     node = subprocess.Popen([str(python), str(script), json.dumps(spec)], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
     try:
@@ -379,7 +379,7 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
     profile.write_text(lease_profile(2.0))  # a crash is seen by DDS within seconds
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain),
            "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}  # fmt: skip
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 
     def start(c: str, args: list[str]) -> subprocess.Popen[bytes]:
         spec = json.dumps(ros2_standin_spec(library[c]))
@@ -454,7 +454,7 @@ def test_stand_ins_serve_and_call_the_librarys_actions_and_inspect_finds_them(
 ) -> None:
     """Nav2-like servers as stand-ins: actions served and called, posed as nav2_msgs types."""
     from rosreconf.formats.loader import load_paths
-    from rosreconf.ros.conformance import node_live_name
+    from rosreconf.model.wiring import node_live_name
     from rosreconf.ros.liveactions import live_actions
     from rosreconf.ros.livegraph import from_json
 
@@ -570,7 +570,7 @@ def test_a_stand_in_that_cannot_pose_an_action_type_names_the_component_and_exit
     A fake only to provoke what the Jazzy venv cannot show (it has test_msgs): the stand-in
     runs with test_msgs and example_interfaces made unimportable.
     """
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
     spec = {"name": "DWB", "component": "DWB_CONTROLLER", "action_serve": [
         {"action": "/follow_path", "type": "nav2_msgs/action/FollowPath"}]}  # fmt: skip
     hide = ("import runpy, sys; sys.modules['test_msgs'] = sys.modules['example_interfaces'] "

@@ -128,7 +128,7 @@ def _ament_prefix(tmp: Path, python: Path) -> Path:
     prefix = tmp / "install"
     index = prefix / "share" / "ament_index" / "resource_index" / "packages"
     index.mkdir(parents=True)
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "standin_node.py"
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
     for comp in load_bundled().library.components:
         launch = comp.launch
         if launch is None:

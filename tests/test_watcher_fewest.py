@@ -14,7 +14,7 @@ from pathlib import Path
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration, VertexKind
 from rosreconf.model.validity import is_valid, ros_graph
-from rosreconf.ros.sources import MasterSource
+from rosreconf.ros.ros1.source import MasterSource
 from rosreconf.ros.watcher import Event, Watcher
 
 SCHEMA = "object_repositioning"

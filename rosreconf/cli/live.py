@@ -27,10 +27,10 @@ from rosreconf.outfiles import output_target
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
+from rosreconf.ros.connect import read_any
 from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import to_json, without_plumbing
-from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
-from rosreconf.ros.sources import read_any
+from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.solve.running import one_target
 
 

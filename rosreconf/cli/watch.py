@@ -32,12 +32,13 @@ from rosreconf.cli.stopping import stop_on_signals
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
+from rosreconf.ros.connect import open_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros2.runtime import ros2_python
-from rosreconf.ros.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
-from rosreconf.ros.sources import Ros2Source, open_source
+from rosreconf.ros.ros2.source import Ros2Source
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget

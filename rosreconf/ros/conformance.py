@@ -1,7 +1,7 @@
 """Compare what a ROS master says is running with the ROS-graph a configuration should have.
 
 The expected ROS-graph (Def. 1) comes from ``rosreconf.model.validity.ros_graph``; the live one from
-``rosreconf.ros.rosmaster.read_live_graph``. They speak different names: the model names nodes
+``rosreconf.ros.ros1.rosmaster.read_live_graph``. They speak different names: the model names nodes
 after components and interfaces after labels (Omega), the master uses global ROS names. One
 pair of functions maps model names to live names, and everything here goes through them::
 
@@ -64,24 +64,17 @@ from typing import Any
 
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import ros_graph
+from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.dangling import dangling_findings
 from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
-from rosreconf.ros.livenames import (
-    Finding,
-    interface_live_name,
-    library_providers,
-    node_live_name,
-    same_type,
-)
+from rosreconf.ros.livenames import Finding, library_providers, same_type
 
 __all__ = [
     "Checked",
     "Conformance",
     "Finding",
     "compare",
-    "interface_live_name",
-    "node_live_name",
     "same_type",
 ]
 

@@ -28,9 +28,10 @@ from typing import TYPE_CHECKING
 
 from rosreconf.model import Component, Interface, InterfaceKind, Requirement, VertexKind
 from rosreconf.model.schema import node_vertex
+from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.livenames import Finding, Providers, node_live_name, option_names, remap_source
+from rosreconf.ros.livenames import Finding, Providers, option_names, remap_source
 
 if TYPE_CHECKING:
     from rosreconf.model import RosGraph

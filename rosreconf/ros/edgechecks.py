@@ -22,17 +22,10 @@ from typing import TYPE_CHECKING
 
 from rosreconf.model import Component, Interface, InterfaceKind, VertexKind
 from rosreconf.model.qos import incompatibilities
+from rosreconf.model.wiring import interface_live_name, node_live_name
 from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.livenames import (
-    Finding,
-    Providers,
-    interface_live_name,
-    node_live_name,
-    option_names,
-    remap_source,
-    same_type,
-)
+from rosreconf.ros.livenames import Finding, Providers, option_names, remap_source, same_type
 
 if TYPE_CHECKING:
     from rosreconf.model import RosGraph

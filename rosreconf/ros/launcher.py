@@ -1,11 +1,13 @@
-"""Start a watcher's components with roslaunch (or ``ros2 launch``) and follow what it says.
+"""Act on a system through launch files: roslaunch (or ``ros2 launch``), and follow what it says.
 
-The watcher decides which components must start; this module writes one launch file per
-step, runs it through the ``LiveSource`` (or says the command when there is no launcher
-here), and while the watcher waits it reads each launch process's output for errors
-(escaped, with the paths of the launch file and of that output) and notices when one exits.
-Launch files and output are kept in ``launch_dir`` (``launch_log_dir`` makes one next to
-ROS's own logs). Every observation goes to the ``say`` callback; nothing here prints.
+``Launcher`` writes one launch file per step, runs it through the ``LiveSource`` (or says the
+command when there is no launcher here), and while the watcher waits it reads each launch
+process's output for errors (escaped, with the paths of the launch file and of that output)
+and notices when one exits. ``LaunchActuator`` is the watcher's ``Actuator`` over it: the
+new components start from a launch file, and the replaced ones are stopped through the source
+(a ROS 1 node API's ``shutdown``). Launch files and output are kept in ``launch_dir``
+(``launch_log_dir`` makes one next to ROS's own logs). Every observation goes to the ``say``
+callback; nothing here prints.
 """
 
 from __future__ import annotations
@@ -19,14 +21,14 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.wiring import node_live_name
 from rosreconf.procs import Background, stop_all
+from rosreconf.ros.actuator import Acting, Actuator, Say
 from rosreconf.ros.launchfiles import RosVersion, launch_file
-from rosreconf.ros.rpc import printable
+from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.printable import printable
+from rosreconf.ros.replanning import Change
 from rosreconf.ros.sources import LiveSource
-from rosreconf.ros.standins import write_standin_package
-
-Say = Callable[..., None]
-"""Receives one event: its kind, its message, and its data as keyword arguments."""
 
 
 @dataclass
@@ -85,8 +87,7 @@ class Launcher:
             stand_ins=self.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
-        pkg = write_standin_package(self.workdir / "pkg") if self.stand_ins else None
-        process = self.source.start(launch, self.env, pkg)
+        process = self.source.start(launch, self.env, self.workdir if self.stand_ins else None)
         self.launched |= set(components)
         command = " ".join(self.source.launch_command(launch))
         if process is None:
@@ -167,6 +168,97 @@ class Launcher:
     def _files(self, launch: Background) -> str:
         paths = self._paths(launch)
         return f"launch file {paths['launch_file']}, its output {paths['output']}"
+
+
+@dataclass
+class LaunchActuator(Actuator):
+    """Start components from launch files; stop the replaced ones through the source.
+
+    The ``Actuator`` of ROS 1: a replan stops each live component it takes out or restarts
+    (``LiveSource.stop``, the node API's ``shutdown``, as ``rosnode kill`` does), then one
+    launch file starts the new ones, and a kept one that is rewired again (ROS names are
+    fixed at start).
+    """
+
+    source: LiveSource
+    acting: Acting
+    launcher: Launcher = field(init=False)
+    _ended: bool = False
+
+    def __post_init__(self) -> None:
+        a = self.acting
+        self.launcher = Launcher(
+            self.source,
+            a.library,
+            a.schema,
+            a.workdir,
+            a.env,
+            a.say,
+            stand_ins=a.stand_ins,
+            launch_dir=a.launch_dir,
+        )
+
+    def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
+        """Start ``components`` with one launch process (or say what would run)."""
+        return self.launcher.start(current, components, why)
+
+    def replace(
+        self,
+        changes: list[Change],
+        new: Configuration,
+        failed: Collection[str],
+        graph: Callable[[bool], LiveGraph],
+    ) -> bool:
+        """Stop what ``changes`` takes out or restarts, then launch the new components."""
+        self.stop_replaced(graph(True), changes, failed)
+        return self.start(new, [b for _, _, b in changes if b], "new in the configuration")
+
+    def stop_replaced(
+        self, graph: LiveGraph, changes: list[Change], failed: Collection[str]
+    ) -> None:
+        """Stop, through the source, each live component a replan takes out or restarts.
+
+        A kept component restarted to be rewired is stopped too: its launch file starts it
+        again, wired (``stop`` event). Sources that cannot stop a node (ROS 2) stop none.
+        """
+        alive = {n.name for n in graph.nodes}
+        for role, old_comp, new_comp in changes:
+            if not old_comp or old_comp in failed:  # an empty optional role: nothing to stop
+                continue
+            name = node_live_name(self.acting.library[old_comp])
+            restart = old_comp == new_comp  # to rewire it: ROS names are fixed at start
+            reason = "rosreconf: " + (
+                f"{role} is rewired" if restart else f"{role} is now {new_comp}"
+            )
+            if name in alive and self.source.stop(graph, name, reason):
+                how = "to restart it rewired" if restart else f"replaced by {new_comp or '(empty)'}"
+                self.acting.say("stop", f"stopped {old_comp} ({role}): {how}", component=old_comp)
+
+    def not_running(self, missing: list[str]) -> tuple[list[str], str]:
+        """Return the launched ones of ``missing``; point at the launch output or file."""
+        where = self.launcher.directory
+        if self.launcher.launches:
+            why = f"launched but not running (see the launch output in {where})"
+        else:
+            why = f"no launcher here: the launch file is in {where}"
+        return [c for c in missing if c in self.launcher.launched], why
+
+    def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
+        """Hand on the launch processes' errors and exits (no node process is rosreconf's)."""
+        self._ended = self.launcher.check()
+        return set()
+
+    def ended(self) -> bool:
+        """Return whether the newest launch process has exited."""
+        return self._ended
+
+    def restart(self, *, stop: bool) -> None:
+        """Forget what was launched with the old master (with ``stop``, stop it)."""
+        self.launcher.restart(stop=stop)
+
+    def close(self) -> None:
+        """Stop every launch process, and say where the launch files are kept."""
+        self.launcher.close()
 
 
 _ERROR = re.compile(

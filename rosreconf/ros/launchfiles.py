@@ -25,7 +25,7 @@ is written; a comment in the node and an entry in ``LaunchFile.notes`` say so. T
 
 ``only`` writes just some of the configuration's nodes, still wired against the whole
 configuration (``rosreconf watch`` starts only what a reconfiguration adds), and
-``stand_ins`` runs every node as ``rosreconf.ros.standins``' stand-in, which acts out the
+``stand_ins`` runs every node as ``rosreconf.ros.ros1.standins``' stand-in, which acts out the
 component's live names itself (ROS 1 only).
 """
 

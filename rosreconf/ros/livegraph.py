@@ -1,7 +1,7 @@
 """The graph of a running ROS 1 system as its master reports it, and its JSON snapshot.
 
-A ``LiveGraph`` is what ``rosreconf.ros.rosmaster.read_live_graph`` saw at one moment; keeping it
-free of I/O lets a saved snapshot be reviewed, diffed and tested without any master.
+A ``LiveGraph`` is what ``rosreconf.ros.ros1.rosmaster.read_live_graph`` saw at one moment;
+keeping it free of I/O lets a saved snapshot be reviewed, diffed and tested without any master.
 
 How the master's answers map onto this module::
 

@@ -1,8 +1,9 @@
 """Name the model's nodes and interfaces as a live ROS system does, and what differs between them.
 
 The model names nodes after components and interfaces after labels (Omega); a live system
-uses global ROS names. ``node_live_name`` and ``interface_live_name`` are the one mapping
-(the table is in ``rosreconf.ros.conformance``); ``Finding`` is one difference found, and
+uses global ROS names. ``rosreconf.model.wiring``'s ``node_live_name`` and
+``interface_live_name`` are the one mapping (the table is in ``rosreconf.ros.conformance``);
+used here by ``library_providers``. ``Finding`` is one difference found, and
 ``same_type`` the one comparison of a live type with the library's.
 """
 
@@ -12,35 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from rosreconf.model import Component, ComponentLibrary, Interface, type_key
-
-
-def _join(namespace: str, name: str) -> str:
-    """Return the global name of ``name`` in ``namespace`` (``/arm`` + ``x`` -> ``/arm/x``)."""
-    parts = [p for p in (*namespace.split("/"), *name.split("/")) if p]
-    return "/" + "/".join(parts)
-
-
-def node_live_name(component: Component) -> str:
-    """Return the global name the node of ``component`` has on the master.
-
-    The node's own name (``ros.node``) in its namespace, never the library name: ``import``
-    names two live ``scan_listener`` nodes ``scan_listener`` and ``robot_scan_listener``, and
-    only the second has a namespace to tell them apart.
-    """
-    return _join(component.namespace or "/", component.node_name)
-
-
-def interface_live_name(component: Component, label: str) -> str:
-    """Return the global ROS name ``component`` uses for its interface ``label``.
-
-    The remapping (``ros.remappings``, label -> real name) wins; a relative name is resolved
-    in the component's namespace, as ROS resolves it for a node started there.
-    """
-    launch = component.launch
-    target = launch.remappings.get(label, label) if launch else label
-    if target.startswith("/"):
-        return _join("/", target)
-    return _join((launch.namespace if launch else None) or "/", target)
+from rosreconf.model.wiring import interface_live_name, node_live_name
 
 
 def remap_source(component: Component, label: str) -> str:

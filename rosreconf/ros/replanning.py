@@ -10,14 +10,11 @@ is the watcher's.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+from collections.abc import Callable
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.model.wiring import node_live_name, rewiring
+from rosreconf.model.wiring import rewiring
 from rosreconf.planning.narrative import explain_replan
-from rosreconf.ros.launchfiles import RosVersion
-from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.sources import LiveSource, lifecycle_steps
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import why_not
@@ -117,54 +114,3 @@ def _performing(
             f"({choice.tried} simulated to prove it)"
         )
     return choice.configuration, ""
-
-
-def listed_transitions(
-    library: ComponentLibrary, old_comp: str, new_comp: str, role: str, say: Say
-) -> None:
-    """Say the lifecycle transitions swapping managed nodes, for a person to run.
-
-    For ROS 2 through ``ros2 launch``, where rosreconf does not perform them itself.
-    """
-    steps: list[str] = []
-    for comp, stop in ((old_comp, True), (new_comp, False)):
-        if not comp:  # an optional role left empty
-            continue
-        launch = library[comp].launch
-        if launch is not None and launch.lifecycle:
-            steps += lifecycle_steps(node_live_name(library[comp]), stop=stop)
-    if steps:
-        say(
-            "lifecycle",
-            f"{role}: lifecycle transitions {old_comp} -> {new_comp}: {'; '.join(steps)}",
-            role=role,
-            transitions=steps,
-        )
-
-
-def stop_replaced(
-    source: LiveSource,
-    library: ComponentLibrary,
-    graph: LiveGraph,
-    changes: list[Change],
-    failed: Collection[str],
-    say: Say,
-) -> None:
-    """Stop, through the master, each live component a replan takes out or restarts.
-
-    ROS 1 (the node API's ``shutdown``), and ROS 2 through ``ros2 launch``, where the
-    lifecycle transitions are only listed for a person. A kept component restarted to be
-    rewired is stopped too: its launch file starts it again, wired (``stop`` event).
-    """
-    alive = {n.name for n in graph.nodes}
-    for role, old_comp, new_comp in changes:
-        if source.ros_version is RosVersion.ROS2:
-            listed_transitions(library, old_comp, new_comp, role, say)
-        if not old_comp or old_comp in failed:  # an empty optional role: nothing to stop
-            continue
-        name = node_live_name(library[old_comp])
-        restart = old_comp == new_comp  # to rewire it: ROS names are fixed at start
-        reason = "rosreconf: " + (f"{role} is rewired" if restart else f"{role} is now {new_comp}")
-        if name in alive and source.stop(graph, name, reason):
-            how = "to restart it rewired" if restart else f"replaced by {new_comp or '(empty)'}"
-            say("stop", f"stopped {old_comp} ({role}): {how}", component=old_comp)

@@ -1,6 +1,6 @@
 """Name and describe a stand-in node: what ``rosreconf.ros.standin_node`` must act out.
 
-Pure data, apart from the module that starts roslaunch (``rosreconf.ros.standins``), so that
+Pure data, apart from the module that starts roslaunch (``rosreconf.ros.ros1.standins``), so that
 writing a launch file (``rosreconf.ros.launchfiles``) needs no process machinery.
 
 Actions are listed under ``actions`` (name, type, server or client) for a ROS 2 stand-in to
@@ -15,7 +15,7 @@ from collections.abc import Collection
 from typing import Any
 
 from rosreconf.model import Component, Interface, InterfaceKind
-from rosreconf.ros.conformance import interface_live_name
+from rosreconf.model.wiring import interface_live_name
 from rosreconf.ros.liveactions import ROS1_SERVER_PUBLISHES
 
 STANDIN_PACKAGE = "rosreconf_standin"
@@ -96,7 +96,7 @@ def ros2_type(library_type: str, kind: str) -> str:
 def ros2_standin_spec(
     component: Component, uses: Collection[Interface] | None = None
 ) -> dict[str, Any]:
-    """Return the JSON spec ``rosreconf/ros/ros2/standin_node.py`` acts out for ``component``.
+    """Return the JSON spec ROS 2's ``scripts/standin_node.py`` acts out for ``component``.
 
     As ``standin_spec``, with ROS 2 type names, the namespace, the services the component
     calls (a ROS 2 graph shows clients), and whether it is a managed (lifecycle) node. Its

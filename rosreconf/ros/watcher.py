@@ -1,11 +1,10 @@
 """Keep a running ROS system in a valid configuration when its nodes die (the paper's use case).
 
 "An operating autonomous system needs to self-reconfigure due to changes in own hardware":
-each ``Watcher.step`` reads the master, decides which components have failed, replans with
-the fewest changes (``rosreconf.ros.replanning``, current configuration first),
-and with ``apply`` stops the components that must go (their node API's ``shutdown``, as
-``rosnode kill`` does) and starts the new ones with roslaunch (``rosreconf.ros.standins``), then
-confirms with ``rosreconf.ros.conformance.compare``.
+each ``Watcher.step`` reads the live graph, decides which components have failed, replans
+with the fewest changes (``rosreconf.ros.replanning``, current configuration first), and
+with ``apply`` has its ``Actuator`` retire the components that must go and start the new
+ones, then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
 does not answer (SIGKILLed nodes linger in the master; they are then purged), or it was seen
@@ -13,20 +12,22 @@ alive by this watcher and is gone now. A component never seen is only *missing*:
 ``apply`` it is started (so a watcher can also bring a configuration up); without, it is
 only reported.
 
-A restarted master (new pid or ``/run_id``) is said, not counted as failures, and checked
-again (with ``apply``, the own roslaunch processes are stopped and the configuration restarted).
+A restarted master (new pid or ``/run_id``; ``LiveSource.restarted``) is said, not counted
+as failures, and checked again (with ``apply``, what the actuator started is stopped and the
+configuration restarted).
 
-On ROS 2 (without ``ros2 launch``), ``rosreconf.ros.ros2.control`` acts: a node process of its
-own that exits is a failure at once (no DDS lease to wait for); managed nodes get lifecycle
-transitions; nodes it cannot stop are named ("stop this by hand"); ``standby`` prepares
-managed alternatives. Nodes held out of service on purpose are not extra nodes.
+The watcher decides; an ``Actuator`` (``rosreconf.ros.actuator``), made by the source, acts:
+roslaunch on ROS 1; on ROS 2 each node's own process (a process of its own that exits is a
+failure at once, with no DDS lease to wait for; managed nodes get lifecycle transitions;
+nodes it cannot stop are named; ``standby`` prepares managed alternatives), or ``ros2
+launch``. Nodes an actuator holds out of service on purpose are not extra nodes.
 
 A repair is confirmed however it is made: after a replan the watcher keeps comparing, and
 logs ``conformant`` (with the seconds since the failure was seen) once the live graph
 matches, with ``apply`` or after a person repaired it by hand. ``stop_requested`` is polled
 between steps and in every wait, so a signal stops the watcher within one poll slice.
 
-roslaunch's errors are handed on (``rosreconf.ros.launcher``); a component that was launched
+Launch errors are handed on (``rosreconf.ros.launcher``); a component that was launched
 and never came up is not launched again on every poll. Every decision is an ``Event``
 (``rosreconf.ros.events``) handed to the ``log`` callback; nothing here prints.
 """
@@ -41,16 +42,12 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.procs import Background
-from rosreconf.ros.conformance import Conformance, compare, node_live_name
+from rosreconf.ros.actuator import Acting, Actuator
+from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
-from rosreconf.ros.launcher import Launcher
-from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.replanning import replan, stop_replaced
-from rosreconf.ros.ros2.control import Ros2Control
-from rosreconf.ros.rosmaster import known_identity, restart_event
+from rosreconf.ros.replanning import replan
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
 
@@ -102,61 +99,52 @@ class Watcher:
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
-    _master: tuple[int | None, str | None] | None = None
     _running: bool = False
-    _launcher: Launcher = field(init=False, repr=False)
-    _control: Ros2Control | None = field(default=None, repr=False)
+    _actuator: Actuator = field(init=False, repr=False)
     _pending: float | None = None
     _graph: LiveGraph | None = None
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        self._lifecycle = LifecycleFaults(self._say)
-        self._launcher = Launcher(
-            self.source, self.library, self.schema, self.workdir, self.env, self._say,
-            stand_ins=self.stand_ins, launch_dir=self.launch_dir,
-        )  # fmt: skip
-        if self.apply and self.source.ros_version is RosVersion.ROS2 and not self.ros2_launch:
-            self._control = Ros2Control(
-                self.library, self.schema, self.env, self._launcher.directory, self._say,
-                stand_ins=self.stand_ins, standby=self.standby,
-            )  # fmt: skip
-            self._lifecycle.reactivate = self._control.reactivate
-
-    @property
-    def launches(self) -> list[Background]:
-        """Return the roslaunch processes started and not yet stopped (``close`` stops them)."""
-        return self._launcher.launches
+        acting = Acting(
+            self.library,
+            self.schema,
+            self.workdir,
+            self.env,
+            self._say,
+            apply=self.apply,
+            stand_ins=self.stand_ins,
+            launch_dir=self.launch_dir,
+            standby=self.standby,
+            ros2_launch=self.ros2_launch,
+        )
+        self._actuator = self.source.actuator(acting)
+        self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
 
     def _read(self) -> LiveGraph:
-        graph = self.source.read()
-        if self._control is not None:  # outside nodes: their processes watched from now on
-            self._control.track(self.source.participants(), self.current)
-        self._graph = graph if self._control is None else self._control.visible(graph)
+        self._graph = self._actuator.visible(self.source.read())
         return self._graph
 
+    def _live(self, fresh: bool) -> LiveGraph:
+        """Return the live graph: read now with ``fresh``, else the one last read if any."""
+        return self._graph if not fresh and self._graph is not None else self._read()
+
     def _compare(self, graph: LiveGraph) -> Conformance:
-        """Compare, leaving out the nodes rosreconf holds out of service on purpose."""
-        check = compare(self.current, self.library, self.schema, graph)
-        return check if self._control is None else self._control.filtered(check)
+        """Compare, leaving out the nodes the actuator holds out of service on purpose."""
+        return self._actuator.filtered(compare(self.current, self.library, self.schema, graph))
 
     def _own_exits(self, tend: bool = True) -> bool:
         """Count a node whose process rosreconf started and saw exit as failed, at once.
 
         With ``tend``, standby nodes that came up are configured (not while confirming).
         """
-        if self._control is None:
-            return False
-        now = self._control.exits(self.current, self.failed)
+        now = self._actuator.exits(self.current, self.failed, tend=tend)
         self.failed |= now
-        if tend:
-            self._control.tend()
         return bool(now)
 
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
-        self._check_master()
-        self._launcher.check()
+        self._check_restart()
         if self._own_exits() and self._graph is not None and self._replan():
             return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
@@ -168,9 +156,11 @@ class Watcher:
                 if comp not in self.failed:
                     why = "registered but not answering" if "dead-node" in codes else "gone"
                     self._say(
-                        "failed", f"{comp} ({self._role(comp)}) is {why}: failed", component=comp,
+                        "failed",
+                        f"{comp} ({self._role(comp)}) is {why}: failed",
+                        component=comp,
                         how="graph",
-                    )  # fmt: skip
+                    )
                     self.failed.add(comp)
             elif "missing-node" in codes:
                 missing.append(comp)
@@ -200,15 +190,11 @@ class Watcher:
                 return self._confirm()
         elif missing:
             # What was launched and never came up is not launched again on every poll.
-            stuck = [c for c in missing if c in self._launcher.launched] if self.apply else missing
+            stuck, why = self._actuator.not_running(missing)
+            if not self.apply:
+                stuck, why = missing, "use --apply to start"
             if stuck and tuple(stuck) != self._missing:
-                self._missing, where = tuple(stuck), self._launcher.directory
-                if not self.apply:
-                    why = "use --apply to start"
-                elif self.launches or self._control is not None:
-                    why = f"launched but not running (see the launch output in {where})"
-                else:
-                    why = f"no launcher here: the launch file is in {where}"
+                self._missing = tuple(stuck)
                 self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
             fresh = [c for c in missing if c not in stuck]
             if fresh and self._start(fresh, "not running yet"):
@@ -224,8 +210,8 @@ class Watcher:
             return
         if check.ok:
             self._conformant(check, time.monotonic() - self._pending, "since the failure")
-        elif self._control is not None:
-            self._control.left_running(check)
+        else:
+            self._actuator.left_running(check)
 
     def _conformant(self, check: Conformance, took: float, since: str) -> None:
         self._seen |= set(self.current.components)
@@ -239,21 +225,15 @@ class Watcher:
             configuration=self.current.shown,
             **checked(check),
         )
-        if self._control is not None:
-            self._control.left = ()
-            self._control.by_hand.clear()  # conformant: each was stopped or restarted
-            # after the confirmation, not before it: choosing each standby's wiring replans
-            self._control.prepare_standby(self.current, self.failed)
+        self._actuator.settled(self.current, self.failed)
 
-    def _check_master(self) -> None:
+    def _check_restart(self) -> None:
         """Notice a restarted master, and start over from what the new one lists."""
-        now = self.source.identity()
-        before, self._master = self._master, known_identity(self._master, now)
-        said = restart_event(before, now)
+        said = self.source.restarted()
         if said is None:
             return
         self._say("master-restarted", said[0], **said[1])
-        self._launcher.restart(stop=self.apply)
+        self._actuator.restart(stop=self.apply)
         self._seen.clear()
         self._missing = ()
         self._running = False
@@ -279,44 +259,21 @@ class Watcher:
         if not self.apply:
             self.current = new
             return False
-        graph = self._read() if self._control is None or self._graph is None else self._graph
-        alive = {n.name for n in graph.nodes}
-        if self._control is not None:  # make before break: the new ones start first
-            self.current = new
-            self._seen -= {a for _, a, _ in changes}
-            restarts = {b: r for r, a, b in changes if a == b}  # kept, to be rewired
-            by_hand = {c: r for c, r in restarts.items() if not self._control.owns(c)}
-            fresh = [b for _, _, b in changes if b and b not in by_hand]
-            started = self._start(fresh, "new in the configuration")
-            self._control.retire(
-                [
-                    (a, r, b, node_live_name(self.library[a]) in alive)
-                    for r, a, b in changes
-                    if a and a not in self.failed and a not in restarts  # empty role: none
-                ]
-            )
-            for comp, role in by_hand.items():
-                self._control.restart_by_hand(comp, role, new)
-            return started
-        stop_replaced(self.source, self.library, graph, changes, self.failed, self._say)
+        started = self._actuator.replace(changes, new, self.failed, self._live)
         self.current = new
         self._seen -= {a for _, a, _ in changes}
-        return self._start([b for _, _, b in changes if b], "new in the configuration")
+        return started
 
     def _start(self, components: Collection[str], why: str) -> bool:
         """Start ``components`` (or say what would run); True if something was done."""
-        if self._control is None:
-            return self._launcher.start(self.current, components, why)
-        self._launcher.launched |= set(components)  # not started again on every poll
-        self._control.start(self.current, components, why)
-        return True
+        return self._actuator.start(self.current, components, why)
 
     def _confirm(self) -> Conformance:
         """Wait until the live graph conforms or ``settle`` passes; log which."""
         start = time.monotonic()
         while True:
-            ended = self._launcher.check()
             self._own_exits(tend=False)
+            ended = self._actuator.ended()
             check = self._compare(self._read())
             took = time.monotonic() - start
             if check.ok:
@@ -325,7 +282,7 @@ class Watcher:
             if (
                 self.stop_requested()
                 or self.failed & set(self.current.components)
-                or (self._control is not None and self._control.left_running(check))
+                or self._actuator.left_running(check)
             ):
                 return check
             if took > self.settle or ended:
@@ -341,12 +298,7 @@ class Watcher:
 
     def close(self) -> None:
         """Stop every roslaunch and node process this watcher started, and what they run."""
-        self._launcher.close()
-        if self._control is not None:
-            stopped = self._control.close()
-            if stopped:
-                self._say("stopped", f"stopped the {len(stopped)} node process(es) started: "
-                          f"{', '.join(stopped)}", components=stopped)  # fmt: skip
+        self._actuator.close()
         self.source.close()
 
     def run(self, interval: float, *, once: bool = False) -> Conformance:
@@ -392,6 +344,6 @@ class Watcher:
             return  # a failure seen while confirming: replan now
         deadline = time.monotonic() + seconds
         while not self.stop_requested() and (left := deadline - time.monotonic()) > 0:
-            if self._control is not None and self._control.any_exited():
+            if self._actuator.exited():
                 return
             time.sleep(min(left, 0.02))

@@ -8,7 +8,7 @@ from rosreconf import jsonout
 from rosreconf.model import InteroperabilitySchema
 from rosreconf.render.reports import Output
 from rosreconf.ros.conformance import Conformance
-from rosreconf.ros.rpc import printable
+from rosreconf.ros.printable import printable
 
 
 class InspectReporter(Protocol):

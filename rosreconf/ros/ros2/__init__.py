@@ -1,1 +1,2 @@
-"""Read a ROS 2 graph from DDS discovery, without ROS 2 installed (extra ``rosreconf[ros2]``)."""
+"""ROS 2: read a graph from DDS discovery without ROS 2 installed (extra ``rosreconf[ros2]``),
+and act on it: node processes, lifecycle transitions, standby (``acting``, ``control``)."""

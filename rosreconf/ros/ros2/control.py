@@ -34,9 +34,11 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.ros.conformance import Conformance, Finding, node_live_name
+from rosreconf.model.wiring import node_live_name
+from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.livenames import Finding
 from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
 from rosreconf.ros.ros2.nodes import NodeProcesses
 from rosreconf.ros.ros2.outside import OutsideNodes

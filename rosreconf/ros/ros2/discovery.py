@@ -52,27 +52,16 @@ from rosreconf.ros.ros2.graph import (
     Endpoint,
     NodeInfo,
     build_graph,
-    graph_uri,
     stale_participants,
 )
 from rosreconf.ros.ros2.names import (
     DISCOVERY_TOPIC,
-    DISTROS,
-    GID_SIZES,
     check_domain,
     gid_sizes,
     ros_name,
 )
 
-__all__ = [
-    "DISTROS",
-    "GID_SIZES",
-    "Ros2Discovery",
-    "check_domain",
-    "gid_sizes",
-    "graph_uri",
-    "read_ros2_graph",
-]
+__all__ = ["Ros2Discovery", "read_ros2_graph"]
 
 UNDECODABLE_AFTER = 4.5
 """Seconds a ``ros_discovery_info`` writer may be known without one decodable sample: more

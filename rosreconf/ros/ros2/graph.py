@@ -15,8 +15,8 @@ from datetime import datetime
 
 from rosreconf.model.qos import QosProfile
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
+from rosreconf.ros.printable import printable
 from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
-from rosreconf.ros.rpc import printable
 
 _NAME_CHARS = 2048
 """Longest name kept whole (a Gid's namespace and name are 256 bytes each; DDS topics more)."""

@@ -4,8 +4,8 @@ A managed node (``ros.lifecycle: true``) is taken into service by ``configure`` 
 ``activate`` and out of it by ``deactivate`` then ``cleanup``; each is a call of the node's
 ``/<node>/change_state`` service (``lifecycle_msgs/srv/ChangeState``), what ``ros2 lifecycle
 set`` does. rosreconf reads DDS without rclpy, so the calls go through one helper process it
-owns, ``lifecycle_agent.py`` under the ROS 2 Python (``rosreconf.ros.ros2.runtime``), which
-answers JSON lines and stays up, so its service clients are matched before they are needed:
+owns, ``scripts/lifecycle_agent.py`` under the ROS 2 Python (``rosreconf.ros.ros2.helper``),
+which answers JSON lines and stays up, so its service clients are matched before they are needed:
 a transition then takes milliseconds, not a new process and a discovery round (seconds).
 Each transition has a timeout and is confirmed by reading the state back; any failure is a
 ``LifecycleError`` with the node, the transition and why. Nothing here prints.
@@ -13,24 +13,17 @@ Each transition has a timeout and is confirmed by reading the state back; any fa
 
 from __future__ import annotations
 
-import contextlib
-import json
-import queue
-import signal
-import subprocess
-import threading
 import time
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.procs.child import release
-from rosreconf.procs.signals import signal_group
-from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
+from rosreconf.ros.ros2.helper import Helper
+from rosreconf.ros.ros2.runtime import ros2_python
 
-AGENT_SCRIPT = Path(__file__).with_name("lifecycle_agent.py")
+AGENT_SCRIPT = Path(__file__).parent / "scripts" / "lifecycle_agent.py"
 TIMEOUT = 5.0
 """Seconds one lifecycle service call may take."""
 APPEAR = 30.0
@@ -54,67 +47,22 @@ class Outcome:
     error: str | None = None
 
 
-class LifecycleAgent:
+class LifecycleAgent(Helper):
     """Own the helper process that calls lifecycle services (see the module docstring)."""
+
+    error = LifecycleError
 
     def __init__(self, env: Mapping[str, str], log: Path, timeout: float = TIMEOUT) -> None:
         self.timeout = timeout
-        python = ros2_python(env)
-        self.process, self._alive = start_helper([python, str(AGENT_SCRIPT)], env, log)
-        self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
         self._next = 0
-        assert self.process.stdout is not None
-        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
-        self._log = log
-        self.name = f"the lifecycle agent ({python} {AGENT_SCRIPT.name})"
-        try:
-            first = self._answer(None, ANSWER_SECONDS, "start")
-        except ExternalToolError:
-            self.close()
-            raise
-        if "ready" not in first:
-            self.close()
-            raise ExternalToolError(f"{self.name} did not start: it said {first} (see {log})")
-
-    def _read(self, stream: IO[bytes]) -> None:
-        for line in stream:
-            try:
-                said = json.loads(line)
-            except ValueError:
-                said = None
-            if not isinstance(said, dict):  # not the agent's protocol: name what it said
-                said = {"garbage": line.decode(errors="replace").strip()[:120]}
-            self._answers.put(said)
-        self._answers.put({"eof": True})
-
-    def _answer(self, wanted: int | None, timeout: float, what: str) -> dict[str, Any]:
-        deadline = time.monotonic() + timeout
-        while True:
-            try:
-                answer = self._answers.get(timeout=max(0.0, deadline - time.monotonic()))
-            except queue.Empty:
-                raise LifecycleError(
-                    f"{self.name} did not answer within {timeout:g} s ({what}; see {self._log})"
-                ) from None
-            if answer.get("eof"):
-                raise LifecycleError(f"{self.name} has exited (see {self._log})")
-            if "garbage" in answer:
-                raise LifecycleError(
-                    f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
-                    f"(see {self._log})"
-                )
-            if wanted is None or answer.get("id") == wanted:
-                return answer
+        python = ros2_python(env)
+        name = f"the lifecycle agent ({python} {AGENT_SCRIPT.name})"
+        super().__init__([python, str(AGENT_SCRIPT)], env, log, name)
 
     def _ask(self, request: dict[str, Any], timeout: float) -> dict[str, Any]:
         self._next += 1
-        assert self.process.stdin is not None
-        try:
-            self.process.stdin.write((json.dumps({"id": self._next, **request}) + "\n").encode())
-            self.process.stdin.flush()
-        except OSError:
-            raise LifecycleError(f"{self.name} has exited (see {self._log})") from None
-        return self._answer(self._next, timeout + 2.0, str(request.get("op")))
+        self.send([{"id": self._next, **request}])
+        return self.answer(self._next, timeout + 2.0, str(request.get("op")))
 
     def watch(self, nodes: Collection[str]) -> None:
         """Make the clients for these nodes now, so that their transitions are fast later."""
@@ -169,16 +117,3 @@ class LifecycleAgent:
             )
             for r in answer.get("results", [])
         ]
-
-    def close(self) -> None:
-        """End the helper (its stdin closes; then SIGKILL) and release its watchdog."""
-        if self.process.stdin is not None:
-            with contextlib.suppress(OSError):
-                self.process.stdin.close()
-        try:
-            self.process.wait(timeout=1.0)
-        except subprocess.TimeoutExpired:
-            signal_group(self.process.pid, signal.SIGKILL)
-            self.process.wait()
-        signal_group(self.process.pid, signal.SIGKILL)
-        release(self._alive)

@@ -17,6 +17,14 @@ Jazzy and Kilted, about 10 ms once matched). rmw_cyclonedds puts a header (clien
 sequence number) in the payload and answers only readers it paired with the client: those
 servers (and any non-eProsima participant) are not asked, and their state stays unknown.
 Any reply on the topic tells the state, whoever asked. Nothing here prints.
+
+This is the fast path, kept beside the rclpy lifecycle agent (``rosreconf.ros.ros2.lifecycle``,
+which performs transitions and whose ``get_state`` calls confirm them): ``watch`` reads every
+managed node's state on every poll, with at most ``STATES_TIMEOUT`` (0.1 s) to wait, and a
+``StateReader`` kept across polls keeps its request/reply pairs matched. Measured on main
+(issue 30): a full graph read with states takes 18 ms median with the kept pairs, 45 ms when
+each read makes new request/reply pairs; an rclpy call goes through the agent's JSON-lines
+pipe on top of that. So states are read here and changed there.
 """
 
 from __future__ import annotations

@@ -47,7 +47,7 @@ from rosreconf.ros.ros2.runtime import (
 from rosreconf.ros.ros2.zygote import DISABLE_ENV, Zygote
 from rosreconf.ros.standin_spec import ros2_standin_spec
 
-STANDIN_SCRIPT = Path(__file__).with_name("standin_node.py")
+STANDIN_SCRIPT = Path(__file__).parent / "scripts" / "standin_node.py"
 GRACE_SECONDS = 1.0
 """Seconds between SIGINT, SIGTERM and SIGKILL when rosreconf stops a node's process."""
 

@@ -10,27 +10,25 @@ have had (``pgrep -f '__node:=NSM3'`` finds it). The zygote reaps its children a
 each exit at once over its stdout; ``Forked`` turns that into what ``subprocess.Popen``
 offers (``poll``, ``wait``, ``returncode``), so ``rosreconf.ros.ros2.nodes`` treats a forked
 stand-in like any process it started. Children die with the zygote (a parent-death signal),
-which dies with rosreconf (``rosreconf.ros.ros2.runtime.start_helper``). Nothing here prints.
+which dies with rosreconf (``rosreconf.ros.ros2.helper``). Nothing here prints.
 """
 
 from __future__ import annotations
 
 import contextlib
-import json
-import queue
 import signal
 import subprocess
 import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.procs.child import release
 from rosreconf.procs.signals import signal_group
-from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, ros2_python, start_helper
+from rosreconf.ros.ros2.helper import Helper
+from rosreconf.ros.ros2.runtime import ros2_python
 
-ZYGOTE_SCRIPT = Path(__file__).with_name("standin_zygote.py")
+ZYGOTE_SCRIPT = Path(__file__).parent / "scripts" / "standin_zygote.py"
 TITLE_ROOM = 32768
 """Bytes of argument the zygote is given, for its children's command lines (as its own)."""
 DISABLE_ENV = "ROSRECONF_STANDIN_ZYGOTE"
@@ -84,66 +82,35 @@ class ForkedProgram:
         return self.process.wait()
 
 
-class Zygote:
+class Zygote(Helper):
     """Own the zygote process: ask it for stand-ins, hear of their exits (module docstring)."""
 
+    close_wait = 2.0
+
     def __init__(self, env: Mapping[str, str], log: Path) -> None:
-        python = ros2_python(env)
-        argv = [python, str(ZYGOTE_SCRIPT), " " * TITLE_ROOM]
-        self.log = log
-        self.name = f"the stand-in zygote ({python} {ZYGOTE_SCRIPT.name})"
-        self.process, self._alive = start_helper(argv, env, log)
-        self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
         self._codes: dict[int, int] = {}
         self._gone = False
         self._changed = threading.Condition()
         self._next = 0
         self.orphans: list[ForkedProgram] = []
-        assert self.process.stdout is not None
-        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
-        try:
-            first = self._answer(ANSWER_SECONDS)
-        except ExternalToolError:
-            self.close()
-            raise
-        if "ready" not in first:
-            self.close()
-            raise ExternalToolError(f"{self.name} did not start: it said {first} (see {log})")
+        python = ros2_python(env)
+        argv = [python, str(ZYGOTE_SCRIPT), " " * TITLE_ROOM]
+        super().__init__(argv, env, log, f"the stand-in zygote ({python} {ZYGOTE_SCRIPT.name})")
 
-    def _read(self, stream: IO[bytes]) -> None:
-        for line in stream:
-            try:
-                said = json.loads(line)
-            except ValueError:
-                said = None
-            if not isinstance(said, dict):  # not the zygote's protocol: name what it said
-                self._answers.put({"garbage": line.decode(errors="replace").strip()[:120]})
-            elif "exited" in said:
-                with self._changed:
-                    self._codes[int(said["exited"])] = int(said["code"])
-                    self._changed.notify_all()
-            else:
-                self._answers.put(said)
-        with self._changed:  # its children got SIGKILL (their parent-death signal)
+    def heard(self, said: dict[str, Any]) -> bool:
+        """Take a child's exit, which is news, not an answer."""
+        if "exited" not in said:
+            return False
+        with self._changed:
+            self._codes[int(said["exited"])] = int(said["code"])
+            self._changed.notify_all()
+        return True
+
+    def ended(self) -> None:
+        """Note that the children are gone (their parent-death signal is SIGKILL)."""
+        with self._changed:
             self._gone = True
             self._changed.notify_all()
-        self._answers.put({"eof": True})
-
-    def _answer(self, timeout: float) -> dict[str, Any]:
-        try:
-            answer = self._answers.get(timeout=timeout)
-        except queue.Empty:
-            raise ExternalToolError(
-                f"{self.name} did not answer within {timeout:g} s (see {self.log})"
-            ) from None
-        if answer.get("eof"):
-            raise ExternalToolError(f"{self.name} has exited (see {self.log})")
-        if "garbage" in answer:
-            raise ExternalToolError(
-                f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
-                f"(see {self.log})"
-            )
-        return answer
 
     def spawn(
         self, programs: Sequence[tuple[Sequence[str], Path]], timeout: float = 30.0
@@ -155,20 +122,15 @@ class Zygote:
                 (the stand-ins it did fork are in ``self.orphans``: stop them).
         """
         first = self._next + 1
-        lines = []
+        requests = []
         for argv, log in programs:
             self._next += 1
-            lines.append(json.dumps({"id": self._next, "argv": list(argv), "log": str(log)}))
-        assert self.process.stdin is not None
-        try:
-            self.process.stdin.write("".join(f"{line}\n" for line in lines).encode())
-            self.process.stdin.flush()
-        except OSError:
-            raise ExternalToolError(f"{self.name} has exited (see {self.log})") from None
+            requests.append({"id": self._next, "argv": list(argv), "log": str(log)})
+        self.send(requests)
         forked: dict[int, ForkedProgram] = {}
         failure = None
         for _ in programs:
-            answer = self._answer(timeout)
+            answer = self.answer(None, timeout, "fork")
             index = int(answer.get("id", 0)) - first
             if "pid" not in answer:
                 failure = failure or str(answer.get("error"))
@@ -195,16 +157,3 @@ class Zygote:
             if not self._changed.wait_for(lambda: pid in self._codes or self._gone, timeout):
                 raise subprocess.TimeoutExpired(str(pid), timeout or 0.0)
             return self._codes.get(pid, -signal.SIGKILL)
-
-    def close(self) -> None:
-        """End the zygote (its stdin closes: it kills what is left) and release its watchdog."""
-        if self.process.stdin is not None:
-            with contextlib.suppress(OSError):
-                self.process.stdin.close()
-        try:
-            self.process.wait(timeout=2.0)
-        except subprocess.TimeoutExpired:
-            signal_group(self.process.pid, signal.SIGKILL)
-            self.process.wait()
-        signal_group(self.process.pid, signal.SIGKILL)
-        release(self._alive)

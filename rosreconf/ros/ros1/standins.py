@@ -2,8 +2,8 @@
 
 ``rosreconf.ros.launchfiles`` writes the launch files (real or stand-in); this module supplies
 what the stand-in ones need and starts roslaunch. A stand-in ``<node>`` runs
-``rosreconf/ros/standin_node.py`` from a package that exists only in a temp dir. roslaunch
-finds packages through ``ROS_PACKAGE_PATH`` (rospkg crawls it for
+``rosreconf/ros/ros1/scripts/standin_node.py`` from a package that exists only in a temp dir.
+roslaunch finds packages through ``ROS_PACKAGE_PATH`` (rospkg crawls it for
 ``package.xml``); no catkin workspace is needed. So ``write_standin_package`` makes::
 
     <dir>/rosreconf_standin/package.xml     a minimal format-2 manifest
@@ -50,7 +50,7 @@ def write_standin_package(parent: Path) -> Path:
     pkg.mkdir(parents=True, exist_ok=True)
     (pkg / "package.xml").write_text(PACKAGE_XML, encoding="utf-8")
     script = pkg / STANDIN_EXECUTABLE
-    shutil.copyfile(Path(__file__).with_name("standin_node.py"), script)
+    shutil.copyfile(Path(__file__).parent / "scripts" / "standin_node.py", script)
     script.chmod(0o755)
     return parent
 

@@ -4,7 +4,7 @@ rosreconf's own environment has no rospy, and needs none: the master API
 (http://wiki.ros.org/ROS/Master_API) and every node's own API
 (http://wiki.ros.org/ROS/Slave_API) are plain XML-RPC, each call answering
 ``[code, status, value]`` with code 1 for success. Each call goes through
-``rosreconf.ros.rpc`` (one total deadline and a byte cap per call). Every failure (nothing
+``rosreconf.ros.ros1.rpc`` (one total deadline and a byte cap per call). Every failure (nothing
 listening, no answer within ``timeout``, an answer that is not that shape) becomes
 ``ExternalToolError`` naming the URI; nothing here prints.
 
@@ -24,9 +24,10 @@ from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.ros import rpc
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
-from rosreconf.ros.rpc import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, printable
+from rosreconf.ros.printable import printable
+from rosreconf.ros.ros1 import rpc
+from rosreconf.ros.ros1.rpc import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 
 __all__ = [
     "DEFAULT_MAX_BYTES",

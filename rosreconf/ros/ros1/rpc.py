@@ -19,28 +19,13 @@ from urllib.parse import urlsplit
 from xml.parsers.expat import ExpatError
 
 from rosreconf.errors import ExternalToolError, UsageError
+from rosreconf.ros.printable import printable
 
 DEFAULT_TIMEOUT = 3.0
 """Seconds one XML-RPC call may take in all: connecting, sending, and the whole answer."""
 
 DEFAULT_MAX_BYTES = 32 << 20
 """How many bytes one answer may have (headers included); a large real master sends a few MiB."""
-
-_SHOWN_CHARS = 200
-"""How much of a text from the wire an error message quotes."""
-
-
-def printable(text: str, limit: int = _SHOWN_CHARS) -> str:
-    """Return ``text`` fit for a terminal: control and other unprintable characters escaped.
-
-    Anything that came over the wire (a status text, an HTTP reason phrase, a name) may carry
-    escape sequences that retitle or clear a terminal, or reorder what it shows; messages
-    quote it only through this function, cut to ``limit`` characters.
-    """
-    shown = "".join(
-        c if c.isprintable() else c.encode("unicode_escape").decode("ascii") for c in text
-    )
-    return shown if len(shown) <= limit else shown[: limit - 3] + "..."
 
 
 class _Late(TimeoutError):

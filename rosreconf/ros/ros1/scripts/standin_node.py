@@ -2,9 +2,9 @@
 """Stand in for a library component on a real ROS 1 master, so tests need no real robot code.
 
 It ships inside rosreconf because ``rosreconf watch --stand-ins`` starts it through roslaunch
-(see ``rosreconf.ros.standins``); it is a script, not part of the library, and is never imported
-by rosreconf. Run it with the system Python (``/usr/bin/python3``), which has rospy from Debian; the
-project's venv has none. The one argument is a JSON spec, inline or as a file path::
+(see ``rosreconf.ros.ros1.standins``); it is a script, not part of the library, and is never
+imported by rosreconf. Run it with the system Python (``/usr/bin/python3``), which has rospy
+from Debian; the project's venv has none. The one argument is a JSON spec, inline or a path::
 
     {"name": "talker",
      "publish":   [{"topic": "/a", "type": "std_msgs/String"}],

@@ -1,0 +1,150 @@
+"""What ``watch`` does to a running system, behind one interface: the ``Actuator``.
+
+The watcher (``rosreconf.ros.watcher``) decides what must change; an actuator changes it, as
+far as its middleware lets it. Each source makes its own (``LiveSource.actuator``), so the
+watcher holds one and never asks which::
+
+    actuator                      made for                  start           retire
+    ----------------------------  ------------------------  --------------  -----------------------
+    ``launcher.LaunchActuator``   ROS 1 (``--master URI``)  roslaunch       the node API's
+                                                                            ``shutdown``
+    ``ros2.acting.Ros2Launch``    ROS 2, ``--ros2-launch``  ``ros2 launch``  lifecycle transitions
+                                                                            listed for a person
+    ``ros2.acting.Ros2Actuator``  ROS 2, ``--apply``        own processes   own processes ended,
+                                                                            managed nodes
+                                                                            transitioned
+
+A new way of acting (supervising nodes rosreconf did not start) is one more class: it
+implements ``start``, ``replace`` and ``close``, and inherits the rest as "nothing of that
+kind here" from ``Actuator``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Protocol
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.ros.conformance import Conformance
+from rosreconf.ros.livegraph import LiveGraph
+
+if TYPE_CHECKING:
+    from rosreconf.ros.replanning import Change
+
+Say = Callable[..., None]
+"""Receives one event: its kind, its message, and its data as keyword arguments."""
+
+
+@dataclass(frozen=True)
+class Acting:
+    """What a watcher's actuator is made from (its options, as ``watch`` got them).
+
+    Attributes:
+        library, schema: what the configuration is made of.
+        workdir: a private directory (the stand-in package; removed by the caller).
+        env: the environment started processes run in.
+        say: receives every event.
+        apply: act; without, the actuator is asked only to read (``visible``, ``filtered``).
+        stand_ins: start stand-in nodes instead of the components' real executables.
+        launch_dir: where launch files and launch output go, kept after the watcher ends
+            (default: ``workdir``).
+        standby: ROS 2: start and configure managed alternatives in advance.
+        ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
+            node's process.
+    """
+
+    library: ComponentLibrary
+    schema: InteroperabilitySchema
+    workdir: Path
+    env: Mapping[str, str]
+    say: Say
+    apply: bool = False
+    stand_ins: bool = False
+    launch_dir: Path | None = None
+    standby: bool = False
+    ros2_launch: bool = False
+
+    @property
+    def directory(self) -> Path:
+        """Return where launch files and launch output go."""
+        return self.launch_dir if self.launch_dir is not None else self.workdir
+
+
+class Actuator(Protocol):
+    """Start and retire a running system's components, and say what happened to them.
+
+    ``start``, ``replace`` and ``close`` act; every other member has a default here (nothing
+    held out of service, no own processes), which an implementation overrides where its
+    middleware has more to say. Subclass it explicitly to inherit them.
+    """
+
+    def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
+        """Start ``components`` of ``current`` (or say how); True if something was started."""
+        ...
+
+    def replace(
+        self,
+        changes: list[Change],
+        new: Configuration,
+        failed: Collection[str],
+        graph: Callable[[bool], LiveGraph],
+    ) -> bool:
+        """Put ``new`` in service: start what is new, retire what ``changes`` takes out.
+
+        Retiring takes a component out of service (stopped, or its lifecycle taken down),
+        and a kept component that is rewired is restarted. Each implementation orders the
+        two as its middleware needs (make before break, or stop first). ``graph(fresh)``
+        returns the live graph: read again with True, else the one last read if there is
+        one. True if something was started.
+        """
+        ...
+
+    def not_running(self, missing: list[str]) -> tuple[list[str], str]:
+        """Return which of ``missing`` were started already, and why they may not run."""
+        ...
+
+    def close(self) -> None:
+        """Stop every process started here (saying which), and release what is held."""
+        ...
+
+    def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
+        """Hand on what own processes said; return the components of ``current`` that ended.
+
+        With ``tend``, keep up what is prepared in advance (not while confirming a change).
+        """
+        return set()
+
+    def exited(self) -> bool:
+        """Return whether an own node process has ended (a wait between polls ends early)."""
+        return False
+
+    def ended(self) -> bool:
+        """Return whether the process that made the last change has exited (no use waiting)."""
+        return False
+
+    def visible(self, graph: LiveGraph) -> LiveGraph:
+        """Return ``graph`` without the nodes held out of service on purpose."""
+        return graph
+
+    def filtered(self, check: Conformance) -> Conformance:
+        """Return ``check`` without the findings about what is held out of service."""
+        return check
+
+    def left_running(self, check: Conformance) -> bool:
+        """Return whether only nodes a person must stop keep ``check`` from conforming."""
+        return False
+
+    def settled(self, current: Configuration, failed: Collection[str]) -> None:
+        """Note that ``current`` conforms (prepare what goes on standby for it)."""
+        return None
+
+    def restart(self, *, stop: bool) -> None:
+        """Forget what was started with a restarted master (with ``stop``, stop it)."""
+        return None
+
+    @property
+    def reactivate(self) -> Callable[[str, str], bool] | None:
+        """Return how to make a managed component ``active`` again; None: only say it."""
+        return None

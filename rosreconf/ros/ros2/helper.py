@@ -1,0 +1,129 @@
+"""The one client of rosreconf's ROS 2 helper processes: JSON lines over stdin and stdout.
+
+rosreconf reads DDS without rclpy; what needs rclpy runs in a helper under the ROS 2 Python
+(``rosreconf.ros.ros2.runtime.start_helper``: a session of its own, dying with rosreconf).
+Two speak this protocol: the lifecycle agent (``lifecycle``) and the stand-in zygote
+(``zygote``). A helper says ``{"ready": ...}`` first; every request is one line, every
+answer one line, with the request's ``id`` where it has one. A line that is not a JSON
+object is named in the error, never parsed further. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import queue
+import signal
+import subprocess
+import threading
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import IO, Any, ClassVar
+
+from rosreconf.errors import ExternalToolError
+from rosreconf.procs.child import release
+from rosreconf.procs.signals import signal_group
+from rosreconf.ros.ros2.runtime import ANSWER_SECONDS, start_helper
+
+
+class Helper:
+    """Start a helper, read its lines on a thread, hand its answers on, and end it.
+
+    Attributes:
+        name: how messages name it (its Python and script).
+        log: where its stderr goes.
+        process: the helper process.
+        error: the error class its failures raise (a subclass may name its own).
+        close_wait: seconds ``close`` waits for it to end on its own before SIGKILL.
+    """
+
+    error: ClassVar[type[ExternalToolError]] = ExternalToolError
+    close_wait: ClassVar[float] = 1.0
+
+    def __init__(self, argv: Sequence[str], env: Mapping[str, str], log: Path, name: str) -> None:
+        self.name = name
+        self.log = log
+        self.process, self._alive = start_helper(argv, env, log)
+        self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
+        assert self.process.stdout is not None
+        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
+        try:
+            first = self.answer(None, ANSWER_SECONDS, "start")
+        except ExternalToolError:
+            self.close()
+            raise
+        if "ready" not in first:
+            self.close()
+            raise self.error(f"{name} did not start: it said {first} (see {log})")
+
+    def heard(self, said: dict[str, Any]) -> bool:
+        """Take a line that is news rather than an answer (on the reader thread); True if so."""
+        return False
+
+    def ended(self) -> None:
+        """Note, on the reader thread, that the helper's stdout has closed."""
+
+    def _read(self, stream: IO[bytes]) -> None:
+        for line in stream:
+            try:
+                said = json.loads(line)
+            except ValueError:
+                said = None
+            if not isinstance(said, dict):  # not the protocol: name what it said
+                self._answers.put({"garbage": line.decode(errors="replace").strip()[:120]})
+            elif not self.heard(said):
+                self._answers.put(said)
+        self.ended()
+        self._answers.put({"eof": True})
+
+    def send(self, requests: Sequence[dict[str, Any]]) -> None:
+        """Write ``requests``, one line each, at once.
+
+        Raises:
+            ExternalToolError: the helper has exited.
+        """
+        assert self.process.stdin is not None
+        try:
+            self.process.stdin.write("".join(json.dumps(r) + "\n" for r in requests).encode())
+            self.process.stdin.flush()
+        except OSError:
+            raise self.error(f"{self.name} has exited (see {self.log})") from None
+
+    def answer(self, wanted: int | None, timeout: float, what: str) -> dict[str, Any]:
+        """Return the next answer (with ``wanted``: the one with that ``id``).
+
+        Raises:
+            ExternalToolError: none within ``timeout`` seconds, the helper has exited, or it
+                said something that is not a line of its protocol.
+        """
+        deadline = time.monotonic() + timeout
+        while True:
+            try:
+                answer = self._answers.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                raise self.error(
+                    f"{self.name} did not answer within {timeout:g} s ({what}; see {self.log})"
+                ) from None
+            if answer.get("eof"):
+                raise self.error(f"{self.name} has exited (see {self.log})")
+            if "garbage" in answer:
+                raise self.error(
+                    f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
+                    f"(see {self.log})"
+                )
+            if wanted is None or answer.get("id") == wanted:
+                return answer
+
+    def close(self) -> None:
+        """End the helper (its stdin closes; then SIGKILL) and release its watchdog."""
+        if self.process.stdin is not None:
+            with contextlib.suppress(OSError):
+                self.process.stdin.close()
+        try:
+            self.process.wait(timeout=self.close_wait)
+        except subprocess.TimeoutExpired:
+            signal_group(self.process.pid, signal.SIGKILL)
+            self.process.wait()
+        signal_group(self.process.pid, signal.SIGKILL)
+        release(self._alive)
