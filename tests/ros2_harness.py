@@ -17,7 +17,7 @@ import socket
 import subprocess
 import sys
 import time
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -85,20 +85,39 @@ def _join(namespace: str, name: str) -> str:
     return "/" + "/".join(parts)
 
 
-def node_spec(component: Component, qos: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
+def _live(component: Component, label: str) -> str:
+    """Return the global name ``component``'s executable uses for ``label`` (its remapping)."""
+    launch = component.launch
+    ns = (launch.namespace if launch else None) or "/"
+    target = launch.remappings.get(label, label) if launch else label
+    return _join("/", target) if target.startswith("/") else _join(ns, target)
+
+
+def node_spec(
+    component: Component,
+    qos: dict[str, dict[str, Any]] | None = None,
+    providers: Sequence[Component] = (),
+) -> dict[str, Any]:
     """Return the announcer node of ``component``: what its ROS 2 node would announce.
 
     Written here from the library, not with rosreconf's own name mapping, so that a bug
     there shows up as a test failure. ``qos`` maps a live topic name to the rmw profile of
-    this node's endpoint on it.
+    this node's endpoint on it. ``providers``: the other nodes of its configuration; each
+    requirement option one of them provides is used under that provider's name, as a
+    launch file's remapping wires it (else under its own name, unwired).
     """
     qos = qos or {}
     launch = component.launch
     ns = (launch.namespace if launch else None) or "/"
 
     def live(label: str) -> str:
-        target = launch.remappings.get(label, label) if launch else label
-        return _join("/", target) if target.startswith("/") else _join(ns, target)
+        return _live(component, label)
+
+    def wired(option: Any) -> str:
+        for p in providers:
+            if option in p.provides:
+                return _live(p, option.label)
+        return live(option.label)
 
     node: dict[str, Any] = {
         "namespace": ns,
@@ -117,7 +136,7 @@ def node_spec(component: Component, qos: dict[str, dict[str, Any]] | None = None
             node["publishers"].append({"name": name, "type": typ, "qos": qos.get(name, {})})
     for req in component.requires:
         for option in req.options:
-            name = live(option.label)
+            name = wired(option)
             if option.kind is InterfaceKind.SERVICE:
                 node["clients"].append({"name": name, "type": ros2_type(option.type, "srv")})
             else:

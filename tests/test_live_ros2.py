@@ -48,7 +48,9 @@ def test_inspect_kill_and_replan(
     announce: Announce, ros2_domain: int, runner: CliRunner, tmp_path: Path
 ) -> None:
     library, schema = _nominal()
-    nodes = {c: announce([ros2_harness.node_spec(library[c])]) for c in schema.nominal.values()}
+    chosen = [library[c] for c in schema.nominal.values()]  # each wired to the others
+    nodes = {c: announce([ros2_harness.node_spec(library[c], providers=chosen)])
+             for c in schema.nominal.values()}  # fmt: skip
     ros2 = ["--ros2", "--domain", str(ros2_domain)]
     inspect = ["inspect", *ros2, "--only", SCHEMA, "--json"]
 
@@ -136,8 +138,9 @@ def test_qos_mismatch_is_reported_with_both_sides(
         "AMCL": {"/scan": {"reliability": "reliable", "deadline": 0.1}},
         "TEB_PLANNER": {"/scan": {"reliability": "best_effort"}},
     }
+    chosen = [bundle.library[c] for c in schema.nominal.values()]  # each wired to the others
     for comp in schema.nominal.values():
-        announce([ros2_harness.node_spec(bundle.library[comp], qos.get(comp))])
+        announce([ros2_harness.node_spec(bundle.library[comp], qos.get(comp), chosen)])
     argv = ["inspect", "--ros2", "--domain", str(ros2_domain), "--only", "indoor_navigation"]
     result = runner.invoke(app, argv)
     assert result.exit_code == 1, result.stdout + result.stderr
@@ -179,7 +182,16 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
             for c in library.components
         ),
     )
-    nodes = {c: announce([ros2_harness.node_spec(library[c])]) for c in schema.nominal.values()}
+    chosen = [library[c] for c in schema.nominal.values()]  # each wired to the others
+
+    def managed_spec(c: str) -> dict[str, Any]:  # a managed node serves its lifecycle services
+        spec = ros2_harness.node_spec(library[c], providers=chosen)
+        spec["servers"] += [{"name": f"/{c}/{s}", "type": f"lifecycle_msgs/srv/{t}"}
+                            for s, t in (("get_state", "GetState"),
+                                         ("change_state", "ChangeState"))]  # fmt: skip
+        return spec
+
+    nodes = {c: announce([managed_spec(c)]) for c in schema.nominal.values()}
     events: list[Event] = []
     config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     no_ros2 = {"PATH": str(tmp_path)}  # no `ros2` command on this PATH
@@ -187,7 +199,10 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
                       events.append, apply=True, launch_dir=tmp_path,
                       ros2_launch=True)  # fmt: skip
     try:
-        assert watcher.step().ok
+        # announcers serve get_state but cannot answer it: a managed node whose state cannot
+        # be read is not known to be active, and is said so (never assumed conformant)
+        first = watcher.step()
+        assert {f.code for f in first.findings} == {"not-active"}, first.findings
         nodes["NSM3"].kill()
         deadline = time.monotonic() + DETECT_TIMEOUT
         while not any(e.kind == "replanned" for e in events):

@@ -444,7 +444,7 @@ def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> N
 
     uses = used_interfaces(bundle.library, schema, config.mapping)
     argv = nodes.command(bundle.library, "NDC1", wiring(bundle.library, schema, config), uses)
-    assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", "joint:=base"]
+    assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", 'joint:="base"']
     with pytest.raises(ExternalToolError, match="robot_arm_servo was not found"):
         nodes.command(bundle.library, "NSM1", {}, {})
 
