@@ -444,7 +444,9 @@ def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> N
 
     uses = used_interfaces(bundle.library, schema, config.mapping)
     argv = nodes.command(bundle.library, "NDC1", wiring(bundle.library, schema, config), uses)
-    assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", "joint:=base"]
+    # a string parameter goes double-quoted, so rcl reads it as a string whatever it looks like
+    # (issue 32, N2: test_ros2_parameters checks what a real rclpy node receives)
+    assert argv == [str(program), "--ros-args", "-r", "__node:=NDC1", "-p", 'joint:="base"']
     with pytest.raises(ExternalToolError, match="robot_arm_servo was not found"):
         nodes.command(bundle.library, "NSM1", {}, {})
 
