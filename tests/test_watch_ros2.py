@@ -140,7 +140,9 @@ def probe(
         argv, env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
         timeout=PROBE_SECONDS + 60, check=True,
     )  # fmt: skip
-    return dict(json.loads(out.stdout))
+    # Fast DDS logs its own errors to stdout too (an SHM port another run holds, seen under
+    # load: "[RTPS_TRANSPORT_SHM Error] Failed init_port"): the probe's document is its last line
+    return dict(json.loads(out.stdout.splitlines()[-1]))
 
 
 def changes_of_plan(failed: str, *files: str) -> dict[str, str | None]:
