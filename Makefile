@@ -38,11 +38,14 @@ demo: $(STAMP)
 ROS2_DISTROS := jazzy kilted
 ros2-venvs: $(foreach d,$(ROS2_DISTROS),.venv-ros2-$(d)/.installed-stamp)
 
+## The stamp holds the requirements it was built from: a checkout that only renews the file's
+## time (a fresh branch, a worktree whose venvs are links to another's) installs nothing.
 .venv-ros2-%/.installed-stamp: requirements/ros2-%.txt
-	python3 -m venv .venv-ros2-$*
-	.venv-ros2-$*/bin/python -m pip install --quiet -r $<
-	HOME=$${HOME:-/tmp} .venv-ros2-$*/bin/python -c 'import rclpy, rclpy.lifecycle, rclpy.action'
-	touch $@
+	@if cmp -s $< $@; then touch $@; else \
+	  set -ex; python3 -m venv .venv-ros2-$*; \
+	  .venv-ros2-$*/bin/python -m pip install --quiet -r $<; \
+	  HOME=$${HOME:-/tmp} .venv-ros2-$*/bin/python -c 'import rclpy, rclpy.lifecycle, rclpy.action'; \
+	  cp $< $@; fi
 
 test: system-deps $(STAMP) ros2-venvs lint typecheck pytest
 

@@ -135,6 +135,26 @@ def test_node_names_from_the_network_are_escaped(
     assert not any(c in snap.stdout for c in "\x1b\x07\r\x9b")
 
 
+def test_empty_node_name_is_hidden_and_a_slash_in_one_escaped(
+    announce: Announce, ros2_domain: int, runner: CliRunner
+) -> None:
+    """Imitation (rcl refuses such names): nodes named ``""`` and ``/`` in ``/``, ``a/b`` in
+    ``/ns``. Reference: ``ros2 node list`` hides a node whose base name is empty
+    (ros2cli's ``get_node_names`` keeps ``t[0] and not t[0].startswith("_")``); a ``/`` in a
+    base name is shown escaped, as other characters no ROS name can hold, never as ``//`` or
+    as a node ``b`` of namespace ``/ns/a``."""
+    forged = [{"namespace": ns, "name": name, "plumbing": False}
+              for ns, name in (("/", ""), ("/", "/"), ("/ns", "a/b"))]  # fmt: skip
+    announce([*forged, LISTENER])
+    graph = read_ros2_graph(ros2_domain)
+    assert graph.names == ("/", "/\\x2f", "/listener", "/ns/a\\x2fb")
+    assert without_plumbing(graph).names == ("/\\x2f", "/listener", "/ns/a\\x2fb")
+    files = ["-l", str(PATROL / "patrol_library.yaml"), "-s", str(PATROL / "patrol_schema.yaml")]
+    result = runner.invoke(app, ["inspect", "--ros2", "--domain", str(ros2_domain), *files])
+    extra = sorted(re.findall(r"extra-node: (\S+)", result.stdout))
+    assert extra == ["/\\x2f", "/listener", "/ns/a\\x2fb"], result.stdout
+
+
 def _snapshot(domain: int) -> subprocess.CompletedProcess[str]:
     """Run ``snapshot --ros2`` as a process (its stderr is what a user sees, C library included)."""
     return subprocess.run(

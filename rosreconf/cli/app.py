@@ -23,6 +23,8 @@ import typer.main
 from typer._click import Command, Context  # typer vendors click: its types are what it builds
 
 from rosreconf import __version__, jsonout
+from rosreconf.cli import capped
+from rosreconf.cli.capped import OUT_OF_MEMORY
 from rosreconf.cli.console import stderr, write_stdout
 from rosreconf.errors import ExitCode, InvalidInputError, RosreconfError
 from rosreconf.procs.signals import Terminated
@@ -108,13 +110,6 @@ COMMANDS: dict[str, Verb] = {
 """Every verb, in the order ``rosreconf --help`` lists them."""
 
 
-OUT_OF_MEMORY = (
-    "rosreconf: error: out of memory: this run needs more than the machine or its limits "
-    "(ulimit -v) allow; ask for less (--limit, --only, a smaller library) or allow more"
-)
-"""The one line an exhausted memory ends with (exit 3: not a failed check, not usage)."""
-
-
 def guard(command: Callable[P, R]) -> Callable[P, R]:
     """Run a command body, turning rosreconf errors, memory, Ctrl-C and SIGTERM into exit codes."""
 
@@ -132,6 +127,7 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
         except MemoryError:
             # Raised where an allocation failed, anywhere in rosreconf or numpy; by now the
             # frames that held the memory are gone, so the message can be printed.
+            capped.take_back_stdout()  # no half document in a file
             stderr.print(OUT_OF_MEMORY, markup=False)
             raise typer.Exit(ExitCode.PLANNER) from None
         except KeyboardInterrupt:
@@ -241,5 +237,9 @@ def _root(
 
 
 def main() -> None:
-    """Run the CLI (the console script and ``python -m rosreconf``)."""
-    app()
+    """Run the CLI (the console script and ``python -m rosreconf``).
+
+    Under a memory cap it runs in a forked child, so that an abort in C++ (clingo) for want of
+    memory still ends in exit 3 with ``OUT_OF_MEMORY`` (``rosreconf.cli.capped``).
+    """
+    capped.run(app)

@@ -204,8 +204,13 @@ def is_lifecycle_service(node: str, service: str) -> bool:
 
 
 def is_hidden_node(name: str) -> bool:
-    """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's)."""
-    return name.rsplit("/", 1)[-1].startswith("_")
+    """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's).
+
+    An empty base name (``/ns/``: rcl refuses it, only a forged participant announces it) is
+    hidden too, as ``ros2 node list`` hides it: no launch file can name such a node.
+    """
+    base = name.rsplit("/", 1)[-1]
+    return not base or base.startswith("_")
 
 
 def _ros2_plumbing_service(node: str, service: str) -> bool:

@@ -235,8 +235,10 @@ class Ros2Control:
             try:
                 started = self.nodes.start(self.library, self.schema, configuration, fresh)
             except ExternalToolError as exc:
+                self._say_problems()
                 self.say("launch-error", f"cannot start {', '.join(fresh)}: {exc}")
                 return False
+            self._say_problems()
             for own in started:
                 self.dead.discard(own.node)
             how = "stand-ins of " if self.stand_ins else ""
@@ -264,6 +266,11 @@ class Ros2Control:
             ok = all(self._transitions(steps, appear).values()) and ok
         self.parked -= {self._node(c) for c in managed}
         return ok
+
+    def _say_problems(self) -> None:
+        """Say what went wrong in a start that still started (a broken stand-in zygote), once."""
+        for problem in self.nodes.take_problems():
+            self.say("launch-error", problem)
 
     def _rewire(self, configuration: Configuration, components: Collection[str]) -> None:
         """Stop the processes of ``components`` that were started wired otherwise.

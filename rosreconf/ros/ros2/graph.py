@@ -66,9 +66,15 @@ class NodeInfo:
 
     @property
     def full_name(self) -> str:
-        """Return the node's global name (``/ns`` + ``name``)."""
+        """Return the node's global name (``/ns`` + ``name``).
+
+        A base name cannot hold ``/`` (rcl refuses it), so one that came over the network with
+        it is escaped as ``\\x2f``, like other characters no ROS name holds: ``/`` would read as
+        ``//`` and ``a/b`` as node ``b`` of namespace ``/a``. An empty base name gives
+        ``/ns/``, which ``is_hidden_node`` hides, as ``ros2 node list`` does.
+        """
         ns = self.namespace.rstrip("/")
-        return f"{ns}/{self.name}"
+        return ns + "/" + self.name.replace("/", "\\x2f")
 
 
 def stale_participants(

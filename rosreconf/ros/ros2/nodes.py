@@ -11,8 +11,9 @@ Fast DDS profile and its output in ``<directory>/<component>.log``.
 
 Stand-ins are forked by one warm process that has imported rclpy already
 (``rosreconf.ros.ros2.zygote``), which saves each about 0.5 s of CPU; ``ROSRECONF_STANDIN_ZYGOTE=0``
-starts each as a process of its own instead, and so does a zygote that cannot start, once that
-start has failed with its reason (a helper that hangs or talks garbage is named, not hidden).
+starts each as a process of its own instead, and so does a zygote that cannot start or dies: the
+stand-ins of that very start still start (each alone), and the reason is kept in ``problems``
+for the caller to say (a helper that hangs or talks garbage is named, not hidden).
 
 Because rosreconf (or its zygote) is the parent, it sees a node's process exit at once
 (``exited``; ``wait`` returns as soon as one does), long before DDS would. Stopping is SIGINT
@@ -118,6 +119,8 @@ class NodeProcesses:
         stand_ins: run rosreconf's rclpy stand-in instead of each component's executable.
         lease: the participant lease, seconds, of the processes started here.
         nodes: component -> its running process.
+        problems: what went wrong without stopping a start (the stand-in zygote failed, so
+            stand-ins start on their own), each once, for the caller to say and clear.
     """
 
     env: Mapping[str, str]
@@ -125,6 +128,7 @@ class NodeProcesses:
     stand_ins: bool = False
     lease: float = LEASE_SECONDS
     nodes: dict[str, OwnNode] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
     _profile: Path | None = None
     _zygote: Zygote | None = None
     _zygote_failed: bool = False
@@ -226,8 +230,8 @@ class NodeProcesses:
         if zygote is not None:
             try:
                 return list(zygote.spawn(runs))
-            except ExternalToolError:  # it died: from now on each stand-in starts alone
-                self._zygote_failed = True
+            except ExternalToolError as exc:  # it died: from now on each stand-in starts alone
+                self._zygote_broke(exc)
                 for orphan in zygote.orphans:
                     orphan.stop(grace=0.0, sig=signal.SIGKILL)
         return [start_program(argv, log=log, env=env) for argv, log in runs]
@@ -235,19 +239,30 @@ class NodeProcesses:
     def _warm(self, env: Mapping[str, str]) -> Zygote | None:
         """Return the stand-in zygote, started on first use; None when it cannot be had.
 
-        Raises:
-            ExternalToolError: it failed to start, naming it and how (once: the stand-ins
-                start on their own from then on).
+        The zygote only saves CPU: one that fails to start must not keep the stand-ins it
+        was to fork from starting (the robot would be left worse, and nothing retries them),
+        so its reason goes to ``problems`` and they start on their own, now and from then on.
         """
         if self._zygote_failed or env.get(DISABLE_ENV) == "0":
             return None
         if self._zygote is None:
             try:
                 self._zygote = Zygote(env, self.directory / "standin-zygote.log")
-            except ExternalToolError:  # said once, as the start's error; then each alone
-                self._zygote_failed = True
-                raise
+            except ExternalToolError as exc:
+                self._zygote_broke(exc)
+                return None
         return self._zygote
+
+    def take_problems(self) -> list[str]:
+        """Return what went wrong in the starts since the last call (each said once)."""
+        problems, self.problems = self.problems, []
+        return problems
+
+    def _zygote_broke(self, exc: ExternalToolError) -> None:
+        """Give up the zygote for good and keep, once, why (its message names the helper)."""
+        self._zygote_failed = True
+        self._zygote = None
+        self.problems.append(f"{exc}; each stand-in starts on its own from now on")
 
     def exited(self) -> list[tuple[OwnNode, int]]:
         """Return the nodes whose process has ended since the last call, with the exit status."""

@@ -86,6 +86,9 @@ class Standbys:
         except ExternalToolError as exc:
             self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
             return
+        finally:
+            for problem in self.nodes.take_problems():  # a broken zygote: started alone
+                self.say("launch-error", problem)
         self.parked |= {self.node_of(c) for c in wanted}
         self.lifecycle.call(lambda agent: agent.watch([self.node_of(c) for c in wanted]))
         self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
