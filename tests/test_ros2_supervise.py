@@ -104,7 +104,7 @@ def test_a_process_not_readable_is_not_guessed(robot: Robot) -> None:
     python here (its interpreter lives under /root, 0700).
     """
     if os.geteuid() != 0:
-        pytest.skip("needs root to run a reader as another user than the nodes'")
+        pytest.fail("needs root (as make test runs here) to read as another user", pytrace=False)
     script = (
         "import json, sys\n"
         "from rosreconf.ros.ros2.hostprocs import locate_participants\n"
@@ -292,7 +292,7 @@ def test_a_node_in_a_pid_namespace_is_found_by_its_host_pid(
 ) -> None:
     """In a pid namespace (a container) the GUID carries pid 1: NSpid links it to this host's."""
     if os.geteuid() != 0:
-        pytest.skip("needs root for unshare --pid")
+        pytest.fail("needs root (as make test runs here) for unshare --pid", pytrace=False)
     spec = tmp_path / "spec.json"
     spec.write_text(json.dumps({"nodes": [{"name": "contained", "namespace": "/"}]}))
     argv = ["unshare", "--pid", "--fork", "--kill-child"]

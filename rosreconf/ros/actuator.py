@@ -140,6 +140,10 @@ class Actuator(Protocol):
         """Note that ``current`` conforms (prepare what goes on standby for it)."""
         return None
 
+    def awaited(self) -> frozenset[str]:
+        """Return the components a person was asked to restart: gone a while, not failed."""
+        return frozenset()
+
     def restart(self, *, stop: bool) -> None:
         """Forget what was started with a restarted master (with ``stop``, stop it)."""
         return None

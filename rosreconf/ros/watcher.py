@@ -149,9 +149,11 @@ class Watcher:
             return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
         check = self._compare(graph)
-        missing = []
+        missing, awaited = [], self._actuator.awaited()
         for comp in self.current.components:
             codes = {f.code for f in check.findings if f.component == comp}
+            if comp in awaited:  # a person restarts it (rewired): neither failed nor started
+                continue
             if "dead-node" in codes or ("missing-node" in codes and comp in self._seen):
                 if comp not in self.failed:
                     why = "registered but not answering" if "dead-node" in codes else "gone"

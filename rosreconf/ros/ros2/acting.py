@@ -128,7 +128,12 @@ class Ros2Actuator(Actuator):
         """
         self.control.left = ()
         self.control.by_hand.clear()
+        self.control.restarting.clear()
         self.control.prepare_standby(current, failed)
+
+    def awaited(self) -> frozenset[str]:
+        """Return the components named "restart this by hand", until the system conforms."""
+        return frozenset(self.control.restarting)
 
     def restart(self, *, stop: bool) -> None:
         """Forget what was started (a ROS 2 graph has no master to restart)."""

@@ -66,6 +66,7 @@ class Ros2Control:
         dead: live names of nodes whose process rosreconf saw exit.
         states: component -> the lifecycle state last read back.
         left: the nodes last said to be left for a person to stop.
+        restarting: components a person was asked to restart, rewired (until conformant).
         standbys: the standby nodes (``rosreconf.ros.ros2.standby``).
     """
 
@@ -81,6 +82,7 @@ class Ros2Control:
     by_hand: dict[str, str] = field(default_factory=dict)
     dead: set[str] = field(default_factory=set)
     outside: OutsideNodes | None = field(init=False, default=None)
+    restarting: set[str] = field(default_factory=set)
     states: dict[str, str] = field(init=False)
     left: tuple[str, ...] = ()
     standbys: Standbys = field(init=False)
@@ -358,6 +360,7 @@ class Ros2Control:
         """Name a node rosreconf did not start that must restart to be rewired, and how."""
         node = self._node(component)
         self.by_hand[node] = component
+        self.restarting.add(component)
         rules = [
             f"{a}:={b}"
             for a, b, _ in wiring(self.library, self.schema, configuration).get(component, [])
