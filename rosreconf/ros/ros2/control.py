@@ -131,6 +131,11 @@ class Ros2Control:
     def track(self, participants: Mapping[bytes, tuple[str, ...]], current: Configuration) -> None:
         """Watch the processes of ``current``'s nodes that rosreconf did not start."""
         if self.outside is not None:
+            # a node whose process was seen to end is hidden until a new participant (a new
+            # process) announces it: a team restarting it by hand brings it back
+            self.dead -= {
+                n for g, ns in participants.items() if g not in self.outside.seen_at for n in ns
+            }
             own = {self._node(c) for c in self.nodes.nodes}
             self.outside.forget(own)
             wanted = {self._node(c) for c in current.components} - own
@@ -149,8 +154,8 @@ class Ros2Control:
         now = set()
         for node, how in sorted(self.outside.take().items()):
             self.dead.add(node)  # hidden from the graph: DDS shows it until its lease ends
-            if node not in comps or comps[node][1] in failed:
-                continue
+            if node not in comps or comps[node][1] in {*failed, *self.restarting}:
+                continue  # a person restarting it (rewired) stops it first: not a failure
             role, comp = comps[node]
             why = "its process exited" if how == "exited" else "its process is stopped (hung)"
             self.say("failed", f"{comp} ({role}) is gone: {why}, seen by watching it: failed",
