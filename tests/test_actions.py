@@ -15,6 +15,7 @@ import itertools
 import json
 import os
 import re
+import select
 import shutil
 import socket
 import subprocess
@@ -480,7 +481,10 @@ def test_real_rclpy_action_nodes_are_imported_and_inspected(
     nodes = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, text=True)
     snapshot = tmp_path / "live.json"
     try:
-        assert nodes.stdout is not None and nodes.stdout.readline().strip() == "ready"
+        assert nodes.stdout is not None
+        # a node that never gets ready must fail the test, never hang the suite on a read
+        up, _, _ = select.select([nodes.stdout], [], [], 60.0)
+        assert up and nodes.stdout.readline().strip() == "ready", "action nodes not ready in 60 s"
         for _ in range(5):  # discovery may not have met both nodes at the first read
             taken = subprocess.run(
                 [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain",
