@@ -54,7 +54,8 @@ def test_a_bad_ros2_python_is_named_within_seconds(fault: str, tmp_path: Path) -
     env.update(ROS_LOG_DIR=str(tmp_path))
     env.pop("CYCLONEDDS_URI", None)
     argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain),
-            "--only", "object_repositioning", "--apply", "--stand-ins", "--once"]  # fmt: skip
+            "--only", "object_repositioning", "--apply", "--stand-ins", "--once",
+            "--settle", "150"]  # fmt: skip  # 13 rclpy imports at once, no zygote: slow when busy
     start = time.monotonic()
     watch = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                              text=True, start_new_session=True)  # fmt: skip
