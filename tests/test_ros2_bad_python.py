@@ -86,7 +86,8 @@ def test_a_bad_ros2_python_is_named_within_seconds(fault: str, tmp_path: Path) -
     assert named, shown
     seconds, line = named[0]
     assert str(fake) in line  # the interpreter is named
-    assert seconds < 25.0, f"named after {seconds:.1f} s"  # before: 60 s or never
+    # before: 60 s or never; after: the 10 s bound and the first read, slower when busy
+    assert seconds < 45.0, f"named after {seconds:.1f} s"
     assert not any("Traceback" in text for _, text in lines)
     if helper:
         assert len(named) == 1, shown  # said once

@@ -14,8 +14,11 @@ from __future__ import annotations
 
 import functools
 import importlib
+import os
+import sys
+import threading
 from collections.abc import Callable, Iterator, MutableMapping
-from typing import Any, NamedTuple, ParamSpec, TypeVar
+from typing import Any, NamedTuple, NoReturn, ParamSpec, TypeVar
 
 import typer
 import typer.core
@@ -127,9 +130,7 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
         except MemoryError:
             # Raised where an allocation failed, anywhere in rosreconf or numpy; by now the
             # frames that held the memory are gone, so the message can be printed.
-            capped.take_back_stdout()  # no half document in a file
-            stderr.print(OUT_OF_MEMORY, markup=False)
-            raise typer.Exit(ExitCode.PLANNER) from None
+            out_of_memory()
         except KeyboardInterrupt:
             stderr.print("rosreconf: interrupted", markup=False)
             raise typer.Exit(ExitCode.INTERRUPTED) from None
@@ -138,6 +139,29 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
             raise typer.Exit(ExitCode.TERMINATED) from None
 
     return wrapper
+
+
+def out_of_memory(*_: object) -> NoReturn:
+    """Say ``OUT_OF_MEMORY`` and end with exit 3 at once, from any thread.
+
+    Without memory, the interpreter's own shutdown (thread joins, exit hooks) can fail in turn
+    and print its own traceback with exit 1; ending here skips it. The children rosreconf
+    started die with it (a parent-death signal), and its temp folders are removed by a later
+    run (their marker files). No half document is left in a file (``take_back_stdout``).
+    """
+    capped.take_back_stdout()
+    try:
+        sys.stderr.write(OUT_OF_MEMORY + "\n")
+        sys.stderr.flush()
+    finally:
+        os._exit(ExitCode.PLANNER)
+
+
+def _thread_failed(args: threading.ExceptHookArgs) -> None:
+    """End as ``out_of_memory`` when a thread ran out of memory; else Python's own hook."""
+    if args.exc_type is MemoryError:
+        out_of_memory()
+    threading.__excepthook__(args)
 
 
 def verb_function(name: str) -> Callable[..., object]:
@@ -242,4 +266,5 @@ def main() -> None:
     Under a memory cap it runs in a forked child, so that an abort in C++ (clingo) for want of
     memory still ends in exit 3 with ``OUT_OF_MEMORY`` (``rosreconf.cli.capped``).
     """
+    threading.excepthook = _thread_failed  # a thread out of memory ends the run as the main would
     capped.run(app)
