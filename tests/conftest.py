@@ -36,6 +36,17 @@ LOADED_MACHINE_SLACK = 20.0
 proves the limit worked, and 2 cores shared with other jobs must never make a test flip."""
 DATA = Path(__file__).parent / "data"
 
+# --- Fast DDS: UDP only, so that tests are kept apart by their domain ids ----------------------
+#
+# Fast DDS's shared-memory transport is host-wide: every participant on this machine takes the
+# next port file /dev/shm/fastrtps_port7000, 7001, ... whatever its domain. The tests kill nodes
+# at every moment, and a node killed while it creates such a file leaves it 0 bytes long: every
+# later participant that picks that port then waits for ever in rcl_node_init (a fresh clone's
+# `make test` lost 7 real-node tests that way; see rosreconf.ros.ros2.runtime.OWN_TRANSPORTS).
+# Every rclpy process a test starts inherits this; tests/test_ros2_shm_debris.py runs without
+# it, to show what rosreconf's own stand-ins do on a host that has such a file.
+os.environ["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
+
 
 def fake(script: str, *args: str) -> list[str]:
     """Return the command that runs a fake from tests/fakes with this test's Python.

@@ -38,7 +38,7 @@ def python_of(distro: str) -> Path:
 
 def node_env(domain: int, home: Path) -> dict[str, str]:
     """Return a ROS 2 node's environment: its domain, a home and log folder of its own."""
-    keep = ("PATH", "LANG", "LC_ALL", "TMPDIR")
+    keep = ("PATH", "LANG", "LC_ALL", "TMPDIR", "FASTDDS_BUILTIN_TRANSPORTS")  # conftest.py
     env = {k: v for k, v in os.environ.items() if k in keep}
     home.mkdir(parents=True, exist_ok=True)
     env.update(HOME=str(home), ROS_LOG_DIR=str(home / "log"), ROS_DOMAIN_ID=str(domain))

@@ -99,6 +99,7 @@ class Watcher:
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: tuple[str, ...] = ()
+    """The stuck components last said, and why (said again when either changes)."""
     _running: bool = False
     _actuator: Actuator = field(init=False, repr=False)
     _pending: float | None = None
@@ -195,8 +196,8 @@ class Watcher:
             stuck, why = self._actuator.not_running(missing)
             if not self.apply:
                 stuck, why = missing, "use --apply to start"
-            if stuck and tuple(stuck) != self._missing:
-                self._missing = tuple(stuck)
+            if stuck and (*stuck, why) != self._missing:
+                self._missing = (*stuck, why)
                 self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
             fresh = [c for c in missing if c not in stuck]
             if fresh and self._start(fresh, "not running yet"):

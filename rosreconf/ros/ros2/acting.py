@@ -21,6 +21,7 @@ from rosreconf.ros.launcher import LaunchActuator
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.control import Ros2Control
+from rosreconf.ros.ros2.shmdebris import diagnose
 
 
 @dataclass
@@ -88,10 +89,17 @@ class Ros2Actuator(Actuator):
         return started
 
     def not_running(self, missing: list[str]) -> tuple[list[str], str]:
-        """Return the started ones of ``missing``; point at their output."""
+        """Return the started ones of ``missing``; point at their output, or at what they wait on.
+
+        A process stuck on a broken Fast DDS shared-memory port never shows up; the file is
+        named, with what to do (``shmdebris``).
+        """
         where = self.acting.directory
-        why = f"launched but not running (see the launch output in {where})"
-        return [c for c in missing if c in self.launched], why
+        stuck = [c for c in missing if c in self.launched]
+        own = self.control.nodes.nodes
+        debris = diagnose((c, own[c].pid) for c in stuck if c in own)
+        why = debris or f"launched but not running (see the launch output in {where})"
+        return stuck, why
 
     def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
         """Say which own processes exited; return the components of ``current`` now failed.

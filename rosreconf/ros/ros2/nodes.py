@@ -43,6 +43,7 @@ from rosreconf.ros.ros2.runtime import (
     ament_executable,
     lease_profile,
     node_env,
+    own_participant_env,
     ros2_python,
 )
 from rosreconf.ros.ros2.zygote import DISABLE_ENV, Zygote
@@ -138,7 +139,8 @@ class NodeProcesses:
             self.directory.mkdir(parents=True, exist_ok=True)
             self._profile = self.directory / "fastdds-short-lease.xml"
             self._profile.write_text(lease_profile(self.lease), encoding="utf-8")
-        return node_env(self.env, self._profile)
+        env = node_env(self.env, self._profile)
+        return own_participant_env(env) if self.stand_ins else env
 
     def command(
         self,

@@ -10,6 +10,9 @@ component's real executable is found as ``ros2 run`` finds it: the package is a 
 Processes rosreconf starts get a Fast DDS XML profile with a short participant lease
 (``lease_profile``), so that another reader (``inspect``, a second ``watch``) sees them go
 within seconds when they are killed; rosreconf itself sees its own processes exit at once.
+
+rosreconf's own participants (stand-ins, the lifecycle agent) use Fast DDS's UDP transport
+only (``own_participant_env``), never its shared memory: see ``OWN_TRANSPORTS``.
 """
 
 from __future__ import annotations
@@ -42,6 +45,30 @@ LEASE_SECONDS = 2.0
 FIND_RCLPY = "import importlib.util, sys; sys.exit(importlib.util.find_spec('rclpy') is None)"
 """Finding rclpy without importing it (its C extension takes a second to load)."""
 _FOUND: dict[tuple[str | None, str | None], str] = {}
+TRANSPORTS_ENV = "FASTDDS_BUILTIN_TRANSPORTS"
+OWN_TRANSPORTS = "UDPv4"
+"""The Fast DDS transports of rosreconf's own participants (Fast DDS 2.13+ reads the variable).
+
+Fast DDS's shared-memory transport keeps one file per port in /dev/shm for the whole host,
+whatever the domain. A participant killed while it creates a port's file leaves it 0 bytes
+long, and every later participant that picks that port waits in boost.interprocess's
+open-or-create for it to be initialised, for ever (seen here: ten stand-ins stuck in
+``rcl_node_init`` on ``/dev/shm/fastrtps_port7013``, made 1 h 40 min before; Fast DDS's own
+``fastdds shm clean`` removes only ports with a lock file, which this one never got).
+rosreconf kills its stand-ins when it stops them, at any moment, so they must neither leave
+such a file nor wait on one; on UDP they talk to SHM participants all the same. The team's own
+executables keep whatever transports their environment gives them.
+"""
+
+
+def own_participant_env(env: Mapping[str, str]) -> dict[str, str]:
+    """Return ``env`` for one of rosreconf's own participants: UDP only, unless the user said.
+
+    See ``OWN_TRANSPORTS`` for why; a ``FASTDDS_BUILTIN_TRANSPORTS`` the user set is kept.
+    """
+    out = dict(env)
+    out.setdefault(TRANSPORTS_ENV, OWN_TRANSPORTS)
+    return out
 
 
 def ros2_python(env: Mapping[str, str]) -> str:
@@ -99,7 +126,8 @@ def start_helper(
     """Start one of rosreconf's ROS 2 helpers: JSON lines on its stdin and stdout.
 
     Its stderr goes to ``log``. It gets a new session, a parent-death signal and a group
-    watchdog (``rosreconf.procs.child``), so it dies with rosreconf even on SIGKILL. Returns
+    watchdog (``rosreconf.procs.child``), so it dies with rosreconf even on SIGKILL, and
+    rosreconf's own transports (``own_participant_env``). Returns
     the process and the watchdog pipe's write end (``release`` it once the helper is dead).
 
     Raises:
@@ -110,7 +138,7 @@ def start_helper(
         try:
             process = subprocess.Popen(
                 list(argv), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=err,
-                env=dict(env), start_new_session=True,
+                env=own_participant_env(env), start_new_session=True,
                 pass_fds=(alive_read,) if LINUX else (),
                 preexec_fn=preexec(None, None, alive_read),
             )  # fmt: skip
