@@ -588,3 +588,31 @@ def test_a_stand_in_that_cannot_pose_an_action_type_names_the_component_and_exit
                                  "/follow_path: action type nav2_msgs/action/FollowPath is not "
                                  "installed")  # fmt: skip
     assert "test-msgs" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_a_second_watch_applying_on_the_domain_is_refused_unless_forced(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """Two supervisors of one domain would start and stop nodes against each other."""
+    first = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+    try:
+        first.wait("conformant")
+        argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain",
+                str(ros2_domain), "--apply", "--stand-ins", "--only", "object_repositioning",
+                "--once"]  # fmt: skip
+
+        def run(*args: str) -> subprocess.CompletedProcess[str]:
+            return subprocess.run([*args], env=first.env, capture_output=True, text=True,
+                                  timeout=120)  # fmt: skip
+
+        second = run(*argv)
+        assert second.returncode == 2, second.stderr
+        assert f"supervised by process {first.process.pid}" in second.stderr, second.stderr
+        assert "--force" in second.stderr and "Traceback" not in second.stderr
+        looked = run(*[a for a in argv if a != "--apply"])  # only watching: not refused
+        assert looked.returncode == 0 and "supervised" not in looked.stderr, looked.stderr
+        forced = run(*argv, "--force")  # it finds the first one's nodes: nothing to start
+        assert forced.returncode == 0, forced.stderr
+        assert "going on (--force)" in forced.stderr
+    finally:
+        first.stop()

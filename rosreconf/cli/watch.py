@@ -37,6 +37,7 @@ from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
+from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
 from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.ros2.source import Ros2Source
 from rosreconf.ros.watcher import Watcher
@@ -63,6 +64,13 @@ def watch_command(
         typer.Option(
             "--standby",
             help="ROS 2: start, configure managed alternatives in advance (failover: activate).",
+        ),
+    ] = False,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="ROS 2 --apply: supervise the domain though another watch supervises it.",
         ),
     ] = False,
     ros2_launch: Annotated[
@@ -106,7 +114,8 @@ def watch_command(
     (exit 3 if one is needed and none is found). When no configuration is found (none
     exists, or the search for one meeting the performance requirements is spent), it logs
     no-configuration and keeps watching. With --once: exit 0 if the system conforms at the
-    end, else 1.
+    end, else 1. A second --ros2 --apply watch on a domain that another watch of this host
+    supervises is refused (exit 2, naming its pid), unless --force.
     """
 
     sel = select(library, schema, None, [only] if only else None)
@@ -132,6 +141,7 @@ def watch_command(
         env["ROS_DOMAIN_ID"] = str(domain)
         if apply and stand_ins:
             ros2_python(env)  # no rclpy here: say how to get one now, not at the first start
+    claim = _claim(domain, force) if ros2 and apply else None
     keep: Path | None = None
     if apply:
         try:
@@ -143,6 +153,8 @@ def watch_command(
     with ExitStack() as stack:
         signals = stack.enter_context(stop_on_signals())
         stack.callback(source.close)
+        if isinstance(claim, Claim):
+            stack.callback(claim.release)
         if keep is not None:
             stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
@@ -181,6 +193,35 @@ def watch_command(
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _claim(domain: int, force: bool) -> Claim | None:
+    """Take ``domain`` for this watch; refuse when another watch holds it (see domainclaim).
+
+    Two supervisors of one domain each start and stop nodes against the other. ``--force``
+    goes on without the claim, said on stderr; so does a lock file that cannot be opened.
+
+    Raises:
+        UsageError: another watch supervises the domain, and no ``--force`` (exit 2).
+    """
+    try:
+        got = claim_domain(domain)
+    except OSError as exc:
+        stderr.print(
+            f"note: cannot take the lock of ROS domain {domain} ({exc.filename}: {exc.strerror}):"
+            " another watch on it would not be seen",
+            markup=False,
+        )
+        return None
+    if isinstance(got, Claim):
+        return got
+    if not force:
+        raise UsageError(
+            f"{got.message}: two watches would start and stop nodes against each other. Stop "
+            "that one, watch without --apply, or pass --force"
+        )
+    stderr.print(f"note: {got.message}; going on (--force)", markup=False)
+    return None
 
 
 def _remove_if_empty(path: Path) -> None:
