@@ -246,3 +246,26 @@ def test_not_managed_is_ros2_only() -> None:
         tuple(replace(n, alive=None, pid=1) for n in nodes.values()),
     )
     assert compare(NOMINAL, lib, SCHEMA, ros1).ok
+
+
+def test_a_node_with_a_components_name_but_none_of_its_endpoints_is_a_name_clash() -> None:
+    """The impostor: /NSM3 runs, but offers nothing NSM3 offers. Judged against the ROS-graph
+    (every interface NSM3 serves in this configuration), not against the node's name."""
+    nodes = _running(NOMINAL)
+    clean = compare(NOMINAL, LIB, SCHEMA, _live(nodes))
+    assert not [f for f in clean.findings if f.code == "name-clash"], clean.findings
+    impostor = [replace(n, serves=()) if n.name == "/NSM3" else n for n in nodes]
+    check = compare(NOMINAL, LIB, SCHEMA, _live(impostor))
+    clashes = [f for f in check.findings if f.code == "name-clash"]
+    assert [(f.component, f.live_name) for f in clashes] == [("NSM3", "/NSM3")]
+    assert "/arm_servo/elbow/servo_command" in clashes[0].message
+    # an endpoint unrelated to NSM3 does not make it NSM3; its own label unwired does (that
+    # is NSM3 started without its remapping: missing-service, rewiring, never a clash)
+    for serves, clash in (
+        (("/some/other",), True),
+        (("/NSM3/elbow/digital_servo_command",), False),
+    ):
+        other = [replace(n, serves=serves) if n.name == "/NSM3" else n for n in nodes]
+        check = compare(NOMINAL, LIB, SCHEMA, _live(other))
+        assert any(f.code == "name-clash" for f in check.findings) is clash, serves
+        assert any(f.code == "missing-service" and f.component == "NSM3" for f in check.findings)

@@ -72,3 +72,34 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
                 os.kill(p.pid, signal.SIGCONT)
                 p.kill()
             p.wait()
+
+
+def test_an_impostor_named_like_a_component_is_a_name_clash_never_the_component(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """An outside node named /NSM3 with none of NSM3's endpoints is not NSM3: watch says the
+    clash, fails NSM3 and moves the configuration away from it; the impostor keeps running."""
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
+    other = [{"service": "/not/a/servo", "type": "std_srvs/srv/Trigger"}]
+    spec = json.dumps({"name": "NSM3", "namespace": "/", "serve": other})
+    impostor = subprocess.Popen([str(_ros2_python()), str(script), spec], env=env,
+                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+    watch: Watch | None = None
+    try:
+        assert impostor.stdout is not None and b'"ready"' in impostor.stdout.readline()
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        clash = watch.wait("failed")
+        assert (clash["component"], clash["how"], clash["node"]) == ("NSM3", "name-clash", "/NSM3")
+        assert "name clash" in clash["message"]
+        assert not [e for e in watch.events() if e["event"] == "running"]  # never "all run"
+        watch.wait("conformant", after=watch.events().index(clash))
+        (replanned,) = [e for e in watch.events() if e["event"] == "replanned"]
+        assert replanned["failed"] == ["NSM3"], replanned
+        assert "NDC3" in watch.pids() and "NSM3" not in watch.pids()
+        assert impostor.poll() is None  # not rosreconf's: left running
+    finally:
+        if watch is not None:
+            watch.stop(signal.SIGKILL)
+        impostor.kill()
+        impostor.wait()

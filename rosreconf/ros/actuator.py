@@ -140,6 +140,10 @@ class Actuator(Protocol):
         """Note that ``current`` conforms (prepare what goes on standby for it)."""
         return None
 
+    def started(self) -> frozenset[str]:
+        """Return the components whose running process rosreconf started (never a clash)."""
+        return frozenset()
+
     def awaited(self) -> frozenset[str]:
         """Return the components a person was asked to restart: gone a while, not failed."""
         return frozenset()

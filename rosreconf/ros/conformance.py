@@ -60,15 +60,19 @@ are read by ``rosreconf.ros.liveactions``. ``Conformance.checked`` says what was
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rosreconf.model import Component, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.schema import VertexKind, node_vertex
 from rosreconf.model.validity import ros_graph
-from rosreconf.model.wiring import node_live_name
+from rosreconf.model.wiring import interface_live_name, node_live_name
 from rosreconf.ros.dangling import dangling_findings
 from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 from rosreconf.ros.livenames import Finding, library_providers, same_type
+
+if TYPE_CHECKING:  # networkx is imported only when a ROS-graph is built
+    from rosreconf.model.schema import RosGraph
 
 __all__ = [
     "Checked",
@@ -181,6 +185,7 @@ def compare(
     found = _node_findings(configuration, graph, answering, names)
     found += _lifecycle_findings(live, answering, comps, names)
     expected = ros_graph(configuration, library, schema)
+    found += _clash_findings(expected, live, comps, names)
     providers = library_providers(library)
     edges = edge_findings(expected, graph, answering, comps, providers)
     uses = dangling_findings(expected, graph, answering, comps, providers, edges.judged)
@@ -266,6 +271,56 @@ def _lifecycle_findings(
                 f"nothing until activated (ros2 lifecycle set {name} activate)"
             )
             found.append(Finding("not-active", why, c, name))
+    return found
+
+
+def _clash_findings(
+    expected: RosGraph, live: LiveGraph, comps: dict[str, Component], names: dict[str, str]
+) -> list[Finding]:
+    """Report a node that has a component's name but none of its endpoints: another node.
+
+    A component's endpoints in a configuration are the live names of its ROS-graph's
+    interfaces: what it provides, under its own names, and what it uses, under its providers'
+    names. A node of that name with none of them (actions: none of their ``/_action/``
+    services), and none under the interface's own label either (that would be the component
+    started unwired: an edge finding), is not that component, whatever its name says;
+    ``watch`` never takes it for the component. A managed node that is not active may have
+    none yet (an unconfigured node has only its lifecycle services): it is excused here, and
+    reported as ``not-active``.
+    """
+    raw: dict[str, LiveNode] = {}
+    for n in live.nodes:  # with plumbing: an action's endpoints are its hidden services
+        if n.answered:
+            raw[n.name] = _merge(raw[n.name], n) if n.name in raw else n
+    found: list[Finding] = []
+    for c, name in names.items():
+        node, vertex = raw.get(name), node_vertex(c)
+        if node is None or vertex not in expected:
+            continue
+        labels = {str(expected.nodes[v]["label"]) for v in expected.successors(vertex)}
+        wanted = {interface_live_name(comps[c], label) for label in labels}
+        for v in expected.predecessors(vertex):
+            if v[0] is VertexKind.SERVICE and live.ros_version != 2:
+                continue  # a ROS 1 master does not show who calls a service
+            labels.add(label := str(expected.nodes[v]["label"]))
+            wanted |= {interface_live_name(comps[p[1]], label) for p in expected.predecessors(v)}
+        has = {*node.publishes, *node.subscribes, *node.serves, *node.clients}
+        has |= {h.split("/_action/")[0] for h in has if "/_action/" in h}  # ROS 2 actions
+        has |= {h.removesuffix("/goal") for h in has if h.endswith("/goal")}  # actionlib
+        own = {h for h in has for label in labels if h.endswith("/" + label.lstrip("/"))}
+        if not wanted or wanted & has or own:  # its own label unwired: miswired, not another
+            continue
+        launch = comps[c].launch
+        if launch is not None and launch.lifecycle and node.lifecycle_state != "active":
+            continue
+        shown = ", ".join(sorted(wanted)[:3]) + (
+            f" and {len(wanted) - 3} more" if len(wanted) > 3 else ""
+        )
+        why = (
+            f"{name} runs, but it is not {c}: it has none of {c}'s endpoints ({shown}), so "
+            f"another node has its name (a name clash). Give one of them another name, or stop it"
+        )
+        found.append(Finding("name-clash", why, c, name))
     return found
 
 

@@ -248,6 +248,10 @@ class LaunchActuator(Actuator):
         self._ended = self.launcher.check()
         return set()
 
+    def started(self) -> frozenset[str]:
+        """Return the components launched here (their nodes are roslaunch's, not a clash)."""
+        return frozenset(self.launcher.launched)
+
     def ended(self) -> bool:
         """Return whether the newest launch process has exited."""
         return self._ended

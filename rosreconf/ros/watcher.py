@@ -43,6 +43,7 @@ from typing import Any
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.actuator import Acting, Actuator
+from rosreconf.ros.clashes import NameClashes
 from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
@@ -105,6 +106,7 @@ class Watcher:
     _pending: float | None = None
     _graph: LiveGraph | None = None
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
+    _clashes: NameClashes = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         acting = Acting(
@@ -121,6 +123,7 @@ class Watcher:
         )
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
+        self._clashes = NameClashes(self._say, self._role)
 
     def _read(self) -> LiveGraph:
         self._graph = self._actuator.visible(self.source.read())
@@ -132,7 +135,8 @@ class Watcher:
 
     def _compare(self, graph: LiveGraph) -> Conformance:
         """Compare, leaving out the nodes the actuator holds out of service on purpose."""
-        return self._actuator.filtered(compare(self.current, self.library, self.schema, graph))
+        check = compare(self.current, self.library, self.schema, graph)
+        return self._clashes.excused(self._actuator.filtered(check))
 
     def _own_exits(self, tend: bool = True) -> bool:
         """Count a node whose process rosreconf started and saw exit as failed, at once.
@@ -151,9 +155,10 @@ class Watcher:
         graph = self._read()
         check = self._compare(graph)
         missing, awaited = [], self._actuator.awaited()
+        clashing = self._clashes.clashing(check, self._actuator.started())
         for comp in self.current.components:
             codes = {f.code for f in check.findings if f.component == comp}
-            if comp in awaited:  # a person restarts it (rewired): neither failed nor started
+            if comp in awaited or comp in clashing:  # a person restarts it; another node
                 continue
             if "dead-node" in codes or ("missing-node" in codes and comp in self._seen):
                 if comp not in self.failed:
@@ -185,6 +190,7 @@ class Watcher:
                     f"unregistered dead node(s) {', '.join(purged)} from the master",
                     nodes=list(purged),
                 )
+        self.failed |= self._clashes.failed(check, self._actuator.started(), self.failed)
         # a managed node out of 'active' is a fault, re-activated with apply (lifecycle_faults)
         if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
             self._pending = time.monotonic()
@@ -278,6 +284,7 @@ class Watcher:
             self._own_exits(tend=False)
             ended = self._actuator.ended()
             check = self._compare(self._read())
+            self.failed |= self._clashes.failed(check, self._actuator.started(), self.failed)
             took = time.monotonic() - start
             if check.ok:
                 self._conformant(check, took, "after the change")

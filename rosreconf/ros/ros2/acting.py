@@ -139,6 +139,10 @@ class Ros2Actuator(Actuator):
         self.control.restarting.clear()
         self.control.prepare_standby(current, failed)
 
+    def started(self) -> frozenset[str]:
+        """Return the components whose node process rosreconf started and that still runs."""
+        return frozenset(self.control.nodes.nodes)
+
     def awaited(self) -> frozenset[str]:
         """Return the components named "restart this by hand", until the system conforms."""
         return frozenset(self.control.restarting)
