@@ -103,3 +103,56 @@ def test_an_impostor_named_like_a_component_is_a_name_clash_never_the_component(
             watch.stop(signal.SIGKILL)
         impostor.kill()
         impostor.wait()
+
+
+def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """SIGSTOP of a team's node: failed as hung, replaced, and (--stop-outside) its process
+    stopped though it is stopped itself (stopproc resumes it after each signal)."""
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.model import Configuration
+    from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    remaps = wiring(bundle.library, schema, nominal)
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
+    ours = {}
+    for c in NOMINAL:
+        spec = json.dumps(ros2_standin_spec(bundle.library[c]))
+        argv = [str(_ros2_python()), str(script), spec]
+        argv += ros2_node_arguments(bundle.library, c, remaps)
+        ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.DEVNULL)  # fmt: skip
+    watch: Watch | None = None
+    try:
+        for p in ours.values():
+            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside")
+        watch.wait("running")
+        while True:
+            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
+            if "/NCA1" in {n for e in said for n in e["nodes"]}:
+                break
+            watch.wait("watched", after=len(watch.events()))
+        before = len(watch.events())
+        os.kill(ours["NCA1"].pid, signal.SIGSTOP)
+        hung = watch.wait("failed", after=before)
+        assert (hung["component"], hung["how"]) == ("NCA1", "process-hung")
+        stop = watch.wait("stop", after=before)
+        while stop["component"] != "NCA1":  # the replaced NCO1 and NVP1 are stopped too
+            stop = watch.wait("stop", after=watch.events().index(stop) + 1)
+        assert (stop["how"], stop["pid"]) == ("signal", ours["NCA1"].pid)
+        assert ours["NCA1"].wait(5) is not None  # gone: stopped by rosreconf, not by the test
+    finally:
+        if watch is not None:
+            watch.stop(signal.SIGKILL)
+        for p in ours.values():
+            if p.poll() is None:
+                os.kill(p.pid, signal.SIGCONT)
+                p.kill()
+            p.wait()

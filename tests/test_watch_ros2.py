@@ -359,13 +359,15 @@ def test_a_stand_in_announces_the_librarys_invented_types(
             node.wait()
 
 
+@pytest.mark.parametrize("stop_outside", [False, True], ids=["by-hand", "stop-outside"])
 def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
-    ros2_domain: int, tmp_path: Path
+    ros2_domain: int, tmp_path: Path, stop_outside: bool
 ) -> None:
     """The team's own nodes, started as its launch file would (wired by -r rules), each
     acting out its whole library entry as a real executable does. After NSM3 dies, watch
-    names the replaced ones to stop and the kept reasoner to restart with its new remappings;
-    a person does both, and watch confirms."""
+    names the replaced ones to stop (with --stop-outside: stops their processes itself, each
+    confirmed through /proc to run that node alone) and the kept reasoner to restart with its
+    new remappings; a person does the rest, and watch confirms."""
     from rosreconf.formats.loader import load_bundled
     from rosreconf.model import Configuration
     from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
@@ -393,22 +395,36 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
     try:
         for p in ours.values():  # all up before watch looks, or it would start its own
             assert p.stdout is not None and b'"ready"' in p.stdout.readline()
-        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        flags = ["--stop-outside"] if stop_outside else []
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", *flags)
         watch.wait("running")  # the test's own nodes: watch started none of them
         assert not watch.pids()
+        while stop_outside:  # each replaced one's process must be known before the kill
+            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
+            if {f"/{c}" for c in REPLACED} <= {n for e in said for n in e["nodes"]}:
+                break
+            watch.wait("watched", after=len(watch.events()))
         before = len(watch.events())
         ours["NSM3"].kill()
         left = watch.wait("left-running", after=before)
         after = watch.events()[before:]
         by_hand = sorted(e["component"] for e in after if e["event"] == "stop-by-hand")
-        assert by_hand == sorted(REPLACED)
+        stopped = {e["component"]: e for e in after if e["event"] == "stop"}
+        if stop_outside:  # gone, each by the signal that ended it, and nothing else touched
+            assert by_hand == [] and sorted(stopped) == sorted(REPLACED), after
+            assert all(stopped[c]["how"] == "signal" and ours[c].poll() is not None
+                       and stopped[c]["pid"] == ours[c].pid for c in REPLACED)  # fmt: skip
+            assert all(ours[c].poll() is None for c in NOMINAL if c not in [*REPLACED, "NSM3"])
+        else:
+            assert by_hand == sorted(REPLACED) and not stopped
         (restart,) = (e for e in after if e["event"] == "restart-by-hand")
         assert restart["component"] == "NREA"
         assert "base/digital_servo_command:=/arm_servo/base/servo_command" not in restart[
             "remappings"]  # fmt: skip
-        assert sorted(left["nodes"]) == sorted(f"/{c}" for c in [*REPLACED, "NREA"])
+        for_a_person = ["NREA"] if stop_outside else [*REPLACED, "NREA"]
+        assert sorted(left["nodes"]) == sorted(f"/{c}" for c in for_a_person)
         assert not [e for e in after if e["event"] == "conformant"]
-        for c in [*REPLACED, "NREA"]:  # a person stops them
+        for c in for_a_person:  # a person stops them
             ours[c].send_signal(signal.SIGINT)
             ours[c].wait(20)
         rules = [a for r in restart["remappings"] for a in ("-r", r)]

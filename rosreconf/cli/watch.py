@@ -73,6 +73,14 @@ def watch_command(
             help="ROS 2 --apply: supervise the domain though another watch supervises it.",
         ),
     ] = False,
+    stop_outside: Annotated[
+        bool,
+        typer.Option(
+            "--stop-outside",
+            help="ROS 2 --apply: stop the process of a replaced node rosreconf did not start "
+            "(SIGINT, SIGTERM, SIGKILL), when /proc confirms it runs that node alone.",
+        ),
+    ] = False,
     ros2_launch: Annotated[
         bool,
         typer.Option(
@@ -131,8 +139,8 @@ def watch_command(
     if isinstance(source, Ros2Source):
         source.empty_ok = apply  # it starts the nodes itself: an empty domain is where it starts
         source.on_note = lambda text: stderr.print(text, markup=False)
-    if (standby or ros2_launch) and not (ros2 and apply):
-        raise UsageError("--standby and --ros2-launch are for --ros2 --apply")
+    if (standby or ros2_launch or stop_outside) and not (ros2 and apply):
+        raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
     if stand_ins and ros2_launch:
         raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
     if master is not None:
@@ -172,7 +180,7 @@ def watch_command(
         watcher = Watcher(
             source, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
-            launch_dir=keep, standby=standby, ros2_launch=ros2_launch,
+            launch_dir=keep, standby=standby, ros2_launch=ros2_launch, stop_outside=stop_outside,
             budget=Budget(search_limit, search_time), stop_requested=signals.requested,
         )  # fmt: skip
         stack.callback(watcher.close)

@@ -53,6 +53,8 @@ class Acting:
         standby: ROS 2: start and configure managed alternatives in advance.
         ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
             node's process.
+        stop_outside: ROS 2: stop the process of a replaced node rosreconf did not start,
+            when it runs only that node (``ros2.byhand``).
     """
 
     library: ComponentLibrary
@@ -65,6 +67,7 @@ class Acting:
     launch_dir: Path | None = None
     standby: bool = False
     ros2_launch: bool = False
+    stop_outside: bool = False
 
     @property
     def directory(self) -> Path:

@@ -95,6 +95,7 @@ class Watcher:
     failed: set[str] = field(default_factory=set)
     standby: bool = False
     ros2_launch: bool = False
+    stop_outside: bool = False
     stop_requested: Callable[[], bool] = lambda: False
     budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
@@ -120,6 +121,7 @@ class Watcher:
             launch_dir=self.launch_dir,
             standby=self.standby,
             ros2_launch=self.ros2_launch,
+            stop_outside=self.stop_outside,
         )
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)

@@ -51,6 +51,7 @@ class Ros2Actuator(Actuator):
             a.say,
             stand_ins=a.stand_ins,
             standby=a.standby,
+            stop_outside=a.stop_outside,
         )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
@@ -68,6 +69,8 @@ class Ros2Actuator(Actuator):
     ) -> bool:
         """Start the new ones first, then retire the replaced; name restarts for a person.
 
+        A failed component's process that is still there (hung) is stopped as well.
+
         A kept component rewired is restarted if rosreconf started it, else named
         ("restart this by hand"): its remappings are fixed at start.
         """
@@ -79,10 +82,11 @@ class Ros2Actuator(Actuator):
         library = self.acting.library
         self.control.retire(
             [
-                (a, r, b, node_live_name(library[a]) in alive)
+                (a, r, b, a not in failed and node_live_name(library[a]) in alive)
                 for r, a, b in changes
-                if a and a not in failed and a not in restarts  # empty role: none
-            ]
+                if a and a not in restarts  # empty role: none; failed: its process, if left
+            ],
+            failed,
         )
         for comp, role in by_hand.items():
             self.control.restart_by_hand(comp, role, new)
@@ -134,9 +138,7 @@ class Ros2Actuator(Actuator):
 
         After the confirmation, not before it: choosing each standby's wiring replans.
         """
-        self.control.left = ()
-        self.control.by_hand.clear()
-        self.control.restarting.clear()
+        self.control.by_hand.settled()
         self.control.prepare_standby(current, failed)
 
     def started(self) -> frozenset[str]:
@@ -145,7 +147,7 @@ class Ros2Actuator(Actuator):
 
     def awaited(self) -> frozenset[str]:
         """Return the components named "restart this by hand", until the system conforms."""
-        return frozenset(self.control.restarting)
+        return frozenset(self.control.by_hand.restarting)
 
     def restart(self, *, stop: bool) -> None:
         """Forget what was started (a ROS 2 graph has no master to restart)."""

@@ -9,7 +9,8 @@ it can, and says so where it cannot::
                                            with standby deactivate only: an inactive node is a
                                            ready standby); the node stays ("parked")
     a process rosreconf started            SIGINT, then SIGTERM, then SIGKILL
-    any other node                         named once, as "stop this by hand"
+    any other node                         ``byhand``: its process stopped with
+                                           ``--stop-outside``, else named "stop this by hand"
 
     component to put into service          what is done
     -------------------------------------  ---------------------------------------------------
@@ -36,9 +37,8 @@ from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.conformance import Conformance
-from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.livenames import Finding
+from rosreconf.ros.ros2.byhand import ByHand
 from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
 from rosreconf.ros.ros2.nodes import NodeProcesses
 from rosreconf.ros.ros2.outside import OutsideNodes
@@ -61,12 +61,11 @@ class Ros2Control:
         stand_ins: run rclpy stand-ins instead of the components' executables.
         standby: start and configure the managed alternatives in advance.
         timeout: seconds each lifecycle transition may take.
+        stop_outside: stop a replaced outside node's process (``byhand``).
         parked: live names of managed nodes rosreconf holds out of service.
-        by_hand: live node name -> component, for nodes that must be stopped by hand.
         dead: live names of nodes whose process rosreconf saw exit.
         states: component -> the lifecycle state last read back.
-        left: the nodes last said to be left for a person to stop.
-        restarting: components a person was asked to restart, rewired (until conformant).
+        by_hand: the outside nodes to stop or restart, or named for a person (``byhand``).
         standbys: the standby nodes (``rosreconf.ros.ros2.standby``).
     """
 
@@ -77,14 +76,13 @@ class Ros2Control:
     say: Say
     stand_ins: bool = False
     standby: bool = False
+    stop_outside: bool = False
     timeout: float = TIMEOUT
     parked: set[str] = field(default_factory=set)
-    by_hand: dict[str, str] = field(default_factory=dict)
     dead: set[str] = field(default_factory=set)
     outside: OutsideNodes | None = field(init=False, default=None)
-    restarting: set[str] = field(default_factory=set)
     states: dict[str, str] = field(init=False)
-    left: tuple[str, ...] = ()
+    by_hand: ByHand = field(init=False)
     standbys: Standbys = field(init=False)
     nodes: NodeProcesses = field(init=False)
     lifecycle: Transitions = field(init=False)
@@ -95,6 +93,9 @@ class Ros2Control:
         if domain.isdigit():
             self.outside = OutsideNodes(int(domain), self.say)
         self.lifecycle = Transitions(self.env, self.directory, self.say, self._node, self.timeout)
+        self.by_hand = ByHand(
+            self.library, self.schema, self.say, self._node, self.outside, self.stop_outside
+        )
         self.states = self.lifecycle.states
         self.standbys = Standbys(
             self.library, self.schema, self.nodes, self.lifecycle, self.parked, self.say
@@ -154,7 +155,7 @@ class Ros2Control:
         now = set()
         for node, how in sorted(self.outside.take().items()):
             self.dead.add(node)  # hidden from the graph: DDS shows it until its lease ends
-            if node not in comps or comps[node][1] in {*failed, *self.restarting}:
+            if node not in comps or comps[node][1] in {*failed, *self.by_hand.restarting}:
                 continue  # a person restarting it (rewired) stops it first: not a failure
             role, comp = comps[node]
             why = "its process exited" if how == "exited" else "its process is stopped (hung)"
@@ -185,34 +186,7 @@ class Ros2Control:
 
     def left_running(self, check: Conformance) -> bool:
         """Say once what is left when only nodes to stop by hand keep it from conforming."""
-        gone = set(self.by_hand) - set(check.live.names)
-        for node in gone:  # stopped by a person
-            del self.by_hand[node]
-
-        def for_a_person(f: Finding) -> bool:  # a node to stop, or to restart rewired
-            if f.code == "extra-node":
-                return f.live_name in self.by_hand
-            return f.component is not None and self._node(f.component) in self.by_hand
-
-        if not check.findings or not all(for_a_person(f) for f in check.findings):
-            return False
-        left = tuple(
-            sorted(
-                {
-                    f.live_name if f.code == "extra-node" else self._node(str(f.component))
-                    for f in check.findings
-                }
-            )
-        )
-        if left != self.left:
-            self.left = left
-            self.say(
-                "left-running",
-                f"the configuration runs; left to stop by hand: {', '.join(left)} "
-                "(conformant is logged once they are gone)",
-                nodes=list(left),
-            )
-        return True
+        return self.by_hand.left_running(check)
 
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes whose process rosreconf saw exit."""
@@ -303,30 +277,25 @@ class Ros2Control:
                      f"configuration (pid {own.pid})", component=own.component,
                      how="rewire")  # fmt: skip
 
-    def retire(self, leaving: list[tuple[str, str, str, bool]]) -> None:
+    def retire(
+        self, leaving: list[tuple[str, str, str, bool]], failed: Collection[str] = ()
+    ) -> None:
         """Take components out of service, each the way its kind allows (module docstring).
 
         ``leaving`` holds (component, role, replacement, alive in the graph). Own processes
-        are stopped together, so their grace periods overlap.
+        are stopped together, so their grace periods overlap. A ``failed`` one whose process
+        is still there (hung) is stopped too, never driven through lifecycle transitions it
+        cannot answer: a hung process is not left behind.
         """
         processes, managed = [], []
         for component, role, replacement, alive in leaving:
-            node = self._node(component)
             own = component in self.nodes.nodes
-            if self._managed(component) and (own or alive):
+            if self._managed(component) and (own or alive) and component not in failed:
                 managed.append((component, role, replacement))
             elif own:
                 processes.append((component, role, replacement))
-            elif alive:
-                self.by_hand[node] = component
-                self.say(
-                    "stop-by-hand",
-                    f"stop this by hand: {node} ({component}, {role}) is replaced by "
-                    f"{replacement}, but rosreconf did not start it and it is not a managed "
-                    "node (ROS 2 has no remote kill)",
-                    component=component,
-                    node=node,
-                )
+            else:
+                self.by_hand.retire(component, role, replacement, alive)
         # With standby, an inactive node is a ready standby: deactivate is enough.
         steps = OUT_OF_SERVICE[:1] if self.standby else OUT_OF_SERVICE
         out = {c: True for c, _, _ in managed}
@@ -363,22 +332,7 @@ class Ros2Control:
 
     def restart_by_hand(self, component: str, role: str, configuration: Configuration) -> None:
         """Name a node rosreconf did not start that must restart to be rewired, and how."""
-        node = self._node(component)
-        self.by_hand[node] = component
-        self.restarting.add(component)
-        rules = [
-            f"{a}:={b}"
-            for a, b, _ in wiring(self.library, self.schema, configuration).get(component, [])
-        ]
-        self.say(
-            "restart-by-hand",
-            f"restart this by hand: {node} ({component}, {role}) must be rewired for the new "
-            "configuration (its remappings are fixed at start), but rosreconf did not start it; "
-            f"start it with --ros-args {' '.join(f'-r {r}' for r in rules)}",
-            component=component,
-            node=node,
-            remappings=rules,
-        )
+        self.by_hand.restart(component, role, configuration)
 
     def prepare_standby(self, configuration: Configuration, failed: Collection[str]) -> None:
         """Start managed alternatives wired for the configuration each would join (standby)."""

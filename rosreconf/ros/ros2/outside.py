@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 from rosreconf.ros.ros2.hostprocs import HostProcesses, ProcId, boot_seconds
 from rosreconf.ros.ros2.pidwatch import ProcessWatch
+from rosreconf.ros.ros2.stopproc import Stopped, StopResult, stop_node_process
 
 HUNG_SECONDS = 1.0
 """Seconds a watched process may stay stopped before its nodes count as hung (failed)."""
@@ -47,6 +48,8 @@ class OutsideNodes:
         gone: node -> how its process ended (``exited`` or ``hung``), until ``take`` says it.
         located: the participants whose process was looked for (each once: a node that
             comes back has a participant of its own).
+        hung: the processes found stopped for ``HUNG_SECONDS`` -> their nodes (no longer
+            watched, but still there to be stopped).
     """
 
     domain: int
@@ -57,6 +60,7 @@ class OutsideNodes:
     stopped_since: dict[ProcId, float] = field(default_factory=dict)
     gone: dict[str, str] = field(default_factory=dict)
     located: set[bytes] = field(default_factory=set)
+    hung: dict[ProcId, tuple[str, ...]] = field(default_factory=dict)
     _watch: ProcessWatch = field(default_factory=ProcessWatch)
 
     @property
@@ -122,7 +126,8 @@ class OutsideNodes:
             if time.monotonic() - since >= HUNG_SECONDS:
                 del self.stopped_since[proc]
                 self._watch.remove(proc)
-                for n in self.nodes.pop(proc, ()):
+                self.hung[proc] = self.nodes.pop(proc, ())
+                for n in self.hung[proc]:
                     self.gone[n] = "hung"
         return bool(self.gone)
 
@@ -144,6 +149,30 @@ class OutsideNodes:
                 self._watch.remove(proc)
         for n in nodes:
             self.lease_only.pop(n, None)
+
+    def process_of(self, node: str) -> tuple[ProcId, tuple[str, ...]] | None:
+        """Return the confirmed process of ``node`` (watched, or hung) and every node it runs."""
+        for proc, names in (*self.nodes.items(), *self.hung.items()):
+            if node in names:
+                return proc, names
+        return None
+
+    def stop(self, node: str) -> StopResult | None:
+        """Stop the confirmed process of ``node`` unless it runs other nodes (``stopproc``).
+
+        None when no process of it is known. A process stopped, or gone already, is forgotten.
+        """
+        known = self.process_of(node)
+        if known is None:
+            return None
+        proc, names = known
+        result = stop_node_process(proc, node, names)
+        if result.outcome in (Stopped.STOPPED, Stopped.GONE):
+            self.nodes.pop(proc, None)
+            self.hung.pop(proc, None)
+            self.stopped_since.pop(proc, None)
+            self._watch.remove(proc)
+        return result
 
     def close(self) -> None:
         """Release the pidfds."""
