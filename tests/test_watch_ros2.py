@@ -632,3 +632,49 @@ def test_a_second_watch_applying_on_the_domain_is_refused_unless_forced(
         assert "going on (--force)" in forced.stderr
     finally:
         first.stop()
+
+
+def _helper(watch: Watch, script: str) -> int:
+    """Return the pid of the watch's helper running ``script`` (a child of the watch)."""
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            cmdline = (entry / "cmdline").read_bytes()
+        except OSError:
+            continue
+        if int(stat[1]) == watch.process.pid and script.encode() in cmdline:
+            return int(entry.name)
+    raise AssertionError(f"no {script} under watch {watch.process.pid}")
+
+
+def test_a_helpers_death_is_no_components_failure_and_it_is_started_anew(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """kill -9 of the stand-in zygote, then of the lifecycle agent: their deaths are said
+    (event helper), no component fails, the stand-ins run on, and the next repair (NSM3
+    killed) forks from a new zygote and performs its transitions through a new agent."""
+    library = _managed_library(tmp_path)
+    files = ["--library", str(library), "--schema", str(SCHEMAS / "object_repositioning.yaml")]
+    watch = Watch(tmp_path, ros2_domain, *files)
+    try:
+        watch.wait("conformant")
+        pids = watch.pids()
+        for script in ("standin_zygote.py", "lifecycle_agent.py"):
+            before = len(watch.events())
+            os.kill(_helper(watch, script), signal.SIGKILL)
+            said = watch.wait("helper", after=before)
+            assert script.split(".")[0].split("_")[-1] in said["message"], said  # zygote, agent
+        assert not [e for e in watch.events() if e["event"] == "failed"]
+        assert all(alive(p) for p in pids.values())  # the stand-ins run on
+        before = len(watch.events())
+        os.kill(pids["NSM3"], signal.SIGKILL)
+        done = watch.wait("conformant", after=before)
+        assert done["configuration"]["elbow_joint"] == "NDC3"
+        failed = [e["component"] for e in watch.events() if e["event"] == "failed"]
+        assert failed == ["NSM3"], failed
+        activated = [e for e in watch.events()[before:] if e.get("transition") == "activate"]
+        assert activated and all(e["ok"] for e in activated)  # through the new agent
+    finally:
+        watch.stop()

@@ -170,6 +170,8 @@ class Ros2Control:
         The outside nodes whose processes are watched (``track``) count too.
         """
         now = self._outside_gone(current, failed)
+        for news in [*self.nodes.take_helpers(), *self.lifecycle.take_helpers()]:
+            self.say("helper", news)
         for comp, node, code in self.exited():
             if comp in current.components and comp not in failed:
                 role = next(r for r, c in current.assignment if c == comp)

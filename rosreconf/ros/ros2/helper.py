@@ -41,10 +41,17 @@ class Helper:
     error: ClassVar[type[ExternalToolError]] = ExternalToolError
     close_wait: ClassVar[float] = 1.0
 
-    def __init__(self, argv: Sequence[str], env: Mapping[str, str], log: Path, name: str) -> None:
+    def __init__(
+        self,
+        argv: Sequence[str],
+        env: Mapping[str, str],
+        log: Path,
+        name: str,
+        keep_fds: Sequence[int] = (),
+    ) -> None:
         self.name = name
         self.log = log
-        self.process, self._alive = start_helper(argv, env, log)
+        self.process, self._alive = start_helper(argv, env, log, keep_fds)
         self._answers: queue.Queue[dict[str, Any]] = queue.Queue()
         assert self.process.stdout is not None
         threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
@@ -114,6 +121,10 @@ class Helper:
                 )
             if wanted is None or answer.get("id") == wanted:
                 return answer
+
+    def died(self) -> int | None:
+        """Return the helper's exit status if it has ended on its own (killed, crashed)."""
+        return self.process.poll()
 
     def close(self) -> None:
         """End the helper (its stdin closes; then SIGKILL) and release its watchdog."""

@@ -122,6 +122,8 @@ class NodeProcesses:
         nodes: component -> its running process.
         problems: what went wrong without stopping a start (the stand-in zygote failed, so
             stand-ins start on their own), each once, for the caller to say and clear.
+        helpers: helper deaths seen (the stand-in zygote killed or crashed), each once, for
+            the caller to say: never a component's failure (its stand-ins run on).
     """
 
     env: Mapping[str, str]
@@ -130,6 +132,7 @@ class NodeProcesses:
     lease: float = LEASE_SECONDS
     nodes: dict[str, OwnNode] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
+    helpers: list[str] = field(default_factory=list)
     _profile: Path | None = None
     _zygote: Zygote | None = None
     _zygote_failed: bool = False
@@ -247,6 +250,7 @@ class NodeProcesses:
         """
         if self._zygote_failed or env.get(DISABLE_ENV) == "0":
             return None
+        self._zygote_died()
         if self._zygote is None:
             try:
                 self._zygote = Zygote(env, self.directory / "standin-zygote.log")
@@ -265,6 +269,26 @@ class NodeProcesses:
         self._zygote_failed = True
         self._zygote = None
         self.problems.append(f"{exc}; each stand-in starts on its own from now on")
+
+    def _zygote_died(self) -> None:
+        """Note a zygote that ended on its own; the next stand-in is forked by a new one."""
+        zygote = self._zygote
+        if zygote is None or zygote.died() is None:
+            return
+        self._zygote = None
+        code = zygote.process.returncode
+        zygote.close()  # its own watchdog; its children are in sessions of their own
+        self.helpers.append(
+            f"{zygote.name} (pid {zygote.process.pid}) exited ({code}): its stand-ins run on, "
+            "and the next one is forked by a new zygote (a helper's death is no component's "
+            "failure)"
+        )
+
+    def take_helpers(self) -> list[str]:
+        """Return the helper deaths seen since the last call (each said once)."""
+        self._zygote_died()
+        helpers, self.helpers = self.helpers, []
+        return helpers
 
     def exited(self) -> list[tuple[OwnNode, int]]:
         """Return the nodes whose process has ended since the last call, with the exit status."""

@@ -121,13 +121,13 @@ def _imports_rclpy(python: str, env: Mapping[str, str]) -> bool:
 
 
 def start_helper(
-    argv: Sequence[str], env: Mapping[str, str], log: Path
+    argv: Sequence[str], env: Mapping[str, str], log: Path, keep_fds: Sequence[int] = ()
 ) -> tuple[subprocess.Popen[bytes], int]:
     """Start one of rosreconf's ROS 2 helpers: JSON lines on its stdin and stdout.
 
     Its stderr goes to ``log``. It gets a new session, a parent-death signal and a group
     watchdog (``rosreconf.procs.child``), so it dies with rosreconf even on SIGKILL, and
-    rosreconf's own transports (``own_participant_env``). Returns
+    rosreconf's own transports (``own_participant_env``); ``keep_fds`` are passed on. Returns
     the process and the watchdog pipe's write end (``release`` it once the helper is dead).
 
     Raises:
@@ -139,7 +139,7 @@ def start_helper(
             process = subprocess.Popen(
                 list(argv), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=err,
                 env=own_participant_env(env), start_new_session=True,
-                pass_fds=(alive_read,) if LINUX else (),
+                pass_fds=((alive_read,) if LINUX else ()) + tuple(keep_fds),
                 preexec_fn=preexec(None, None, alive_read),
             )  # fmt: skip
         except OSError as exc:

@@ -9,6 +9,7 @@ outcome. Nothing here raises for a failed transition: a failure is said and retu
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +30,9 @@ class Transitions:
         node_of: component -> its live node name.
         timeout: seconds each transition may take.
         states: component -> the lifecycle state last read back.
+        helpers: agent deaths seen, each once, for the caller to say. A helper's death is no
+            component's failure: a dead agent is started anew, and a request it died in is
+            asked again of the new one, once.
     """
 
     env: Mapping[str, str]
@@ -37,11 +41,35 @@ class Transitions:
     node_of: Callable[[str], str]
     timeout: float = TIMEOUT
     states: dict[str, str] = field(default_factory=dict)
+    helpers: list[str] = field(default_factory=list)
     _agent: LifecycleAgent | None = None
     _agent_error: str | None = None
 
+    def _agent_died(self) -> bool:
+        """Note an agent that ended on its own (killed, crashed); True if it did."""
+        agent = self._agent
+        if agent is None or agent.died() is None:
+            return False
+        self._agent = None
+        code = agent.process.returncode
+        agent.close()
+        self.helpers.append(
+            f"{agent.name} (pid {agent.process.pid}) exited ({code}): started anew (a "
+            "helper's death is no component's failure)"
+        )
+        return True
+
+    def take_helpers(self) -> list[str]:
+        """Return the agent deaths seen since the last call; a dead agent is started anew."""
+        if self._agent_died():
+            with contextlib.suppress(ExternalToolError):  # said by the next call, if it fails
+                self.agent()
+        helpers, self.helpers = self.helpers, []
+        return helpers
+
     def agent(self) -> LifecycleAgent:
-        """Return the lifecycle agent, started on first use."""
+        """Return the lifecycle agent, started on first use (and again after it died)."""
+        self._agent_died()
         if self._agent is None:
             if self._agent_error is not None:  # said once; not retried on every call
                 raise ExternalToolError(self._agent_error)
@@ -58,7 +86,12 @@ class Transitions:
     def call(self, call: Callable[[LifecycleAgent], Any]) -> Any:
         """Ask the lifecycle agent something; a failure is said (never raised), None returned."""
         try:
-            return call(self.agent())
+            try:
+                return call(self.agent())
+            except ExternalToolError:
+                if not self._agent_died():
+                    raise
+                return call(self.agent())  # it died in this call: once more, of a new one
         except ExternalToolError as exc:
             self.say("lifecycle", f"lifecycle agent: {exc}", ok=False, error=str(exc))
             return None
@@ -78,7 +111,12 @@ class Transitions:
         nodes = {self.node_of(c): c for c, _ in steps}
         items = [(self.node_of(c), t) for c, t in steps]
         try:
-            outcomes = self.agent().transitions(items, appear, timeout)
+            try:
+                outcomes = self.agent().transitions(items, appear, timeout)
+            except ExternalToolError:
+                if not self._agent_died():
+                    raise
+                outcomes = self.agent().transitions(items, appear, timeout)  # once more
         except ExternalToolError as exc:
             return {c: self._failed(c, t, str(exc)) for c, t in steps}
         return {nodes[o.node]: self._said(nodes[o.node], o) for o in outcomes}

@@ -9,13 +9,21 @@ per node, in a session of its own, with its output in its log and the command li
 have had (``pgrep -f '__node:=NSM3'`` finds it). The zygote reaps its children and reports
 each exit at once over its stdout; ``Forked`` turns that into what ``subprocess.Popen``
 offers (``poll``, ``wait``, ``returncode``), so ``rosreconf.ros.ros2.nodes`` treats a forked
-stand-in like any process it started. Children die with the zygote (a parent-death signal),
-which dies with rosreconf (``rosreconf.ros.ros2.helper``). Nothing here prints.
+stand-in like any process it started.
+
+A helper's death is not a component's failure: the children outlive the zygote. They die
+with rosreconf instead, by a watchdog each forks, waiting on a pipe only rosreconf writes to
+(``standin_alive``; see ``standin_zygote.py``). Each child is also held by a pidfd from its
+fork on, so that once the zygote has died its exit is still seen at once (its status is then
+unknown: ``UNKNOWN_EXIT``), and the next stand-in is forked by a new zygote. Nothing here
+prints.
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
+import select
 import signal
 import subprocess
 import threading
@@ -33,6 +41,29 @@ TITLE_ROOM = 32768
 """Bytes of argument the zygote is given, for its children's command lines (as its own)."""
 DISABLE_ENV = "ROSRECONF_STANDIN_ZYGOTE"
 """Set to ``0`` to start every stand-in as a process of its own (as before the zygote)."""
+ALIVE_ENV = "ROSRECONF_STANDIN_ALIVE_FD"
+UNKNOWN_EXIT = 255
+"""The exit status said of a stand-in that ended after its zygote: nobody could reap it."""
+_ALIVE: list[int] = []
+
+
+def standin_alive() -> int:
+    """Return the read end of the pipe the stand-ins' watchdogs wait on (made once).
+
+    Its write end stays open, in this process only, until rosreconf ends: then the kernel
+    closes it and every stand-in's watchdog kills its stand-in, however rosreconf ended.
+    """
+    if not _ALIVE:
+        _ALIVE.extend(os.pipe())
+    return _ALIVE[0]
+
+
+def _pidfd(pid: int) -> int | None:
+    """Return a pidfd for ``pid`` (None where there are none: then only the zygote tells)."""
+    try:
+        return os.pidfd_open(pid)
+    except (AttributeError, OSError):
+        return None
 
 
 class Forked:
@@ -42,11 +73,30 @@ class Forked:
         self.pid = pid
         self.returncode: int | None = None
         self._zygote = zygote
+        self._fd = _pidfd(pid)
+
+    def _ended(self, code: int | None) -> int | None:
+        if code is not None:
+            self.returncode = code
+            if self._fd is not None:
+                os.close(self._fd)
+                self._fd = None
+        return self.returncode
+
+    def _orphan_ended(self, timeout: float | None) -> bool:
+        """Tell whether it ended, read from its pidfd (after the zygote died)."""
+        if self._fd is None:
+            return True  # no way to tell: taken as gone, as the zygote said before
+        return bool(select.select([self._fd], [], [], timeout)[0])
 
     def poll(self) -> int | None:
         """Return the exit status, or None while it runs."""
         if self.returncode is None:
-            self.returncode = self._zygote.code(self.pid)
+            code = self._zygote.code(self.pid)
+            if code is None and self._zygote.gone and self._orphan_ended(0.0):
+                late = self._zygote.code(self.pid)  # said just before the zygote ended
+                code = UNKNOWN_EXIT if late is None else late
+            self._ended(code)
         return self.returncode
 
     def wait(self, timeout: float | None = None) -> int:
@@ -56,7 +106,13 @@ class Forked:
             subprocess.TimeoutExpired: still running after ``timeout`` seconds.
         """
         if self.returncode is None:
-            self.returncode = self._zygote.wait(self.pid, timeout)
+            code = self._zygote.wait(self.pid, timeout)
+            if code is None:  # the zygote died before it: its pidfd tells
+                if not self._orphan_ended(timeout):
+                    raise subprocess.TimeoutExpired(str(self.pid), timeout or 0.0)
+                code = UNKNOWN_EXIT
+            self._ended(code)
+        assert self.returncode is not None
         return self.returncode
 
 
@@ -95,7 +151,9 @@ class Zygote(Helper):
         self.orphans: list[ForkedProgram] = []
         python = ros2_python(env)
         argv = [python, str(ZYGOTE_SCRIPT), " " * TITLE_ROOM]
-        super().__init__(argv, env, log, f"the stand-in zygote ({python} {ZYGOTE_SCRIPT.name})")
+        alive = standin_alive()
+        name = f"the stand-in zygote ({python} {ZYGOTE_SCRIPT.name})"
+        super().__init__(argv, {**env, ALIVE_ENV: str(alive)}, log, name, keep_fds=(alive,))
 
     def heard(self, said: dict[str, Any]) -> bool:
         """Take a child's exit, which is news, not an answer."""
@@ -107,10 +165,16 @@ class Zygote(Helper):
         return True
 
     def ended(self) -> None:
-        """Note that the children are gone (their parent-death signal is SIGKILL)."""
+        """Note that the zygote is gone (its children run on: their pidfds tell their exits)."""
         with self._changed:
             self._gone = True
             self._changed.notify_all()
+
+    @property
+    def gone(self) -> bool:
+        """Tell whether the zygote has ended (closed, killed or crashed)."""
+        with self._changed:
+            return self._gone
 
     def spawn(
         self, programs: Sequence[tuple[Sequence[str], Path]], timeout: float = 30.0
@@ -143,12 +207,12 @@ class Zygote(Helper):
         return [forked[i] for i in range(len(programs))]
 
     def code(self, pid: int) -> int | None:
-        """Return how child ``pid`` ended, or None while it runs."""
+        """Return how child ``pid`` ended as the zygote said it, or None (running, or unsaid)."""
         with self._changed:
-            return self._codes.get(pid, -signal.SIGKILL if self._gone else None)
+            return self._codes.get(pid)
 
-    def wait(self, pid: int, timeout: float | None) -> int:
-        """Wait until child ``pid`` has ended; return how.
+    def wait(self, pid: int, timeout: float | None) -> int | None:
+        """Wait until child ``pid`` has ended; return how, or None if the zygote died first.
 
         Raises:
             subprocess.TimeoutExpired: it still runs after ``timeout`` seconds.
@@ -156,4 +220,4 @@ class Zygote(Helper):
         with self._changed:
             if not self._changed.wait_for(lambda: pid in self._codes or self._gone, timeout):
                 raise subprocess.TimeoutExpired(str(pid), timeout or 0.0)
-            return self._codes.get(pid, -signal.SIGKILL)
+            return self._codes.get(pid)

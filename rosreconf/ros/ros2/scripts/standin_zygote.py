@@ -11,10 +11,15 @@ own. It never calls ``rclpy.init`` itself and starts no thread (the only threads
 LTTng-UST's listeners, loaded with rclpy's tracepoints; around each fork LTTng's own fork
 hooks run, as its ``liblttng-ust-fork.so`` would run them).
 
-Each child: a new session (rosreconf signals its group), a parent-death signal (it dies with
-this process, which dies with rosreconf), stdin from /dev/null, its output appended to its
-log, and its command line rewritten (as ``setproctitle`` does) to the one it would have had
-on its own, so ``ps`` and ``pgrep -f '__node:=NSM3'`` find it.
+Each child: a new session (rosreconf signals its group), stdin from /dev/null, its output
+appended to its log, and its command line rewritten (as ``setproctitle`` does) to the one it
+would have had on its own, so ``ps`` and ``pgrep -f '__node:=NSM3'`` find it. A child does
+not die with this process: a helper's death is not a component's failure. It dies with
+rosreconf instead: rosreconf passes the read end of a pipe only it writes to
+(``ROSRECONF_STANDIN_ALIVE_FD``), and each child forks a watchdog into its own group that
+kills the group when that pipe closes, that is when rosreconf has died (the same watchdog as
+``rosreconf.procs.child``'s). Without that variable a child gets a parent-death signal, as
+before.
 
 Protocol, JSON lines: rosreconf writes ``{"id": 1, "argv": [...], "log": "/path"}`` on
 stdin; the answer on stdout is ``{"id": 1, "pid": 4711}`` (or ``"error"``); whenever a child
@@ -38,7 +43,35 @@ from pathlib import Path
 from typing import Any
 
 PR_SET_PDEATHSIG = 1
+ALIVE_ENV = "ROSRECONF_STANDIN_ALIVE_FD"
 _HERE = Path(__file__).resolve().parent
+
+
+def _alive_fd() -> int | None:
+    """Return the pipe the children's watchdogs wait on (rosreconf holds its other end)."""
+    text = os.environ.get(ALIVE_ENV, "")
+    return int(text) if text.isdigit() else None
+
+
+def _watchdog(alive: int) -> None:
+    """Fork a process into this group that kills the group when ``alive`` reads EOF.
+
+    Forked twice, so that it is nobody's child to wait for. It closes every other descriptor
+    (the log, /dev/null) so that it holds nothing of the stand-in's.
+    """
+    middle = os.fork()
+    if middle == 0:
+        if os.fork() == 0:
+            try:
+                os.closerange(0, alive)
+                os.closerange(alive + 1, 65536)
+                while os.read(alive, 64):
+                    pass
+                os.killpg(0, signal.SIGKILL)
+            finally:
+                os._exit(0)
+        os._exit(0)
+    os.waitpid(middle, 0)
 
 
 def _load_standin() -> Any:
@@ -117,9 +150,13 @@ class Zygote:
         code = 1
         try:
             os.setsid()
-            self.libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
-            if os.getppid() != self.me:  # the zygote died before prctl took effect
-                os._exit(1)
+            alive = _alive_fd()
+            if alive is not None:  # dies with rosreconf, not with the zygote
+                _watchdog(alive)
+            else:
+                self.libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+                if os.getppid() != self.me:  # the zygote died before prctl took effect
+                    os._exit(1)
             signal.set_wakeup_fd(-1)
             signal.signal(signal.SIGCHLD, signal.SIG_DFL)
             os.close(self.wake)
