@@ -36,6 +36,7 @@ from rosreconf.ros.connect import open_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
 from rosreconf.ros.ros2.runtime import ros2_python
@@ -73,6 +74,29 @@ def watch_command(
             help="ROS 2 --apply: supervise the domain though another watch supervises it.",
         ),
     ] = False,
+    restarts: Annotated[
+        int,
+        typer.Option(
+            "--restarts",
+            min=0,
+            max=1000,
+            help="Restart a failed component in place (1 change) up to N times per "
+            "--restart-window; then hold it failed and move away from it. 0: never.",
+        ),
+    ] = 0,
+    restart_window: Annotated[
+        float,
+        typer.Option(min=1.0, max=86400, callback=finite, help="Seconds --restarts counts over."),
+    ] = RESTART_WINDOW,
+    hold: Annotated[
+        float,
+        typer.Option(
+            min=0.0,
+            max=86400,
+            callback=finite,
+            help="Seconds a failed component is held before it is a candidate again.",
+        ),
+    ] = HOLD_SECONDS,
     stop_outside: Annotated[
         bool,
         typer.Option(
@@ -123,7 +147,9 @@ def watch_command(
     exists, or the search for one meeting the performance requirements is spent), it logs
     no-configuration and keeps watching. With --once: exit 0 if the system conforms at the
     end, else 1. A second --ros2 --apply watch on a domain that another watch of this host
-    supervises is refused (exit 2, naming its pid), unless --force.
+    supervises is refused (exit 2, naming its pid), unless --force. A failed component is
+    restarted in place up to --restarts times per --restart-window, else held failed for
+    --hold seconds, then a candidate again.
     """
 
     sel = select(library, schema, None, [only] if only else None)
@@ -181,6 +207,7 @@ def watch_command(
             source, sel.library, sch, config, work, env, log,
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
             launch_dir=keep, standby=standby, ros2_launch=ros2_launch, stop_outside=stop_outside,
+            restart_limit=restarts, restart_window=restart_window, hold=hold,
             budget=Budget(search_limit, search_time), stop_requested=signals.requested,
         )  # fmt: skip
         stack.callback(watcher.close)

@@ -49,6 +49,7 @@ from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import replan
+from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
 
@@ -72,10 +73,9 @@ class Watcher:
         settle: seconds to wait for the live graph to conform after applying a change.
         launch_dir: where launch files and roslaunch's output go, kept after the watcher
             ends (default: ``workdir``).
-        failed: components known to have failed (sticky).
-        standby: ROS 2: start and configure managed alternatives in advance.
-        ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
-            node's process (needs a ``ros2`` command).
+        failed: components known to have failed, until restarted in place or released.
+        standby, ros2_launch, stop_outside: ROS 2 acting options (``actuator.Acting``).
+        restart_limit, restart_window, hold: restart in place, hold, release (``restarts``).
         stop_requested: polled between steps and while waiting; True ends ``run``.
         budget: how far to search for a configuration that meets the performance
             requirements when the fewest-change one does not (``analysis.choice``).
@@ -96,6 +96,9 @@ class Watcher:
     standby: bool = False
     ros2_launch: bool = False
     stop_outside: bool = False
+    restart_limit: int = 0
+    restart_window: float = RESTART_WINDOW
+    hold: float = HOLD_SECONDS
     stop_requested: Callable[[], bool] = lambda: False
     budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
@@ -108,6 +111,7 @@ class Watcher:
     _graph: LiveGraph | None = None
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
     _clashes: NameClashes = field(init=False, repr=False)
+    _restarts: Restarts = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         acting = Acting(
@@ -126,6 +130,9 @@ class Watcher:
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
         self._clashes = NameClashes(self._say, self._role)
+        self._restarts = Restarts(
+            self._say, self._role, self.restart_limit, self.restart_window, self.hold
+        )
 
     def _read(self) -> LiveGraph:
         self._graph = self._actuator.visible(self.source.read())
@@ -152,6 +159,8 @@ class Watcher:
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_restart()
+        if self._release():
+            return self._confirm()
         if self._own_exits() and self._graph is not None and self._replan():
             return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
@@ -255,8 +264,32 @@ class Watcher:
     def _say(self, kind: str, message: str, **data: Any) -> None:
         self.log(Event(kind, message, data))
 
+    def _release(self) -> bool:
+        """Make held components whose hold is over candidates again; start those in service.
+
+        True if something was started (a configuration with none left, tried again).
+        """
+        back = self._restarts.released() & self.failed
+        self.failed -= back
+        again = sorted(back & set(self.current.components))
+        if not again or not self.apply or self.failed & set(self.current.components):
+            return False
+        self._seen -= set(again)
+        self._pending = self._pending or time.monotonic()
+        return self._start(again, "a candidate again after its hold")
+
     def _replan(self) -> bool:
-        """Find the minimal-change configuration without the failed components; apply it."""
+        """Restart failed components in place where allowed (``restarts``); else find the
+        minimal-change configuration without the failed components, and apply it."""
+        failing = self.failed & set(self.current.components)
+        again = self._restarts.restartable(failing, self.apply)
+        if again:
+            self.failed -= again
+            self._seen -= again
+            self._pending = self._pending or time.monotonic()
+            started = self._start(sorted(again), "restarted in place")
+            if not self.failed & set(self.current.components):
+                return started
         failed = frozenset(self.failed)
         if failed == self._hopeless:
             return False

@@ -1,0 +1,104 @@
+"""Restart in place, hold and release: what ``watch`` does with a component that failed.
+
+Replacing a failed component moves its role to another one and often rewires its neighbours
+(ten changes when NSM3 fails). Restarting the same component costs one change, the least any
+repair can cost (its role must change or restart), and keeps the configuration and its
+wiring: so, when allowed, it is the repair. systemd and Nav2 do the same, with a limit:
+
+- ``limit``: restarts in place allowed per ``window`` seconds (systemd's ``StartLimitBurst``
+  and ``StartLimitIntervalSec``); 0 turns restart in place off. A component that fails more
+  often is **held** failed: the configuration moves away from it, as without restarts.
+- ``hold``: how long a held component stays failed. Then it is **released**: a candidate
+  again (event ``release``). A configuration that had to leave it is kept (no flapping back
+  and forth); but when no configuration was left, ``watch`` tries again with it.
+
+Every decision is an event: ``restart`` (with the crashes counted in the window), ``hold``
+(with why and for how long), ``release``. Nothing here prints or acts: the watcher starts
+what is restarted or released.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Collection
+from dataclasses import dataclass, field
+
+RESTART_WINDOW = 60.0
+"""Seconds over which restarts in place are counted (systemd's default interval is 10 s;
+a robot's node that crashes three times in a minute is not going to stay up)."""
+HOLD_SECONDS = 60.0
+"""Seconds a failed component is held before it is a candidate again."""
+
+
+@dataclass
+class Restarts:
+    """Decide, per failed component, restart in place or hold; release held ones in time.
+
+    Attributes:
+        say: how an event is said.
+        role: the role a component fills, for the messages.
+        limit: restarts in place allowed per ``window`` (0: never restart in place).
+        window: seconds over which restarts are counted.
+        hold: seconds a held component stays failed.
+        crashes: component -> when it failed (monotonic seconds), within the window.
+        held: component -> when it is released (monotonic seconds).
+    """
+
+    say: Callable[..., None]
+    role: Callable[[str], str]
+    limit: int = 0
+    window: float = RESTART_WINDOW
+    hold: float = HOLD_SECONDS
+    crashes: dict[str, list[float]] = field(default_factory=dict)
+    held: dict[str, float] = field(default_factory=dict)
+
+    def restartable(self, failed: Collection[str], can_start: bool) -> set[str]:
+        """Return those of ``failed`` to restart in place now; hold the others (said).
+
+        ``can_start``: whether the watcher may start processes (``--apply``).
+        """
+        now = time.monotonic()
+        out: set[str] = set()
+        for comp in sorted(set(failed) - set(self.held)):
+            times = [t for t in self.crashes.get(comp, []) if now - t < self.window] + [now]
+            self.crashes[comp] = times
+            if can_start and len(times) <= self.limit:
+                self.say(
+                    "restart",
+                    f"{comp} ({self.role(comp)}) restarts in place: 1 change, the fewest "
+                    f"possible (failure {len(times)} of {self.limit} allowed in "
+                    f"{self.window:g} s)",
+                    component=comp,
+                    crashes=len(times),
+                )
+                out.add(comp)
+                continue
+            self.held[comp] = now + self.hold
+            if not self.limit:
+                why = "restart in place is off: --restarts 0"
+            elif not can_start:
+                why = "nothing is started without --apply"
+            else:
+                why = f"{len(times)} failures in {self.window:g} s, over the limit of {self.limit}"
+            self.say(
+                "hold",
+                f"{comp} ({self.role(comp)}) is held failed for {self.hold:g} s ({why}); "
+                "then it is a candidate again",
+                component=comp,
+                seconds=self.hold,
+                crashes=len(times),
+            )
+        return out
+
+    def released(self) -> set[str]:
+        """Return the held components whose hold is over (said), and forget their hold."""
+        now = time.monotonic()
+        out = {comp for comp, until in self.held.items() if now >= until}
+        for comp in sorted(out):
+            del self.held[comp]
+            self.say(
+                "release",
+                f"{comp} is a candidate again ({self.hold:g} s after it was held)",
+                component=comp,
+            )
+        return out
