@@ -349,8 +349,9 @@ class Watcher:
     def run(self, interval: float, *, once: bool = False) -> Conformance:
         """Poll every ``interval`` seconds until stopped; with ``once``, poll once and return.
 
-        A master that does not answer the first poll is an error (a wrong URI fails fast);
-        later, a restarting master is waited for (one event when it goes, one when back).
+        A master that does not answer the first read is an error (a wrong URI fails fast);
+        after one read, a read that fails (a restarting master, a ROS 2 graph caught
+        half-announced) is retried (one event when it goes, one when back).
 
         Raises:
             ExternalToolError: the master does not answer the first poll (or, with ``once``,
@@ -363,7 +364,7 @@ class Watcher:
             try:
                 check = self.step()
             except ExternalToolError as exc:
-                if not started or once:
+                if (not started and self._graph is None) or once:
                     raise
                 if lost_at is None:
                     lost_at = time.monotonic()
