@@ -99,9 +99,9 @@ def test_inspect_kill_and_replan(
         took = time.monotonic() - killed_at
         events = _events(log)[2:]
         kinds = [e["event"] for e in events]
-        assert kinds[:2] == ["failed", "replanned"], events
-        assert events[0]["component"] == "NSM3"
-        new = events[1]["configuration"]
+        assert kinds[:3] == ["failed", "hold", "replanned"], events  # held: --restarts 0
+        assert events[0]["component"] == events[1]["component"] == "NSM3"
+        new = events[2]["configuration"]
         assert [new[r] for r in ("base_joint", "elbow_joint", "gripper_joint")] == [
             "NDC1", "NDC3", "NDC5"
         ]  # fmt: skip

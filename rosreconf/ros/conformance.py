@@ -185,7 +185,7 @@ def compare(
     found = _node_findings(configuration, graph, answering, names)
     found += _lifecycle_findings(live, answering, comps, names)
     expected = ros_graph(configuration, library, schema)
-    found += _clash_findings(expected, live, comps, names)
+    found += _clash_findings(expected, live, answering, comps, names)
     providers = library_providers(library)
     edges = edge_findings(expected, graph, answering, comps, providers)
     uses = dangling_findings(expected, graph, answering, comps, providers, edges.judged)
@@ -275,26 +275,26 @@ def _lifecycle_findings(
 
 
 def _clash_findings(
-    expected: RosGraph, live: LiveGraph, comps: dict[str, Component], names: dict[str, str]
+    expected: RosGraph,
+    live: LiveGraph,
+    answering: dict[str, LiveNode],
+    comps: dict[str, Component],
+    names: dict[str, str],
 ) -> list[Finding]:
     """Report a node that has a component's name but none of its endpoints: another node.
 
     A component's endpoints in a configuration are the live names of its ROS-graph's
     interfaces: what it provides, under its own names, and what it uses, under its providers'
-    names. A node of that name with none of them (actions: none of their ``/_action/``
-    services), and none under the interface's own label either (that would be the component
-    started unwired: an edge finding), is not that component, whatever its name says;
-    ``watch`` never takes it for the component. A managed node that is not active may have
-    none yet (an unconfigured node has only its lifecycle services): it is excused here, and
-    reported as ``not-active``.
+    names. A node of that name that has endpoints (plumbing aside), but none of those (actions:
+    none of their ``/_action/`` services) and none under the interface's own label either
+    (that would be the component started unwired: an edge finding), is not that component,
+    whatever its name says; ``watch`` never takes it for the component. A node with no
+    endpoints at all proves nothing either way: its edge findings say what is missing. A
+    managed node that is not active is excused (``not-active`` reports it).
     """
-    raw: dict[str, LiveNode] = {}
-    for n in live.nodes:  # with plumbing: an action's endpoints are its hidden services
-        if n.answered:
-            raw[n.name] = _merge(raw[n.name], n) if n.name in raw else n
     found: list[Finding] = []
     for c, name in names.items():
-        node, vertex = raw.get(name), node_vertex(c)
+        node, vertex = answering.get(name), node_vertex(c)
         if node is None or vertex not in expected:
             continue
         labels = {str(expected.nodes[v]["label"]) for v in expected.successors(vertex)}
@@ -305,6 +305,8 @@ def _clash_findings(
             labels.add(label := str(expected.nodes[v]["label"]))
             wanted |= {interface_live_name(comps[p[1]], label) for p in expected.predecessors(v)}
         has = {*node.publishes, *node.subscribes, *node.serves, *node.clients}
+        if not has:  # nothing to judge by (a node with no endpoints: the edge findings say it)
+            continue
         has |= {h.split("/_action/")[0] for h in has if "/_action/" in h}  # ROS 2 actions
         has |= {h.removesuffix("/goal") for h in has if h.endswith("/goal")}  # actionlib
         own = {h for h in has for label in labels if h.endswith("/" + label.lstrip("/"))}
