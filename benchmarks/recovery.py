@@ -13,10 +13,20 @@ alternative), NSM3's process is SIGKILLed and the times are read from the JSON l
     stop       ``replanned`` -> the last ``stop`` of the repair
     conformant kill -> ``conformant`` (the goal: median <= 2 s standby, <= 4 s cold)
 
-Each kill gets a fresh watcher and fresh nodes. Three rows: ROS 2 standby (the bundled library
+Each kill gets a fresh watcher and fresh nodes. Rows: ROS 2 standby (the bundled library
 with every component managed, ``--standby``: the switch is ``activate``), ROS 2 cold starts,
-and ROS 1 (roslaunch), in the same run. ``python benchmarks/recovery.py --kills N`` runs it
-alone; ``benchmarks/run.py`` runs it with 5 kills per row.
+ROS 1 (roslaunch), and three of supervision (issue 31), in the same run:
+
+    outside-kill    NSM3 started outside rosreconf, as the team's launch file would (its -r
+                    rules, Fast DDS's own 20 s lease); watch ``--stop-outside`` starts the
+                    other twelve; ``kill -9`` NSM3: detect is by its process, not the lease
+    outside-sigstop the same, NSM3 stopped with SIGSTOP (hung): detect after 1 s stopped;
+                    the hung process is stopped by watch in the repair
+    restart-in-place  cold stand-ins, ``--restarts 1``: NSM3 restarted in place, one change
+                    (re-plan: ``failed`` -> ``restart``)
+
+``python benchmarks/recovery.py --kills N`` runs it alone; ``benchmarks/run.py`` runs it with
+5 kills per row.
 """
 
 from __future__ import annotations
@@ -40,7 +50,9 @@ JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
 UP_TIMEOUT = 240.0
 REPAIR_TIMEOUT = 120.0
 COLUMNS = ("detect", "replan", "start", "stop", "conformant")
-GOALS = {"ros2-standby": 2.0, "ros2-cold": 4.0}
+GOALS = {"ros2-standby": 2.0, "ros2-cold": 4.0, "outside-kill": 4.0, "restart-in-place": 4.0}
+KINDS = ("ros2-standby", "ros2-cold", "ros1", "outside-kill", "outside-sigstop", "restart-in-place")
+OUTSIDE = ("outside-kill", "outside-sigstop")
 
 
 def _events(log: Path) -> list[dict[str, Any]]:
@@ -82,7 +94,8 @@ def columns(events: list[dict[str, Any]], killed: float) -> dict[str, float]:
     """Return the five columns (seconds) from the events logged after the kill."""
     after = [e for e in events if _at(e) >= killed - 0.01]
     first = {e["event"]: _at(e) for e in reversed(after)}
-    failed, replanned = first["failed"], first["replanned"]
+    failed = first["failed"]
+    replanned = first.get("replanned", first.get("restart", failed))
     starts = [_at(e) for e in after if e["event"] == "launch" or e.get("transition") == "activate"]
     stops = [_at(e) for e in after if e["event"] == "stop"]
     ends = [_at(e) for e in after if e["event"] == "conformant"]
@@ -105,6 +118,10 @@ def one_kill(kind: str, tmp: Path) -> dict[str, float]:
     env.pop("CYCLONEDDS_URI", None)  # Fast DDS announces by multicast: Cyclone's defaults hear it
     env.update(ROSRECONF_ROS2_PYTHON=str(JAZZY), HOME=str(tmp), ROS_LOG_DIR=str(tmp))
     args = ["--only", "object_repositioning"]
+    if kind in OUTSIDE:
+        args += ["--stop-outside"]
+    if kind == "restart-in-place":
+        args += ["--restarts", "1"]
     if kind == "ros2-standby":
         managed = (ROOT / "libraries" / "robot_arms.yaml").read_text()
         library = tmp / "robot_arms_managed.yaml"
@@ -116,7 +133,9 @@ def one_kill(kind: str, tmp: Path) -> dict[str, float]:
             env = {**master.env(), "HOME": str(tmp)}
             where = ["--master", master.uri]
         else:
-            where = ["--ros2", "--domain", str(ros2_harness.free_domain())]
+            domain = ros2_harness.free_domain()
+            where = ["--ros2", "--domain", str(domain)]
+        team = _team_nsm3(env, domain, tmp) if kind in OUTSIDE else None
         argv = [sys.executable, "-m", "rosreconf", "watch", *where, "--apply", "--stand-ins",
                 "--interval", "0.5", "--json-log", str(log), *args]  # fmt: skip
         proc = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL,
@@ -125,11 +144,13 @@ def one_kill(kind: str, tmp: Path) -> dict[str, float]:
             _wait(log, proc, lambda ev: any(e["event"] == "conformant" for e in ev), UP_TIMEOUT)
             if kind == "ros2-standby":  # every alternative configured: a failover is activate
                 _wait(log, proc, _standby_ready, UP_TIMEOUT)
+            if team is not None:  # its process found and watched, or the row is not this one
+                _wait(log, proc, _nsm3_watched, UP_TIMEOUT)
             time.sleep(1.0)
             before = len(_events(log))
-            pid = _nsm3_pid(_events(log))
+            pid = team.pid if team is not None else _nsm3_pid(_events(log))
             killed = time.time()
-            os.kill(pid, signal.SIGKILL)
+            os.kill(pid, signal.SIGSTOP if kind == "outside-sigstop" else signal.SIGKILL)
             _wait(
                 log,
                 proc,
@@ -144,6 +165,37 @@ def one_kill(kind: str, tmp: Path) -> dict[str, float]:
             except subprocess.TimeoutExpired:
                 proc.kill()
                 proc.wait()
+            if team is not None and team.poll() is None:
+                os.kill(team.pid, signal.SIGCONT)
+                team.kill()
+                team.wait()
+
+
+def _team_nsm3(env: dict[str, str], domain: int, tmp: Path) -> subprocess.Popen[bytes]:
+    """Start NSM3 as the team's launch file would: its own process, wired by -r rules."""
+    from rosreconf.formats.loader import load_bundled
+    from rosreconf.model import Configuration
+    from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
+    from rosreconf.ros.standin_spec import ros2_standin_spec
+
+    bundle = load_bundled()
+    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    spec = json.dumps(ros2_standin_spec(bundle.library["NSM3"]))
+    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
+    argv = [str(JAZZY), str(script), spec]
+    argv += ros2_node_arguments(bundle.library, "NSM3", wiring(bundle.library, schema, nominal))
+    team = subprocess.Popen(argv, env={**env, "ROS_DOMAIN_ID": str(domain)},
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+    assert team.stdout is not None
+    if b'"ready"' not in team.stdout.readline():
+        raise RuntimeError("the team's NSM3 did not start")
+    return team
+
+
+def _nsm3_watched(events: list[dict[str, Any]]) -> bool:
+    return any(e["event"] == "watched" and e.get("how") == "process" and "/NSM3" in e["nodes"]
+               for e in events)  # fmt: skip
 
 
 def _standby_ready(events: list[dict[str, Any]]) -> bool:
@@ -161,9 +213,7 @@ class _nothing:
         return None
 
 
-def recovery(
-    kills: int, kinds: tuple[str, ...] = ("ros2-standby", "ros2-cold", "ros1")
-) -> dict[str, Any]:
+def recovery(kills: int, kinds: tuple[str, ...] = KINDS) -> dict[str, Any]:
     """Return, per kind, every kill's columns and their medians (whole process, seconds)."""
     if not JAZZY.exists():
         return {"status": "skipped: no .venv-ros2-jazzy (make ros2-venvs)"}
@@ -216,7 +266,7 @@ def main() -> None:
     """Run the recovery rows alone and print them (and the JSON with --json)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--kills", type=int, default=5)
-    ap.add_argument("--kinds", default="ros2-standby,ros2-cold,ros1")
+    ap.add_argument("--kinds", default=",".join(KINDS))
     ap.add_argument("--json", type=Path)
     args = ap.parse_args()
     doc = recovery(args.kills, tuple(args.kinds.split(",")))

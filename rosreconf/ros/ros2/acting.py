@@ -32,12 +32,15 @@ class Ros2Actuator(Actuator):
         acting: the watcher's options.
         participants: the source's participants -> their nodes, as last read: the nodes
             rosreconf did not start are watched by their processes (``Ros2Control.track``).
+        hide: leaves participants out of the source's later reads: those of processes seen
+            to end, so that a node restarted under its name is only its new process.
         control: what ROS 2 lets rosreconf do to each node.
         launched: the components started (not started again on every poll).
     """
 
     acting: Acting
     participants: Callable[[], dict[bytes, tuple[str, ...]]] = dict
+    hide: Callable[[Collection[bytes]], None] = lambda _: None
     control: Ros2Control = field(init=False)
     launched: set[str] = field(default_factory=set)
 
@@ -111,8 +114,12 @@ class Ros2Actuator(Actuator):
         With ``tend``, standby nodes that came up are configured. The nodes of ``current``
         rosreconf did not start are watched by their processes from the last read on.
         """
-        self.control.track(self.participants(), current)
+        participants = self.participants()
+        self.control.track(participants, current)
+        dead = set(self.control.dead)
         now = self.control.exits(current, failed)
+        newly = self.control.dead - dead  # their participants linger until their lease ends
+        self.hide({g for g, nodes in participants.items() if newly & set(nodes)})
         if tend:
             self.control.tend()
         return now

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import shutil
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -176,10 +176,15 @@ class Ros2Source:
         """
         return {} if self._session is None else self._session.participant_nodes
 
+    def hide(self, participants: Collection[bytes]) -> None:
+        """Leave these participants out of every later read (processes known dead)."""
+        if self._session is not None:
+            self._session.hidden |= set(participants)
+
     def actuator(self, acting: Acting) -> Actuator:
         """Return the actuator ``acting`` asks for: each node's own process, or ``ros2 launch``."""
         if acting.apply and not acting.ros2_launch:
-            return Ros2Actuator(acting, self.participants)
+            return Ros2Actuator(acting, self.participants, self.hide)
         return Ros2Launch(self, acting)
 
     def close(self) -> None:
