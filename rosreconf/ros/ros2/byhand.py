@@ -64,9 +64,15 @@ class ByHand:
         if self.stop_outside and known is not None:
             result = self.outside.stop(node) if self.outside is not None else None
             if result is not None and result.outcome in (Stopped.STOPPED, Stopped.GONE):
-                self.say("stop", f"stopped {component} ({role}): replaced by {replacement}; "
-                         f"{result.message}", component=component, node=node, how="signal",
-                         pid=result.proc.pid, outside=True)  # fmt: skip
+                self.say(
+                    "stop",
+                    f"stopped {component} ({role}): replaced by {replacement}; {result.message}",
+                    component=component,
+                    node=node,
+                    how="signal",
+                    pid=result.proc.pid,
+                    outside=True,
+                )
                 return
             why = result.message if result is not None else "its process is gone"
         elif self.stop_outside:

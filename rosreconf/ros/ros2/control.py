@@ -159,8 +159,14 @@ class Ros2Control:
                 continue  # a person restarting it (rewired) stops it first: not a failure
             role, comp = comps[node]
             why = "its process exited" if how == "exited" else "its process is stopped (hung)"
-            self.say("failed", f"{comp} ({role}) is gone: {why}, seen by watching it: failed",
-                     component=comp, node=node, how=f"process-{how}", outside=True)  # fmt: skip
+            self.say(
+                "failed",
+                f"{comp} ({role}) is gone: {why}, seen by watching it: failed",
+                component=comp,
+                node=node,
+                how=f"process-{how}",
+                outside=True,
+            )
             now.add(comp)
         return now
 
@@ -178,12 +184,19 @@ class Ros2Control:
                 self.say(
                     "failed",
                     f"{comp} ({role}) is gone: its process exited ({code}): failed",
-                    component=comp, node=node, returncode=code, how="process-exit",
-                )  # fmt: skip
+                    component=comp,
+                    node=node,
+                    returncode=code,
+                    how="process-exit",
+                )
                 now.add(comp)
             else:
-                self.say("exited", f"{node} ({comp}, not in service) exited ({code})",
-                         component=comp, returncode=code)  # fmt: skip
+                self.say(
+                    "exited",
+                    f"{node} ({comp}, not in service) exited ({code})",
+                    component=comp,
+                    returncode=code,
+                )
         return now
 
     def left_running(self, check: Conformance) -> bool:
@@ -275,9 +288,13 @@ class Ros2Control:
         for own in stopped:
             self.parked.discard(own.node)
             self.states.pop(own.component, None)
-            self.say("stop", f"stopped {own.component} to restart it wired for the new "
-                     f"configuration (pid {own.pid})", component=own.component,
-                     how="rewire")  # fmt: skip
+            self.say(
+                "stop",
+                f"stopped {own.component} to restart it wired for the new "
+                f"configuration (pid {own.pid})",
+                component=own.component,
+                how="rewire",
+            )
 
     def retire(
         self, leaving: list[tuple[str, str, str, bool]], failed: Collection[str] = ()
@@ -306,15 +323,24 @@ class Ros2Control:
             out.update(self._transitions(todo))
         for component, role, replacement in managed:
             self.parked.add(self._node(component))
-            self.say("stop", f"took {component} ({role}) out of service: replaced by "
-                     f"{replacement}", component=component, how="lifecycle")  # fmt: skip
+            self.say(
+                "stop",
+                f"took {component} ({role}) out of service: replaced by {replacement}",
+                component=component,
+                how="lifecycle",
+            )
         stopped = {n.component: n for n in self.nodes.stop([c for c, _, _ in processes])}
         for component, role, replacement in processes:
             ended = stopped[component]
             code = ended.program.process.returncode
-            self.say("stop", f"stopped {component} ({role}): replaced by {replacement} "
-                     f"(pid {ended.pid}, exit {code})", component=component,
-                     how="process", returncode=code)  # fmt: skip
+            self.say(
+                "stop",
+                f"stopped {component} ({role}): replaced by {replacement} "
+                f"(pid {ended.pid}, exit {code})",
+                component=component,
+                how="process",
+                returncode=code,
+            )
 
     def reactivate(self, component: str, state: str) -> bool:
         """Bring a managed node of the configuration back to ``active``; True when it holds.

@@ -91,9 +91,13 @@ class Standbys:
                 self.say("launch-error", problem)
         self.parked |= {self.node_of(c) for c in wanted}
         self.lifecycle.call(lambda agent: agent.watch([self.node_of(c) for c in wanted]))
-        self.say("launch", f"started standby {', '.join(wanted)} (each is configured as soon "
-                 "as it is up, so a failover is one activate)", components=wanted,
-                 standby=True)  # fmt: skip
+        self.say(
+            "launch",
+            f"started standby {', '.join(wanted)} (each is configured as soon "
+            "as it is up, so a failover is one activate)",
+            components=wanted,
+            standby=True,
+        )
         self.unready += wanted
 
     def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
@@ -133,6 +137,10 @@ class Standbys:
             if self.tries[component] < STANDBY_TRIES:
                 self.unready.append(component)
             else:
-                self.say("lifecycle", f"{self.node_of(component)}: not a ready standby after "
-                         f"{STANDBY_TRIES} configure attempts; left unconfigured",
-                         component=component, node=self.node_of(component))  # fmt: skip
+                self.say(
+                    "lifecycle",
+                    f"{self.node_of(component)}: not a ready standby after "
+                    f"{STANDBY_TRIES} configure attempts; left unconfigured",
+                    component=component,
+                    node=self.node_of(component),
+                )
