@@ -17,10 +17,15 @@ from pathlib import Path
 
 from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
 
+STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 
-def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
-    ros2_domain: int, tmp_path: Path
-) -> None:
+
+def _team(tmp: Path, domain: int) -> dict[str, subprocess.Popen[bytes]]:
+    """Start the nominal configuration's 13 nodes as the team's launch file would.
+
+    Each is its own rclpy process, wired by the ``-r`` rules a launch file gives it, with Fast
+    DDS's default 20 s lease; each is up (it said ``ready``) when this returns.
+    """
     from rosreconf.formats.loader import load_bundled
     from rosreconf.model import Configuration
     from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
@@ -30,20 +35,40 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
     schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
     nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     remaps = wiring(bundle.library, schema, nominal)
-    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}  # Fast DDS's own 20 s lease
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
-
-    def start(c: str) -> subprocess.Popen[bytes]:
+    env = {**_env(tmp), "ROS_DOMAIN_ID": str(domain)}
+    ours = {}
+    for c in NOMINAL:
         spec = json.dumps(ros2_standin_spec(bundle.library[c]))
-        argv = [str(_ros2_python()), str(script), spec]
+        argv = [str(_ros2_python()), str(STANDIN), spec]
         argv += ros2_node_arguments(bundle.library, c, remaps)
-        return subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-
-    ours = {c: start(c) for c in NOMINAL}
-    watch: Watch | None = None
+        ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
+                                   stderr=subprocess.DEVNULL)  # fmt: skip
     try:
         for p in ours.values():  # all up before watch looks, or it would start its own
             assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+    except BaseException:
+        _end(None, ours)
+        raise
+    return ours
+
+
+def _end(watch: Watch | None, ours: dict[str, subprocess.Popen[bytes]]) -> None:
+    """Stop the watch, then every team node left (a stopped one is resumed to be killed)."""
+    if watch is not None:
+        watch.stop(signal.SIGKILL)
+    for p in ours.values():
+        if p.poll() is None:
+            os.kill(p.pid, signal.SIGCONT)
+            p.kill()
+        p.wait()
+
+
+def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    ours = _team(tmp_path, ros2_domain)
+    watch: Watch | None = None
+    try:
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
         watch.wait("running")
         assert not watch.pids()  # it started none of them
@@ -65,13 +90,7 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
         # (no configuration is left without both NCA1 and NSM3 that meets the schema's
         # performance requirements: watch says so and keeps watching)
     finally:
-        if watch is not None:
-            watch.stop(signal.SIGKILL)
-        for p in ours.values():
-            if p.poll() is None:
-                os.kill(p.pid, signal.SIGCONT)
-                p.kill()
-            p.wait()
+        _end(watch, ours)
 
 
 def test_an_impostor_named_like_a_component_is_a_name_clash_never_the_component(
@@ -80,10 +99,9 @@ def test_an_impostor_named_like_a_component_is_a_name_clash_never_the_component(
     """An outside node named /NSM3 with none of NSM3's endpoints is not NSM3: watch says the
     clash, fails NSM3 and moves the configuration away from it; the impostor keeps running."""
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
     other = [{"service": "/not/a/servo", "type": "std_srvs/srv/Trigger"}]
     spec = json.dumps({"name": "NSM3", "namespace": "/", "serve": other})
-    impostor = subprocess.Popen([str(_ros2_python()), str(script), spec], env=env,
+    impostor = subprocess.Popen([str(_ros2_python()), str(STANDIN), spec], env=env,
                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
     watch: Watch | None = None
     try:
@@ -110,28 +128,9 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
 ) -> None:
     """SIGSTOP of a team's node: failed as hung, replaced, and (--stop-outside) its process
     stopped though it is stopped itself (stopproc resumes it after each signal)."""
-    from rosreconf.formats.loader import load_bundled
-    from rosreconf.model import Configuration
-    from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
-    from rosreconf.ros.standin_spec import ros2_standin_spec
-
-    bundle = load_bundled()
-    schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
-    nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
-    remaps = wiring(bundle.library, schema, nominal)
-    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
-    ours = {}
-    for c in NOMINAL:
-        spec = json.dumps(ros2_standin_spec(bundle.library[c]))
-        argv = [str(_ros2_python()), str(script), spec]
-        argv += ros2_node_arguments(bundle.library, c, remaps)
-        ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
-                                   stderr=subprocess.DEVNULL)  # fmt: skip
+    ours = _team(tmp_path, ros2_domain)
     watch: Watch | None = None
     try:
-        for p in ours.values():
-            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside")
         watch.wait("running")
         while True:
@@ -149,10 +148,4 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
         assert (stop["how"], stop["pid"]) == ("signal", ours["NCA1"].pid)
         assert ours["NCA1"].wait(5) is not None  # gone: stopped by rosreconf, not by the test
     finally:
-        if watch is not None:
-            watch.stop(signal.SIGKILL)
-        for p in ours.values():
-            if p.poll() is None:
-                os.kill(p.pid, signal.SIGCONT)
-                p.kill()
-            p.wait()
+        _end(watch, ours)
