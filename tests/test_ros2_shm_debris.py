@@ -50,18 +50,22 @@ def broken_ports() -> Iterator[list[Path]]:
                 path.unlink()
 
 
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # Fast DDS 2.14 and 3.2
 def test_stand_ins_come_up_beside_a_broken_shared_memory_port(
-    ros2_domain: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    ros2_domain: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, distro: str
 ) -> None:
+    from test_watch_wiring import _python
+
     monkeypatch.delenv("FASTDDS_BUILTIN_TRANSPORTS")
     with broken_ports() as made:
         assert made, "no port file could be made in /dev/shm"
-        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        python = _python(distro)
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", python=python)
         try:
             watch.wait("conformant")
             # rclpy's own view (a UDP-only probe: it must not wait on the files either)
             env = {**watch.env, "FASTDDS_BUILTIN_TRANSPORTS": "UDPv4"}
-            seen = probe(env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL])
+            seen = probe(env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL], python=python)
             assert {f"/{c}" for c in NOMINAL} <= set(seen["nodes"]), seen["nodes"]
         finally:
             assert watch.stop() == 128 + signal.SIGTERM  # its documented exit on SIGTERM
