@@ -41,6 +41,7 @@ from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
 from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.ros2.source import Ros2Source
+from rosreconf.ros.sources import LiveSource
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
@@ -158,36 +159,21 @@ def watch_command(
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    if ros2 and master is None and apply and stand_ins:
+        ros2_python(env)  # no rclpy here: said now, before a DDS session is even opened
     source = open_source(
         master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
     )
-    ros2 = source.ros_version is RosVersion.ROS2
-    if isinstance(source, Ros2Source):
-        source.empty_ok = apply  # it starts the nodes itself: an empty domain is where it starts
-        source.on_note = lambda text: stderr.print(text, markup=False)
-    if (standby or ros2_launch or stop_outside) and not (ros2 and apply):
-        raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
-    if stand_ins and ros2_launch:
-        raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
-    if master is not None:
-        env["ROS_MASTER_URI"] = master
-    else:
-        env["ROS_DOMAIN_ID"] = str(domain)
-        if apply and stand_ins:
-            ros2_python(env)  # no rclpy here: say how to get one now, not at the first start
-    claim = _claim(domain, force) if ros2 and apply else None
-    keep: Path | None = None
-    if apply:
-        try:
-            keep = launch_log_dir(env)
-        except OSError as exc:
-            where = exc.filename or "ROS's log directory"
-            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
-            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
+    try:  # a refusal below closes the source at once: nothing left for the exit to wait on
+        claim, keep = _prepare(source, env, apply, stand_ins, standby, ros2_launch,
+                               stop_outside, master, domain, force)  # fmt: skip
+    except BaseException:
+        source.close()
+        raise
     with ExitStack() as stack:
         signals = stack.enter_context(stop_on_signals())
         stack.callback(source.close)
-        if isinstance(claim, Claim):
+        if claim is not None:
             stack.callback(claim.release)
         if keep is not None:
             stack.callback(_remove_if_empty, keep)
@@ -228,6 +214,52 @@ def watch_command(
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _prepare(
+    source: LiveSource,
+    env: dict[str, str],
+    apply: bool,
+    stand_ins: bool,
+    standby: bool,
+    ros2_launch: bool,
+    stop_outside: bool,
+    master: str | None,
+    domain: int,
+    force: bool,
+) -> tuple[Claim | None, Path | None]:
+    """Check the options against the source, take the domain, make the launch directory.
+
+    Returns the domain's claim (ROS 2 ``--apply``) and the launch directory (``--apply``).
+
+    Raises:
+        UsageError: options that do not go together, another watch on the domain, or no
+            launch directory (exit 2).
+    """
+    ros2 = source.ros_version is RosVersion.ROS2
+    if isinstance(source, Ros2Source):
+        source.empty_ok = apply  # it starts the nodes itself: an empty domain is where it starts
+        source.on_note = lambda text: stderr.print(text, markup=False)
+    if (standby or ros2_launch or stop_outside) and not (ros2 and apply):
+        raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
+    if stand_ins and ros2_launch:
+        raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
+    if master is not None:
+        env["ROS_MASTER_URI"] = master
+    else:
+        env["ROS_DOMAIN_ID"] = str(domain)
+    claim = _claim(domain, force) if ros2 and apply else None
+    keep: Path | None = None
+    if apply:
+        try:
+            keep = launch_log_dir(env)
+        except OSError as exc:
+            if claim is not None:
+                claim.release()
+            where = exc.filename or "ROS's log directory"
+            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
+            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
+    return claim, keep
 
 
 def _claim(domain: int, force: bool) -> Claim | None:
