@@ -12,9 +12,11 @@ documented exit code (see ``rosreconf.errors.ExitCode``), so the user never sees
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import importlib
 import os
+import signal
 import sys
 import threading
 from collections.abc import Callable, Iterator, MutableMapping
@@ -121,10 +123,12 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
         try:
             return command(*args, **kwargs)
         except InvalidInputError as exc:
+            _over()
             for problem in exc.problems:
                 stderr.print(str(problem), markup=False)
             raise typer.Exit(exc.exit_code) from None
         except RosreconfError as exc:
+            _over()
             stderr.print(f"rosreconf: error: {exc}", markup=False)
             raise typer.Exit(exc.exit_code) from None
         except MemoryError:
@@ -132,13 +136,27 @@ def guard(command: Callable[P, R]) -> Callable[P, R]:
             # frames that held the memory are gone, so the message can be printed.
             out_of_memory()
         except KeyboardInterrupt:
+            _over()
             stderr.print("rosreconf: interrupted", markup=False)
             raise typer.Exit(ExitCode.INTERRUPTED) from None
         except Terminated:
+            _over()
             stderr.print("rosreconf: terminated", markup=False)
             raise typer.Exit(ExitCode.TERMINATED) from None
 
     return wrapper
+
+
+def _over() -> None:
+    """Note that the run is over: a Ctrl-C from here on ends the process quietly.
+
+    It gets the signal's default action (the process ends at once, by SIGINT) instead of a
+    KeyboardInterrupt, which during the interpreter's teardown is printed as a traceback
+    ("Exception ignored in threading._shutdown"; seen when a test stopped a watch that had
+    just said its error).
+    """
+    with contextlib.suppress(ValueError):  # signals are set from the main thread only
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def out_of_memory(*_: object) -> NoReturn:
@@ -267,4 +285,7 @@ def main() -> None:
     memory still ends in exit 3 with ``OUT_OF_MEMORY`` (``rosreconf.cli.capped``).
     """
     threading.excepthook = _thread_failed  # a thread out of memory ends the run as the main would
-    capped.run(app)
+    try:
+        capped.run(app)
+    finally:
+        _over()
