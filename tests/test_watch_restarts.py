@@ -11,7 +11,7 @@ import os
 import signal
 from pathlib import Path
 
-from test_watch_ros2 import Watch, alive
+from test_watch_ros2 import NOMINAL, Watch, alive, probe
 
 
 def test_a_failed_component_restarts_in_place_until_its_limit_then_is_held_and_released(
@@ -31,12 +31,17 @@ def test_a_failed_component_restarts_in_place_until_its_limit_then_is_held_and_r
             assert done["configuration"]["elbow_joint"] == "NSM3"
             assert watch.pids()["NSM3"] != pid and alive(watch.pids()["NSM3"])
             assert not [e for e in watch.events()[before:] if e["event"] == "replanned"]
+        # rclpy's own view, not rosreconf's: every call and subscription is served by a live node
+        seen = probe(watch.env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL], until_wired=True)
+        assert seen["dangling"] == {"calls": [], "subscriptions": []}, seen["dangling"]
         before = len(watch.events())
         os.kill(watch.pids()["NSM3"], signal.SIGKILL)  # the third within the window: held
         hold = watch.wait("hold", after=before)
         assert (hold["component"], hold["crashes"]) == ("NSM3", 3)
         done = watch.wait("conformant", after=before)
         assert done["configuration"]["elbow_joint"] == "NDC3"  # moved away from it
+        seen = probe(watch.env, ros2_domain, wait_for=["/NDC3", "/NREA"], until_wired=True)
+        assert seen["dangling"] == {"calls": [], "subscriptions": []}, seen["dangling"]
         release = watch.wait("release", after=before)
         assert release["component"] == "NSM3"
         after = watch.events()[watch.events().index(release) :]
