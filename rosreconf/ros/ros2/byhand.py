@@ -60,9 +60,10 @@ class ByHand:
     def retire(self, component: str, role: str, replacement: str, alive: bool) -> None:
         """Take an outside, unmanaged node out of service: stop its process, or name it."""
         node = self.node_of(component)
-        known = self.outside.process_of(node) if self.outside is not None else None
-        if self.stop_outside and known is not None:
-            result = self.outside.stop(node) if self.outside is not None else None
+        outside = self.outside
+        known = outside.process_of(node) if outside is not None else None
+        if self.stop_outside and outside is not None and known is not None:
+            result = outside.stop(node)
             if result is not None and result.outcome in (Stopped.STOPPED, Stopped.GONE):
                 self.say(
                     "stop",
