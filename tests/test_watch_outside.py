@@ -18,29 +18,35 @@ from pathlib import Path
 from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
 
 STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
+HANG = Path(__file__).with_name("ros2_hang_on_usr1.py")
+"""The fault injector: the node's executor stops for good on SIGUSR1 (its process runs on)."""
 
 
-def _team(tmp: Path, domain: int) -> dict[str, subprocess.Popen[bytes]]:
+def _team(
+    tmp: Path, domain: int, library_file: Path | None = None, hang: str = ""
+) -> dict[str, subprocess.Popen[bytes]]:
     """Start the nominal configuration's 13 nodes as the team's launch file would.
 
     Each is its own rclpy process, wired by the ``-r`` rules a launch file gives it, with Fast
-    DDS's default 20 s lease; each is up (it said ``ready``) when this returns.
+    DDS's default 20 s lease; each is up (it said ``ready``) when this returns. The library
+    is the bundled one unless ``library_file`` is given; ``hang`` runs under ``HANG``.
     """
-    from rosreconf.formats.loader import load_bundled
+    from rosreconf.formats.loader import load_bundled, load_paths
     from rosreconf.model import Configuration
     from rosreconf.ros.launchfiles import ros2_node_arguments, wiring
     from rosreconf.ros.standin_spec import ros2_standin_spec
 
     bundle = load_bundled()
     schema = next(s for s in bundle.schemas if s.name == "object_repositioning")
+    library = load_paths([library_file]).library if library_file else bundle.library
     nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
-    remaps = wiring(bundle.library, schema, nominal)
+    remaps = wiring(library, schema, nominal)
     env = {**_env(tmp), "ROS_DOMAIN_ID": str(domain)}
     ours = {}
     for c in NOMINAL:
-        spec = json.dumps(ros2_standin_spec(bundle.library[c]))
-        argv = [str(_ros2_python()), str(STANDIN), spec]
-        argv += ros2_node_arguments(bundle.library, c, remaps)
+        spec = json.dumps(ros2_standin_spec(library[c]))
+        argv = [str(_ros2_python()), *([str(HANG)] if c == hang else []), str(STANDIN), spec]
+        argv += ros2_node_arguments(library, c, remaps)
         ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
                                    stderr=subprocess.DEVNULL)  # fmt: skip
     try:
@@ -147,5 +153,41 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
             stop = watch.wait("stop", after=watch.events().index(stop) + 1)
         assert (stop["how"], stop["pid"]) == ("signal", ours["NCA1"].pid)
         assert ours["NCA1"].wait(5) is not None  # gone: stopped by rosreconf, not by the test
+    finally:
+        _end(watch, ours)
+
+
+def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_process_stopped(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """A managed team node whose executor stops (its process runs on, state S): it answered
+    its state query before and answers no more, so it is failed as hung (``unanswered``),
+    replaced, and with --stop-outside its process is stopped."""
+    text = (ROOT / "libraries" / "robot_arms.yaml").read_text()
+    at = text.index("    ros:\n", text.index("  - name: NCA1\n")) + len("    ros:\n")
+    library = tmp_path / "nca1_managed.yaml"
+    library.write_text(text[:at] + "      lifecycle: true\n" + text[at:])
+    ours = _team(tmp_path, ros2_domain, library, hang="NCA1")
+    watch: Watch | None = None
+    try:
+        schema = str(ROOT / "schemas" / "object_repositioning.yaml")
+        watch = Watch(tmp_path, ros2_domain, "--library", str(library), "--schema", schema,
+                      "--stop-outside")  # fmt: skip
+        first = watch.wait("conformant")  # NCA1 (unconfigured) made active first
+        assert {e["component"] for e in watch.events() if e.get("state") == "active"} == {"NCA1"}
+        before = watch.events().index(first) + 1
+        os.kill(ours["NCA1"].pid, signal.SIGUSR1)
+        hung = watch.wait("failed", after=before)
+        assert (hung["component"], hung["how"], hung["node"]) == ("NCA1", "unanswered", "/NCA1")
+        assert ours["NCA1"].poll() is None  # its process ran on: no exit, no stop showed it
+        stop = watch.wait("stop", after=before)
+        while stop["component"] != "NCA1":  # the other replaced nodes are stopped too
+            stop = watch.wait("stop", after=watch.events().index(stop) + 1)
+        assert (stop["how"], stop["pid"]) == ("signal", ours["NCA1"].pid)
+        assert ours["NCA1"].wait(5) is not None  # gone: stopped by rosreconf, not by the test
+        (replanned,) = [e for e in watch.events() if e["event"] == "replanned"]
+        assert replanned["failed"] == ["NCA1"], replanned
+        # (the kept team nodes that must be rewired are named "restart this by hand":
+        # rosreconf cannot restart what it did not start, so no conformant is awaited here)
     finally:
         _end(watch, ours)

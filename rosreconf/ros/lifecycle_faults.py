@@ -5,7 +5,9 @@ or by its own error handling is as good as gone, though its process runs and DDS
 ``watch`` reads every managed node's state with the graph (``inspect``'s ``not-active``
 finding); ``LifecycleFaults`` says each such node once per state it is found in and, with
 ``--apply``, brings it back (configure if unconfigured, then activate). When that does not
-hold, the component is failed and the watcher replaces it by the fewest change.
+hold, the component is failed and the watcher replaces it by the fewest change. A node whose
+state query goes unanswered (``unanswered``: it answered before, then not for 1.5 s) is hung:
+it could not answer a transition either, so it is failed at once, never driven.
 
 ``checked`` names what a conformance check found met, for the ``conformant`` event.
 """
@@ -17,6 +19,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rosreconf.ros.conformance import Conformance
+
+HUNG = "unanswered"
+"""The state label a ROS 2 reader gives a managed node that stopped answering its state
+query (``ros2.lifecycle_state.UNANSWERED``; the core does not import a middleware)."""
 
 
 @dataclass
@@ -49,6 +55,17 @@ class LifecycleFaults:
             if self.said.get(comp) == state:
                 continue
             self.said[comp], new, role = state, True, role_of(comp)
+            if state == HUNG:
+                self.say(
+                    "failed",
+                    f"{comp} ({role}): managed node {f.live_name} has stopped answering its "
+                    "state query (get_state): hung, failed",
+                    component=comp,
+                    node=f.live_name,
+                    how="unanswered",
+                )
+                failed.add(comp)
+                continue
             self.say(
                 "not-active",
                 f"{comp} ({role}): managed node {f.live_name} is {state}, not active: a fault",

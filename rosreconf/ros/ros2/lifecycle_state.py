@@ -48,6 +48,13 @@ RESEND = 0.25
 """Seconds before an unanswered request is written again (get_state changes nothing)."""
 UNKNOWN = "unknown"
 """The state of a managed node that was not asked or did not answer."""
+UNANSWERED = "unanswered"
+"""The state of a managed node that answered before and then left a request unanswered for
+``UNANSWERED_AFTER`` s while its endpoints stayed matched: its executor runs no more (hung)."""
+UNANSWERED_AFTER = 1.5
+"""Seconds a node that answered before may leave a ``get_state`` unanswered before it is
+``UNANSWERED``. A healthy rclpy node answers in about 10 ms; the margin is for a loaded
+2-core machine running 25 nodes, where a false "hung" would fail a working component."""
 
 
 def _types(dds: Any) -> tuple[Any, Any]:
@@ -72,11 +79,15 @@ class StateReader:
     stays on the same participant: making them on every poll would wait for DDS to match
     them again (hundreds of ms). Each read drains replies, asks once more, and waits at most
     ``timeout`` s for the answers; a node that does not answer in time keeps the state it
-    last answered on the same participant, else it is ``unknown``.
+    last answered on the same participant, else it is ``unknown``; one that answered on
+    this participant before and has left a request unanswered for ``UNANSWERED_AFTER`` s
+    is ``unanswered`` (hung), whatever it answered last.
     """
 
     _pairs: dict[str, tuple[bytes, Any, Any]] = field(default_factory=dict)
     _known: dict[str, tuple[bytes, str]] = field(default_factory=dict)
+    _waiting: dict[str, float] = field(default_factory=dict)
+    """node -> when its oldest request still unanswered was written (answered nodes only)."""
     _types: tuple[Any, Any] | None = None
 
     def read(
@@ -85,13 +96,16 @@ class StateReader:
         """Return node -> state label for ``nodes`` (global name -> ``get_state`` participant)."""
         for node in [n for n, (p, _, _) in self._pairs.items() if nodes.get(n) != p]:
             del self._pairs[node]  # gone, or restarted in another process
+            self._waiting.pop(node, None)
         asked = {n: p for n, p in nodes.items() if p.startswith(EPROSIMA)}
         if asked:
             self._ask(session, asked, timeout)
-        states = {}
+        states, now = {}, time.monotonic()
         for node, participant in nodes.items():
             known = self._known.get(node)
             states[node] = known[1] if known is not None and known[0] == participant else UNKNOWN
+            if now - self._waiting.get(node, now) >= UNANSWERED_AFTER:
+                states[node] = UNANSWERED
         return states
 
     def _ask(self, session: Ros2Discovery, asked: dict[str, bytes], timeout: float) -> None:
@@ -131,6 +145,8 @@ class StateReader:
                 # matched its endpoints, and then its answer reaches no one.
                 writer.write(request(structure_needs_at_least_one_member=0))
                 pending[node] = now
+                if node in self._known and self._known[node][0] == asked[node]:
+                    self._waiting.setdefault(node, now)  # it answered here before
             time.sleep(0.005)
 
     def _answer(self, node: str, *, drain: bool = False) -> bool:
@@ -143,6 +159,8 @@ class StateReader:
                 label = STATES.get(int(state.id), str(state.label) or UNKNOWN)
                 self._known[node] = (participant, label)
                 got = True
+        if got:
+            self._waiting.pop(node, None)  # alive: a late answer counts
         return got and not drain
 
 
