@@ -120,7 +120,7 @@ class Ros2Actuator(Actuator):
         now = self.control.exits(current, failed)
         newly = self.control.dead - dead  # their participants linger until their lease ends
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)})
-        if tend:
+        if tend and not now:  # a failure's repair first: standby upkeep never delays it
             self.control.tend()
         return now
 

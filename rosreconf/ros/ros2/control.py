@@ -82,6 +82,7 @@ class Ros2Control:
     dead: set[str] = field(default_factory=set)
     outside: OutsideNodes | None = field(init=False, default=None)
     states: dict[str, str] = field(init=False)
+    read_states: dict[str, str | None] = field(init=False, default_factory=dict)
     by_hand: ByHand = field(init=False)
     standbys: Standbys = field(init=False)
     nodes: NodeProcesses = field(init=False)
@@ -204,7 +205,11 @@ class Ros2Control:
         return self.by_hand.left_running(check)
 
     def visible(self, graph: LiveGraph) -> LiveGraph:
-        """Return ``graph`` without the nodes whose process rosreconf saw exit."""
+        """Return ``graph`` without the nodes whose process rosreconf saw exit.
+
+        The lifecycle states read are kept for ``tend``: a parked standby's too.
+        """
+        self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
         if not self.dead & set(graph.names):
             return graph
         return dataclasses.replace(
@@ -224,6 +229,10 @@ class Ros2Control:
         Returns whether everything asked for was done.
         """
         self._rewire(configuration, components)
+        standing = [c for c in components if c in self.nodes.nodes]
+        self.standbys.drop(
+            self.standbys.hung(standing, self.read_states), "started cold instead of activated"
+        )
         fresh = [c for c in components if c not in self.nodes.nodes]
         self.standbys.unready = [c for c in self.standbys.unready if c not in components]
         ok = True
@@ -368,7 +377,9 @@ class Ros2Control:
             self.standbys.prepare(configuration, failed)
 
     def tend(self) -> None:
-        """Configure the standby nodes whose services have come up (never waits for one)."""
+        """Replace hung standbys; configure those whose services have come up (no waiting)."""
+        if self.standby:
+            self.standbys.replace_hung(self.read_states)
         self.standbys.tend()
 
     def close(self) -> list[str]:

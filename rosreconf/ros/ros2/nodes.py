@@ -311,6 +311,7 @@ class NodeProcesses:
             for n in alive:
                 n.program.remember()
                 signal_group(n.pid, sig)
+                signal_group(n.pid, signal.SIGCONT)  # a stopped (hung) process acts on it
             deadline = time.monotonic() + grace
             for n in alive:
                 try:

@@ -7,17 +7,24 @@ starts are started now, wired for it (its remappings, and a stand-in's options),
 failure probability) decides when two would wire one alternative differently; one running
 with other wiring is started again. Configuring them happens on the watch loop's path, so
 each ``configure`` waits at most ``TEND_TIMEOUT`` and is tried again on a later tick.
+
+A hung standby (its process stopped, or its state query unanswered: ``hung``) could answer
+no ``activate``: on each tick it is stopped and started anew for the configuration it joins
+(event ``standby-hung``), and one found hung at a failover is started cold instead of
+activated, so a hung standby never delays a failover by a transition's timeout.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
+from rosreconf.ros.ros2.lifecycle_state import UNANSWERED
 from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.pidwatch import STOPPED_STATES, proc_state
 from rosreconf.ros.ros2.transitions import Transitions
 
 TEND_TIMEOUT = 0.5
@@ -38,6 +45,7 @@ class Standbys:
         say: receives every event.
         unready: standby components started and not yet configured (``tend`` does it).
         tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
+        last: the configuration and failures the standbys were last prepared for.
     """
 
     library: ComponentLibrary
@@ -48,6 +56,7 @@ class Standbys:
     say: Callable[..., None]
     unready: list[str] = field(default_factory=list)
     tries: dict[str, int] = field(default_factory=dict)
+    last: tuple[Configuration, frozenset[str]] | None = None
 
     def node_of(self, component: str) -> str:
         """Return the live node name of ``component``."""
@@ -66,6 +75,7 @@ class Standbys:
         likeliest failure first, by failure probability), so activating it at a failover
         leaves nothing dangling. A standby running with other wiring is started again.
         """
+        self.last = (configuration, frozenset(failed))
         running = set(configuration.components)
         joins = self._joins(configuration, set(failed))
         stale = [
@@ -79,10 +89,12 @@ class Standbys:
         wanted = [c for c in joins if c not in self.nodes.nodes and c not in running]
         if not wanted:
             return
+        pids: dict[str, int] = {}
         try:
             for cfg in dict.fromkeys(joins[c] for c in wanted):
                 group = [c for c in wanted if joins[c] == cfg]
-                self.nodes.start(self.library, self.schema, cfg, group)
+                started = self.nodes.start(self.library, self.schema, cfg, group)
+                pids.update((own.component, own.pid) for own in started)
         except ExternalToolError as exc:
             self.say("launch-error", f"cannot start standby {', '.join(wanted)}: {exc}")
             return
@@ -96,9 +108,56 @@ class Standbys:
             f"started standby {', '.join(wanted)} (each is configured as soon "
             "as it is up, so a failover is one activate)",
             components=wanted,
+            pids=pids,
             standby=True,
         )
         self.unready += wanted
+
+    def hung(self, components: Collection[str], states: Mapping[str, str | None]) -> list[str]:
+        """Return those of ``components`` whose own process is stopped or whose node is hung.
+
+        ``states`` is node -> the lifecycle state last read (``UNANSWERED``: hung). Reading a
+        process's state letter is one small /proc read: cheap enough for a failover's path.
+        """
+        out = []
+        for c in components:
+            own = self.nodes.nodes.get(c)
+            if own is None:
+                continue
+            letter = proc_state(own.pid)
+            if (letter is not None and letter in STOPPED_STATES) or states.get(
+                own.node
+            ) == UNANSWERED:
+                out.append(c)
+        return out
+
+    def drop(self, components: Collection[str], why: str) -> None:
+        """Stop hung standbys' processes and say so; they start again on ``replace_hung``."""
+        stopped = self.nodes.stop(components)
+        if not stopped:
+            return
+        self.lifecycle.call(lambda agent: agent.forget([own.node for own in stopped]))
+        for own in stopped:
+            self.parked.discard(own.node)
+            self.lifecycle.states.pop(own.component, None)
+            self.say(
+                "standby-hung",
+                f"standby {own.component} ({own.node}) is hung (its process is stopped, or it "
+                f"answers no state query): stopped (pid {own.pid}); {why}",
+                component=own.component,
+                node=own.node,
+                pid=own.pid,
+            )
+
+    def replace_hung(self, states: Mapping[str, str | None]) -> None:
+        """Stop each hung standby and start it anew for the configuration it would join."""
+        standing = [c for c in self.nodes.nodes if self.node_of(c) in self.parked]
+        hung = self.hung(standing, states)
+        if not hung:
+            return
+        self.drop(hung, "started anew")
+        if self.last is not None:
+            self.prepare(*self.last)
 
     def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
         """Return managed alternative -> the configuration it would join after one failure."""
