@@ -70,3 +70,44 @@ def test_with_no_configuration_left_watch_tries_again_once_the_hold_is_over(
         assert [e["components"] for e in launches] == [["NREA"]]
     finally:
         watch.stop()
+
+
+def test_with_prefer_after_watch_returns_to_the_configuration_it_left_and_holds_twice_as_long(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """NSM3 killed: held 3 s, the arm moves to the DC servos; released, and a candidate for
+    2 s more, watch returns to the nominal configuration (once: no flapping). Killed again
+    after the return, it is held twice as long (backoff), and the arm moves away again."""
+    watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--hold", "3",
+                  "--prefer-after", "2")  # fmt: skip
+    try:
+        watch.wait("conformant")
+        before = len(watch.events())
+        os.kill(watch.pids()["NSM3"], signal.SIGKILL)
+        hold = watch.wait("hold", after=before)
+        assert (hold["component"], hold["seconds"]) == ("NSM3", 3)
+        away = watch.wait("conformant", after=before)
+        assert away["configuration"]["elbow_joint"] == "NDC3"
+        back = watch.wait("return", after=watch.events().index(away))
+        assert back["configuration"]["elbow_joint"] == "NSM3"
+        assert {c["role"]: c["to"] for c in back["changes"] if not c["restart"]} == {
+            r: c for r, c in zip(
+                ("base_joint", "shoulder_joint", "elbow_joint", "wrist_joint", "gripper_joint",
+                 "positioning", "grasping", "carrying", "placing"),
+                ("NSM1", "NSM2", "NSM3", "NSM4", "NSM5", "NFB21", "NFB22", "NFB23", "NFB24"),
+                strict=True,
+            )
+        }  # fmt: skip
+        done = watch.wait("conformant", after=watch.events().index(back))
+        assert done["configuration"] == watch.events()[0]["configuration"]  # the nominal one
+        seen = probe(watch.env, ros2_domain, wait_for=["/NSM3", "/NREA"], until_wired=True)
+        assert seen["dangling"] == {"calls": [], "subscriptions": []}, seen["dangling"]
+        before = len(watch.events())
+        os.kill(watch.pids()["NSM3"], signal.SIGKILL)
+        hold = watch.wait("hold", after=before)
+        assert (hold["component"], hold["seconds"]) == ("NSM3", 6)  # held again: twice as long
+        assert watch.wait("conformant", after=before)["configuration"]["elbow_joint"] == "NDC3"
+        returns = [e for e in watch.events() if e["event"] == "return"]
+        assert len(returns) == 1  # one return so far: the second hold is not over
+    finally:
+        watch.stop()

@@ -36,6 +36,7 @@ from rosreconf.ros.connect import open_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
@@ -98,6 +99,17 @@ def watch_command(
             help="Seconds a failed component is held before it is a candidate again.",
         ),
     ] = HOLD_SECONDS,
+    prefer_after: Annotated[
+        float,
+        typer.Option(
+            "--prefer-after",
+            min=0.0,
+            max=86400,
+            callback=finite,
+            help="--apply: return to the configuration a failure left once all its components "
+            "have been candidates this many seconds (held ones back twice as late). 0: never.",
+        ),
+    ] = 0.0,
     stop_outside: Annotated[
         bool,
         typer.Option(
@@ -150,7 +162,8 @@ def watch_command(
     end, else 1. A second --ros2 --apply watch on a domain that another watch of this host
     supervises is refused (exit 2, naming its pid), unless --force. A failed component is
     restarted in place up to --restarts times per --restart-window, else held failed for
-    --hold seconds, then a candidate again.
+    --hold seconds (twice as long each time it is held again), then a candidate again; with
+    --prefer-after, watch returns to the configuration it left once that one is whole again.
     """
 
     sel = select(library, schema, None, [only] if only else None)
@@ -194,6 +207,7 @@ def watch_command(
             apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
             launch_dir=keep, standby=standby, ros2_launch=ros2_launch, stop_outside=stop_outside,
             restart_limit=restarts, restart_window=restart_window, hold=hold,
+            prefer_after=prefer_after,
             budget=Budget(search_limit, search_time), stop_requested=signals.requested,
         )  # fmt: skip
         stack.callback(watcher.close)
@@ -210,7 +224,7 @@ def watch_command(
                 {"configuration": config.shown},
             )
         )
-        check = watcher.run(interval, once=once)
+        check = poll(watcher, interval, once=once)
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)

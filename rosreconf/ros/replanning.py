@@ -56,30 +56,52 @@ def replan(
         )
         return None
     old = current.mapping
-    rewired = rewiring(library, schema, old, new.mapping)
-    changes = [
-        (r, old.get(r, ""), c) for r, c in new.assignment if old.get(r, "") != c or r in rewired
-    ]
-    text = "; ".join(
-        f"{r}: restart {b} (rewired)" if a == b else f"{r}: {a or '(empty)'} -> {b or '(empty)'}"
-        for r, a, b in changes
-    )
+    changes = changes_between(library, schema, current, new)
     say(
         "replanned",
         f"replanned without {', '.join(sorted(failed))}: "
-        f"{len(changes)} change(s), {fewest}: {text}",
+        f"{len(changes)} change(s), {fewest}: {changes_text(changes)}",
         failed=sorted(failed),
         configuration=new.shown,
-        changes=[
-            {"role": r, "from": a or None, "to": b or None, "restart": a == b}
-            for r, a, b in changes
-        ],
+        changes=changes_data(changes),
     )
     # best_configuration is the exact optimum of the change count, so it is the fewest by
     # proof; passing len(changes) as "fewest" would only compare a number with itself.
     for line in explain_replan(library, schema, failed, old, new):
         say("why", line)
     return new, changes
+
+
+def changes_between(
+    library: ComponentLibrary,
+    schema: InteroperabilitySchema,
+    old: Configuration,
+    new: Configuration,
+) -> list[Change]:
+    """Return the changes from ``old`` to ``new``: each role whose component changes, and
+    each kept component that restarts to be rewired (its providers changed)."""
+    before = old.mapping
+    rewired = rewiring(library, schema, before, new.mapping)
+    return [
+        (r, before.get(r, ""), c)
+        for r, c in new.assignment
+        if before.get(r, "") != c or r in rewired
+    ]
+
+
+def changes_text(changes: list[Change]) -> str:
+    """Return the changes as the log says them: ``role: A -> B`` or ``role: restart A``."""
+    return "; ".join(
+        f"{r}: restart {b} (rewired)" if a == b else f"{r}: {a or '(empty)'} -> {b or '(empty)'}"
+        for r, a, b in changes
+    )
+
+
+def changes_data(changes: list[Change]) -> list[dict[str, object]]:
+    """Return the changes as the JSON log gives them."""
+    return [
+        {"role": r, "from": a or None, "to": b or None, "restart": a == b} for r, a, b in changes
+    ]
 
 
 def _performing(

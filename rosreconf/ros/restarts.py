@@ -10,7 +10,11 @@ wiring: so, when allowed, it is the repair. systemd and Nav2 do the same, with a
   often is **held** failed: the configuration moves away from it, as without restarts.
 - ``hold``: how long a held component stays failed. Then it is **released**: a candidate
   again (event ``release``). A configuration that had to leave it is kept (no flapping back
-  and forth); but when no configuration was left, ``watch`` tries again with it.
+  and forth) unless ``--prefer-after`` says to return to it (``preference``); when no
+  configuration was left, ``watch`` tries again with it.
+- Backoff: a component held again within ``BACKOFF_MEMORY`` holds of its release is held
+  twice as long as the time before (at most ``MAX_BACKOFF`` times ``hold``), as systemd's
+  ``RestartSteps`` and ``RestartMaxDelaySec`` lengthen its restart delay.
 
 Every decision is an event: ``restart`` (with the crashes counted in the window), ``hold``
 (with why and for how long), ``release``. Nothing here prints or acts: the watcher starts
@@ -28,6 +32,10 @@ RESTART_WINDOW = 60.0
 a robot's node that crashes three times in a minute is not going to stay up)."""
 HOLD_SECONDS = 60.0
 """Seconds a failed component is held before it is a candidate again."""
+MAX_BACKOFF = 8
+"""The longest hold, in ``hold``s: 8 min at the default."""
+BACKOFF_MEMORY = 10
+"""A component released this many (longest) holds ago without failing starts from one hold."""
 
 
 @dataclass
@@ -42,6 +50,7 @@ class Restarts:
         hold: seconds a held component stays failed.
         crashes: component -> when it failed (monotonic seconds), within the window.
         held: component -> when it is released (monotonic seconds).
+        holds: component -> (its last hold's length, when it was released).
     """
 
     say: Callable[..., None]
@@ -51,6 +60,7 @@ class Restarts:
     hold: float = HOLD_SECONDS
     crashes: dict[str, list[float]] = field(default_factory=dict)
     held: dict[str, float] = field(default_factory=dict)
+    holds: dict[str, tuple[float, float]] = field(default_factory=dict)
 
     def restartable(self, failed: Collection[str], can_start: bool) -> set[str]:
         """Return those of ``failed`` to restart in place now; hold the others (said).
@@ -73,22 +83,35 @@ class Restarts:
                 )
                 out.add(comp)
                 continue
-            self.held[comp] = now + self.hold
+            seconds = self._hold_for(comp, now)
+            self.held[comp] = now + seconds
             if not self.limit:
                 why = "restart in place is off: --restarts 0"
             elif not can_start:
                 why = "nothing is started without --apply"
             else:
                 why = f"{len(times)} failures in {self.window:g} s, over the limit of {self.limit}"
+            if seconds > self.hold:
+                why += f"; held again after its release: {seconds / self.hold:g}x the hold"
             self.say(
                 "hold",
-                f"{comp} ({self.role(comp)}) is held failed for {self.hold:g} s ({why}); "
+                f"{comp} ({self.role(comp)}) is held failed for {seconds:g} s ({why}); "
                 "then it is a candidate again",
                 component=comp,
-                seconds=self.hold,
+                seconds=seconds,
                 crashes=len(times),
             )
         return out
+
+    def _hold_for(self, comp: str, now: float) -> float:
+        """Return how long to hold ``comp`` now: twice its last hold if it was released lately."""
+        last, released = self.holds.get(comp, (0.0, 0.0))
+        if not last or now - released > BACKOFF_MEMORY * self.hold * MAX_BACKOFF:
+            seconds = self.hold
+        else:
+            seconds = min(2 * last, MAX_BACKOFF * self.hold)
+        self.holds[comp] = (seconds, float("inf"))
+        return seconds
 
     def released(self) -> set[str]:
         """Return the held components whose hold is over (said), and forget their hold."""
@@ -96,9 +119,11 @@ class Restarts:
         out = {comp for comp, until in self.held.items() if now >= until}
         for comp in sorted(out):
             del self.held[comp]
+            seconds = self.holds[comp][0]
+            self.holds[comp] = (seconds, now)
             self.say(
                 "release",
-                f"{comp} is a candidate again ({self.hold:g} s after it was held)",
+                f"{comp} is a candidate again ({seconds:g} s after it was held)",
                 component=comp,
             )
         return out

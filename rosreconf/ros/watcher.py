@@ -24,8 +24,11 @@ launch``. Nodes an actuator holds out of service on purpose are not extra nodes.
 
 A repair is confirmed however it is made: after a replan the watcher keeps comparing, and
 logs ``conformant`` (with the seconds since the failure was seen) once the live graph
-matches, with ``apply`` or after a person repaired it by hand. ``stop_requested`` is polled
-between steps and in every wait, so a signal stops the watcher within one poll slice.
+matches, with ``apply`` or after a person repaired it by hand. ``rosreconf.ros.polling``
+runs the steps (``stop_requested`` is polled between them and in every wait, so a signal
+stops the watcher within one poll slice). A failed component is restarted in place or held
+(``rosreconf.ros.restarts``); with ``prefer_after`` the configuration a failure left is
+returned to once it is whole again (``rosreconf.ros.preference``).
 
 Launch errors are handed on (``rosreconf.ros.launcher``); a component that was launched
 and never came up is not launched again on every poll. Every decision is an ``Event``
@@ -40,7 +43,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.clashes import NameClashes
@@ -48,7 +50,8 @@ from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.replanning import replan
+from rosreconf.ros.preference import Preference
+from rosreconf.ros.replanning import Change, changes_between, changes_data, changes_text, replan
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
@@ -76,6 +79,8 @@ class Watcher:
         failed: components known to have failed, until restarted in place or released.
         standby, ros2_launch, stop_outside: ROS 2 acting options (``actuator.Acting``).
         restart_limit, restart_window, hold: restart in place, hold, release (``restarts``).
+        prefer_after: return to the configuration a failure left once its components have
+            been candidates this long (``preference``; 0: never).
         stop_requested: polled between steps and while waiting; True ends ``run``.
         budget: how far to search for a configuration that meets the performance
             requirements when the fewest-change one does not (``analysis.choice``).
@@ -99,6 +104,7 @@ class Watcher:
     restart_limit: int = 0
     restart_window: float = RESTART_WINDOW
     hold: float = HOLD_SECONDS
+    prefer_after: float = 0.0
     stop_requested: Callable[[], bool] = lambda: False
     budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
@@ -112,6 +118,7 @@ class Watcher:
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
     _clashes: NameClashes = field(init=False, repr=False)
     _restarts: Restarts = field(init=False, repr=False)
+    _prefer: Preference = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         acting = Acting(
@@ -133,6 +140,7 @@ class Watcher:
         self._restarts = Restarts(
             self._say, self._role, self.restart_limit, self.restart_window, self.hold
         )
+        self._prefer = Preference(self.prefer_after if self.apply else 0.0)
 
     def _read(self) -> LiveGraph:
         self._graph = self._actuator.visible(self.source.read())
@@ -222,7 +230,26 @@ class Watcher:
         if dead:
             check = self._compare(self._read())
         self._follow(check)
+        if self._pending is None and check.ok and self._return():
+            return self._confirm()
         return check
+
+    def _return(self) -> bool:
+        """Go back to the configuration a failure left, when ``preference`` says it is time."""
+        back = self._prefer.due(self.current, self.failed | set(self._restarts.held))
+        if back is None:
+            return False
+        changes = changes_between(self.library, self.schema, self.current, back)
+        self._say(
+            "return",
+            f"returning to the configuration left after a failure (its components have been "
+            f"candidates for {self.prefer_after:g} s): {len(changes)} change(s): "
+            f"{changes_text(changes)}",
+            configuration=back.shown,
+            changes=changes_data(changes),
+        )
+        self._pending = time.monotonic()
+        return self._switch(back, changes)
 
     def _follow(self, check: Conformance) -> None:
         """Confirm a repair made since the last replan, by rosreconf or by a person."""
@@ -298,8 +325,13 @@ class Watcher:
             self._hopeless = failed
             return False
         new, changes = found
+        self._prefer.leaving(self.current)
         if self._pending is None:
             self._pending = time.monotonic()
+        return self._switch(new, changes)
+
+    def _switch(self, new: Configuration, changes: list[Change]) -> bool:
+        """Make ``new`` the configuration; with ``apply``, start and retire as ``changes`` say."""
         if not self.apply:
             self.current = new
             return False
@@ -346,50 +378,16 @@ class Watcher:
         self._actuator.close()
         self.source.close()
 
-    def run(self, interval: float, *, once: bool = False) -> Conformance:
-        """Poll every ``interval`` seconds until stopped; with ``once``, poll once and return.
+    def has_read(self) -> bool:
+        """Tell whether a read of the live graph has succeeded (``polling`` retries after it)."""
+        return self._graph is not None
 
-        A master that does not answer the first read is an error (a wrong URI fails fast);
-        after one read, a read that fails (a restarting master, a ROS 2 graph caught
-        half-announced) is retried (one event when it goes, one when back).
+    def replan_due(self) -> bool:
+        """Tell whether a failure seen (while confirming) waits for a replan: poll now."""
+        return bool(self.failed & set(self.current.components)) and (
+            frozenset(self.failed) != self._hopeless
+        )
 
-        Raises:
-            ExternalToolError: the master does not answer the first poll (or, with ``once``,
-                any poll).
-        """
-        if self.schema.simulation is not None:  # numpy and the loops: not at the first failure
-            import rosreconf.analysis.simulate  # noqa: F401
-        started, lost_at, check = False, None, None
-        while True:
-            try:
-                check = self.step()
-            except ExternalToolError as exc:
-                if (not started and self._graph is None) or once:
-                    raise
-                if lost_at is None:
-                    lost_at = time.monotonic()
-                    self._say("master-lost", f"{exc}; retrying every {interval:g} s")
-                self._wait(interval)
-                if self.stop_requested() and check is not None:
-                    return check
-                continue
-            started = True
-            if lost_at is not None:
-                gone = time.monotonic() - lost_at
-                self._say("master-back", f"the master answers again after {gone:.1f} s")
-                lost_at = None
-            if once or self.stop_requested():
-                return check
-            self._wait(interval)
-            if self.stop_requested():
-                return check
-
-    def _wait(self, seconds: float) -> None:
-        """Sleep between polls; end early when a node process of ours exits or a stop is asked."""
-        if self.failed & set(self.current.components) and frozenset(self.failed) != self._hopeless:
-            return  # a failure seen while confirming: replan now
-        deadline = time.monotonic() + seconds
-        while not self.stop_requested() and (left := deadline - time.monotonic()) > 0:
-            if self._actuator.exited():
-                return
-            time.sleep(min(left, 0.02))
+    def exited(self) -> bool:
+        """Tell whether a watched node process ended or hung since the last step."""
+        return self._actuator.exited()
