@@ -15,7 +15,9 @@ import signal
 import subprocess
 from pathlib import Path
 
+import pytest
 from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
+from test_watch_wiring import _python
 
 STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 HANG = Path(__file__).with_name("ros2_hang_on_usr1.py")
@@ -23,13 +25,18 @@ HANG = Path(__file__).with_name("ros2_hang_on_usr1.py")
 
 
 def _team(
-    tmp: Path, domain: int, library_file: Path | None = None, hang: str = ""
+    tmp: Path,
+    domain: int,
+    library_file: Path | None = None,
+    hang: str = "",
+    python: Path | None = None,
 ) -> dict[str, subprocess.Popen[bytes]]:
     """Start the nominal configuration's 13 nodes as the team's launch file would.
 
     Each is its own rclpy process, wired by the ``-r`` rules a launch file gives it, with Fast
     DDS's default 20 s lease; each is up (it said ``ready``) when this returns. The library
-    is the bundled one unless ``library_file`` is given; ``hang`` runs under ``HANG``.
+    is the bundled one unless ``library_file`` is given; ``hang`` runs under ``HANG``; the
+    nodes run under ``python`` (default: the Jazzy venv's).
     """
     from rosreconf.formats.loader import load_bundled, load_paths
     from rosreconf.model import Configuration
@@ -45,7 +52,8 @@ def _team(
     ours = {}
     for c in NOMINAL:
         spec = json.dumps(ros2_standin_spec(library[c]))
-        argv = [str(_ros2_python()), *([str(HANG)] if c == hang else []), str(STANDIN), spec]
+        run = [str(python or _ros2_python()), *([str(HANG)] if c == hang else [])]
+        argv = [*run, str(STANDIN), spec]
         argv += ros2_node_arguments(library, c, remaps)
         ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
                                    stderr=subprocess.DEVNULL)  # fmt: skip
@@ -69,13 +77,15 @@ def _end(watch: Watch | None, ours: dict[str, subprocess.Popen[bytes]]) -> None:
         p.wait()
 
 
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # Fast DDS 2.14 and 3.2: GUID layouts
 def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
-    ros2_domain: int, tmp_path: Path
+    ros2_domain: int, tmp_path: Path, distro: str
 ) -> None:
-    ours = _team(tmp_path, ros2_domain)
+    python = _python(distro)
+    ours = _team(tmp_path, ros2_domain, python=python)
     watch: Watch | None = None
     try:
-        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", python=python)
         watch.wait("running")
         assert not watch.pids()  # it started none of them
         while True:  # every node found and watched by its process
@@ -157,8 +167,9 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
         _end(watch, ours)
 
 
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # the state query over plain DDS
 def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_process_stopped(
-    ros2_domain: int, tmp_path: Path
+    ros2_domain: int, tmp_path: Path, distro: str
 ) -> None:
     """A managed team node whose executor stops (its process runs on, state S): it answered
     its state query before and answers no more, so it is failed as hung (``unanswered``),
@@ -167,12 +178,13 @@ def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_proc
     at = text.index("    ros:\n", text.index("  - name: NCA1\n")) + len("    ros:\n")
     library = tmp_path / "nca1_managed.yaml"
     library.write_text(text[:at] + "      lifecycle: true\n" + text[at:])
-    ours = _team(tmp_path, ros2_domain, library, hang="NCA1")
+    python = _python(distro)
+    ours = _team(tmp_path, ros2_domain, library, hang="NCA1", python=python)
     watch: Watch | None = None
     try:
         schema = str(ROOT / "schemas" / "object_repositioning.yaml")
         watch = Watch(tmp_path, ros2_domain, "--library", str(library), "--schema", schema,
-                      "--stop-outside")  # fmt: skip
+                      "--stop-outside", python=python)  # fmt: skip
         first = watch.wait("conformant")  # NCA1 (unconfigured) made active first
         assert {e["component"] for e in watch.events() if e.get("state") == "active"} == {"NCA1"}
         before = watch.events().index(first) + 1
