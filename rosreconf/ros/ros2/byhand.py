@@ -27,7 +27,7 @@ from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.launchfiles import wiring
 from rosreconf.ros.livenames import Finding
 from rosreconf.ros.ros2.outside import OutsideNodes
-from rosreconf.ros.ros2.stopproc import Stopped
+from rosreconf.ros.ros2.stopproc import Stopped, StopResult
 
 Say = Callable[..., None]
 
@@ -57,14 +57,27 @@ class ByHand:
     restarting: set[str] = field(default_factory=set)
     left: tuple[str, ...] = ()
 
-    def retire(self, component: str, role: str, replacement: str, alive: bool) -> None:
-        """Take an outside, unmanaged node out of service: stop its process, or name it."""
+    def retire(self, leaving: list[tuple[str, str, str, bool]]) -> None:
+        """Take outside nodes out of service: stop their processes (all at once), or name them.
+
+        ``leaving`` holds (component, role, replacement, alive in the graph).
+        """
+        outside = self.outside
+        results = {}
+        if self.stop_outside and outside is not None:
+            results = outside.stop([self.node_of(c) for c, _, _, _ in leaving])
+        for component, role, replacement, alive in leaving:
+            self._retired(component, role, replacement, alive, results.get(self.node_of(component)))
+
+    def _retired(
+        self, component: str, role: str, replacement: str, alive: bool, result: StopResult | None
+    ) -> None:
+        """Say how one outside node left service: stopped, or named for a person, and why."""
         node = self.node_of(component)
         outside = self.outside
         known = outside.process_of(node) if outside is not None else None
-        if self.stop_outside and outside is not None and known is not None:
-            result = outside.stop(node)
-            if result is not None and result.outcome in (Stopped.STOPPED, Stopped.GONE):
+        if result is not None:
+            if result.outcome in (Stopped.STOPPED, Stopped.GONE):
                 self.say(
                     "stop",
                     f"stopped {component} ({role}): replaced by {replacement}; {result.message}",
@@ -75,7 +88,7 @@ class ByHand:
                     outside=True,
                 )
                 return
-            why = result.message if result is not None else "its process is gone"
+            why = result.message
         elif self.stop_outside:
             lease = self.outside.lease_only.get(node) if self.outside is not None else None
             why = f"its process is not known ({lease or 'not found on this host'})"

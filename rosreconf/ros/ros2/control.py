@@ -315,7 +315,7 @@ class Ros2Control:
         is still there (hung) is stopped too, never driven through lifecycle transitions it
         cannot answer: a hung process is not left behind.
         """
-        processes, managed = [], []
+        processes, managed, outside = [], [], []
         for component, role, replacement, alive in leaving:
             own = component in self.nodes.nodes
             if self._managed(component) and (own or alive) and component not in failed:
@@ -323,7 +323,8 @@ class Ros2Control:
             elif own:
                 processes.append((component, role, replacement))
             else:
-                self.by_hand.retire(component, role, replacement, alive)
+                outside.append((component, role, replacement, alive))
+        self.by_hand.retire(outside)  # their processes stopped together, graces overlapping
         # With standby, an inactive node is a ready standby: deactivate is enough.
         steps = OUT_OF_SERVICE[:1] if self.standby else OUT_OF_SERVICE
         out = {c: True for c, _, _ in managed}

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Collection, Mapping
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 from rosreconf.ros.ros2.hostprocs import HostProcesses, ProcId, boot_seconds
@@ -157,22 +158,32 @@ class OutsideNodes:
                 return proc, names
         return None
 
-    def stop(self, node: str) -> StopResult | None:
-        """Stop the confirmed process of ``node`` unless it runs other nodes (``stopproc``).
+    def stop(self, nodes: Collection[str]) -> dict[str, StopResult | None]:
+        """Stop the confirmed process of each of ``nodes`` unless it runs other nodes
+        (``stopproc``); the stops run at once, so their grace periods overlap.
 
-        None when no process of it is known. A process stopped, or gone already, is forgotten.
+        node -> its result; None when no process of it is known. A process stopped, or gone
+        already, is forgotten. Two nodes of one process are never signalled: ``stopproc``
+        refuses a process that runs more than the node it is asked to stop.
         """
-        known = self.process_of(node)
-        if known is None:
-            return None
-        proc, names = known
-        result = stop_node_process(proc, node, names)
-        if result.outcome in (Stopped.STOPPED, Stopped.GONE):
-            self.nodes.pop(proc, None)
-            self.hung.pop(proc, None)
-            self.stopped_since.pop(proc, None)
-            self._watch.remove(proc)
-        return result
+        known = {n: k for n in nodes if (k := self.process_of(n)) is not None}
+        results: dict[str, StopResult | None] = dict.fromkeys(nodes)
+        if not known:
+            return results
+        with ThreadPoolExecutor(max_workers=len(known)) as pool:
+            futures = {
+                n: pool.submit(stop_node_process, proc, n, names)
+                for n, (proc, names) in known.items()
+            }
+        for node, future in futures.items():
+            proc, result = known[node][0], future.result()
+            if result.outcome in (Stopped.STOPPED, Stopped.GONE):
+                self.nodes.pop(proc, None)
+                self.hung.pop(proc, None)
+                self.stopped_since.pop(proc, None)
+                self._watch.remove(proc)
+            results[node] = result
+        return results
 
     def close(self) -> None:
         """Release the pidfds."""
