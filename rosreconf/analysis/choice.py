@@ -128,8 +128,11 @@ class _Walk:
         if self._judge(search, loop, one):
             return
         pairs = itertools.combinations(other, 2)
-        self._judge(search, loop, [{**mine, r: c, q: d} for r, q in pairs
-                                   for c in other[r] for d in other[q]])  # fmt: skip
+        self._judge(
+            search,
+            loop,
+            [{**mine, r: c, q: d} for r, q in pairs for c in other[r] for d in other[q]],
+        )
 
     def _judge(self, search: Search, loop: ControlLoop, near: list[dict[str, str]]) -> bool:
         """Simulate the loop under each mapping, forbid those that fail; tell if one performs."""

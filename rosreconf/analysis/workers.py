@@ -174,9 +174,12 @@ def _finish(
 def _dask_fault(exc: BaseException) -> bool:
     """Tell whether ``exc`` is Dask's way of saying the cluster, not the function, failed."""
     return type(exc).__module__.startswith("distributed") and type(exc).__name__ in {
-        "KilledWorker", "CommClosedError", "FutureCancelledError", "FuturesCancelledError",
+        "KilledWorker",
+        "CommClosedError",
+        "FutureCancelledError",
+        "FuturesCancelledError",
         "WorkerStartTimeoutError",
-    }  # fmt: skip
+    }
 
 
 @contextlib.contextmanager

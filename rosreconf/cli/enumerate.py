@@ -84,9 +84,14 @@ def enumerate_command(
     empty = 0
     for s in sel.schemas:
         found = Listing(
-            sel.library, s, sel.failed,
-            limit=limit, count_only=count_only, want_first=graph is not None, best=goal,
-        )  # fmt: skip
+            sel.library,
+            s,
+            sel.failed,
+            limit=limit,
+            count_only=count_only,
+            want_first=graph is not None,
+            best=goal,
+        )
         report.begin_schema(s)
         with _progress(stderr, s, quiet=as_json) as tick:
             for n, config in enumerate(found.configurations(), start=1):

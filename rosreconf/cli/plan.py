@@ -88,10 +88,16 @@ def plan_command(
     chosen = planner_named(planner, search)
     running = running_mappings(sel, current, weights)
     results = replan_all(
-        sel.library, sel.schemas, sel.failed, running, chosen,
-        weights=weights, timeout=timeout, keep_pddl=keep_pddl,
+        sel.library,
+        sel.schemas,
+        sel.failed,
+        running,
+        chosen,
+        weights=weights,
+        timeout=timeout,
+        keep_pddl=keep_pddl,
         budget=Budget(search_limit, search_time),
-    )  # fmt: skip
+    )
     if graph is not None:
         from rosreconf.render.pictures import ros_dot, write_picture  # only when drawing
 

@@ -178,8 +178,9 @@ def watch_command(
         master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
     )
     try:  # a refusal below closes the source at once: nothing left for the exit to wait on
-        claim, keep = _prepare(source, env, apply, stand_ins, standby, ros2_launch,
-                               stop_outside, master, domain, force)  # fmt: skip
+        claim, keep = _prepare(
+            source, env, apply, stand_ins, standby, ros2_launch, stop_outside, master, domain, force
+        )
     except BaseException:
         source.close()
         raise
@@ -203,13 +204,28 @@ def watch_command(
         work = stack.enter_context(private_workdir())
         sch, config = target.schema, target.configuration
         watcher = Watcher(
-            source, sel.library, sch, config, work, env, log,
-            apply=apply, stand_ins=stand_ins, settle=settle, failed=set(fail or []),
-            launch_dir=keep, standby=standby, ros2_launch=ros2_launch, stop_outside=stop_outside,
-            restart_limit=restarts, restart_window=restart_window, hold=hold,
+            source,
+            sel.library,
+            sch,
+            config,
+            work,
+            env,
+            log,
+            apply=apply,
+            stand_ins=stand_ins,
+            settle=settle,
+            failed=set(fail or []),
+            launch_dir=keep,
+            standby=standby,
+            ros2_launch=ros2_launch,
+            stop_outside=stop_outside,
+            restart_limit=restarts,
+            restart_window=restart_window,
+            hold=hold,
             prefer_after=prefer_after,
-            budget=Budget(search_limit, search_time), stop_requested=signals.requested,
-        )  # fmt: skip
+            budget=Budget(search_limit, search_time),
+            stop_requested=signals.requested,
+        )
         stack.callback(watcher.close)
         what = (
             f"and repairing (launch files kept in {keep})"

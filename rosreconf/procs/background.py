@@ -127,11 +127,16 @@ def start_program(
     with log.open("ab") as out:
         try:
             proc = subprocess.Popen(
-                args, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=cwd,
-                env=None if env is None else dict(env), start_new_session=True,
+                args,
+                stdin=subprocess.DEVNULL,
+                stdout=out,
+                stderr=subprocess.STDOUT,
+                cwd=cwd,
+                env=None if env is None else dict(env),
+                start_new_session=True,
                 pass_fds=(alive_read,) if LINUX else (),
                 preexec_fn=preexec(None, None, alive_read),
-            )  # fmt: skip
+            )
         except FileNotFoundError:
             release(alive_write)
             raise ExternalToolError(f"{args[0]} was not found (is it installed?)") from None

@@ -99,8 +99,12 @@ class LifecycleAgent(Helper):
         each = self.timeout if timeout is None else timeout
         wait = each if appear is None else appear
         start = time.monotonic()
-        request = {"op": "batch", "timeout": each, "appear": wait,
-                   "items": [{"node": n, "transition": t} for n, t in items]}  # fmt: skip
+        request = {
+            "op": "batch",
+            "timeout": each,
+            "appear": wait,
+            "items": [{"node": n, "transition": t} for n, t in items],
+        }
         try:
             answer = self._ask(request, 2 * each + wait * len(items))
         except LifecycleError as exc:

@@ -137,11 +137,15 @@ def start_helper(
     with log.open("ab") as err:
         try:
             process = subprocess.Popen(
-                list(argv), stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=err,
-                env=own_participant_env(env), start_new_session=True,
+                list(argv),
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=err,
+                env=own_participant_env(env),
+                start_new_session=True,
                 pass_fds=((alive_read,) if LINUX else ()) + tuple(keep_fds),
                 preexec_fn=preexec(None, None, alive_read),
-            )  # fmt: skip
+            )
         except OSError as exc:
             release(alive)
             raise ExternalToolError(f"cannot run {argv[0]}: {exc.strerror or exc}") from exc

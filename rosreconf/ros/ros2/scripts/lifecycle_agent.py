@@ -142,8 +142,16 @@ class Agent:
             elif error is None and state != GOAL[name]:
                 error = f"after {name}, {node} is {state}, not {GOAL[name]}"
             took = round(time.monotonic() - start, 4)
-            results.append({"node": node, "transition": name, "ok": error is None,
-                            "state": state, "seconds": took, "error": error})  # fmt: skip
+            results.append(
+                {
+                    "node": node,
+                    "transition": name,
+                    "ok": error is None,
+                    "state": state,
+                    "seconds": took,
+                    "error": error,
+                }
+            )
         return results
 
     def _spin(self, futures: list[Any], deadline: float) -> None:
