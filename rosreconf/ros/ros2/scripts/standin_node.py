@@ -368,9 +368,8 @@ def main(argv: list[str]) -> int:
         try:
             action_class(action["type"])
         except CannotPose as exc:
-            who = f"{spec.get('component', spec['name'])} ({spec['name']})"
-            print(f"stand-in for {who}: cannot act out action {action['action']}: {exc}",
-                  file=sys.stderr)  # fmt: skip
+            who = f"stand-in for {spec.get('component', spec['name'])} ({spec['name']})"
+            print(f"{who}: cannot act out action {action['action']}: {exc}", file=sys.stderr)
             return 3
     rclpy.init(args=argv)
     node = None
