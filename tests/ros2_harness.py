@@ -53,7 +53,24 @@ def dds_env(lease: float = LEASE) -> dict[str, str]:
     return env
 
 
+def xdist_worker() -> tuple[int, int]:
+    """Return (this pytest-xdist worker's index, the number of workers); (0, 1) without xdist."""
+    name = os.environ.get("PYTEST_XDIST_WORKER", "")
+    count = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
+    return (int(name[2:]) if name.startswith("gw") else 0), max(count, 1)
+
+
 _next = [FIRST_DOMAIN + (os.getpid() * 7) % max(1, 232 - FIRST_DOMAIN - 40)]
+
+
+def _domains() -> list[int]:
+    """Return the domain ids this process may take: with xdist, every n-th from its index.
+
+    Workers never take one domain at once: a domain found free and then taken by another
+    worker's first participant would mix two tests' graphs.
+    """
+    index, count = xdist_worker()
+    return [d for d in range(FIRST_DOMAIN, 232) if (d - FIRST_DOMAIN) % count == index]
 
 
 def free_domain() -> int:
@@ -62,16 +79,17 @@ def free_domain() -> int:
     Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
     a bound port 0 means someone uses the domain here.
     """
-    for _ in range(190):
-        domain = _next[0]
-        _next[0] = FIRST_DOMAIN + (domain - FIRST_DOMAIN + 1) % (232 - FIRST_DOMAIN)
+    mine = _domains()
+    for _ in range(len(mine)):
+        domain = min((d for d in mine if d >= _next[0]), default=mine[0])
+        _next[0] = domain + 1
         with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
             try:
                 s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
             except OSError:
                 continue
             return domain
-    raise RuntimeError(f"no free DDS domain id between {FIRST_DOMAIN} and 231")
+    raise RuntimeError(f"no free DDS domain id of {mine[0]}, {mine[1:2]}... up to 231")
 
 
 def ros2_type(ros1_type: str, kind: str) -> str:

@@ -44,12 +44,30 @@ def ros_installed() -> bool:
     return probe.returncode == 0
 
 
+PORTS = range(20000, 32000)
+"""TCP ports the tests' masters take (below Linux's ephemeral range, 32768 up, so no
+connection's own port is handed out here); with xdist each worker takes its own share."""
+_next_port = [0]
+
+
 def free_port() -> int:
-    """Return a TCP port on 127.0.0.1 that nothing listens on right now."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
+    """Return a TCP port on 127.0.0.1 that nothing listens on right now, from this worker's
+    share of ``PORTS`` (two workers never pick the same port before one binds it)."""
+    name = os.environ.get("PYTEST_XDIST_WORKER", "")
+    count = max(int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1), 1)
+    index = int(name[2:]) if name.startswith("gw") else 0
+    share = len(PORTS) // count
+    first = PORTS.start + index * share
+    for _ in range(share):
+        port = first + (_next_port[0] + os.getpid()) % share
+        _next_port[0] += 1
+        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return port
+    raise RuntimeError(f"no free TCP port in {first}..{first + share - 1}")
 
 
 def wait_until(
