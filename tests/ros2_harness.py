@@ -9,6 +9,7 @@ tests and other runs on the machine never see each other.
 
 from __future__ import annotations
 
+import fcntl
 import json
 import os
 import select
@@ -16,6 +17,7 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -73,16 +75,44 @@ def _domains() -> list[int]:
     return [d for d in range(FIRST_DOMAIN, 232) if (d - FIRST_DOMAIN) % count == index]
 
 
+LOCKS = Path(tempfile.gettempdir()) / "rosreconf-test-domains"
+"""Where each test process locks the domain ids it took (``flock``): a second test run on
+this host (another clone's ``make test``, whose workers have the same indices) skips them."""
+KEEP_LOCKED = 4
+"""Domains a test process keeps locked after taking newer ones (a module's long-lived system
+may span tests); older ones are released for other runs."""
+_locked: list[tuple[int, int]] = []
+
+
+def _lock(domain: int) -> bool:
+    """Lock ``domain`` for this process; False when another process holds it."""
+    LOCKS.mkdir(exist_ok=True)
+    fd = os.open(LOCKS / f"{domain}.lock", os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        os.close(fd)
+        return False
+    _locked.append((domain, fd))
+    while len(_locked) > KEEP_LOCKED:
+        os.close(_locked.pop(0)[1])  # closing the descriptor releases its lock
+    return True
+
+
 def free_domain() -> int:
-    """Return a DDS domain id >= FIRST_DOMAIN whose first unicast discovery port is free here.
+    """Return a DDS domain id >= FIRST_DOMAIN that no test process here holds and whose first
+    unicast discovery port is free.
 
     Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
-    a bound port 0 means someone uses the domain here.
+    a bound port 0 means someone uses the domain here. The domain is locked for this process
+    (``LOCKS``) until it has taken ``KEEP_LOCKED`` newer ones, or ends.
     """
     mine = _domains()
     for _ in range(len(mine)):
         domain = min((d for d in mine if d >= _next[0]), default=mine[0])
         _next[0] = domain + 1
+        if any(d == domain for d, _ in _locked) or not _lock(domain):
+            continue
         with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
             try:
                 s.bind(("127.0.0.1", 7400 + 250 * domain + 10))

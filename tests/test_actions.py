@@ -17,7 +17,6 @@ import os
 import re
 import select
 import shutil
-import socket
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -29,6 +28,7 @@ from typing import Any
 import jsonschema
 import pydot
 import pytest
+import ros2_harness
 import xmlschema
 import yaml
 from pddlcheck import plan_all
@@ -456,24 +456,12 @@ def test_ros1_stand_ins_act_out_actions_on_a_real_master(
 # --- real rclpy nodes ----------------------------------------------------------------------
 
 
-def _free_domain(first: int = 180) -> int:
-    """Return a DDS domain id from ``first`` up whose discovery port is free on loopback."""
-    for domain in range(first, 232):
-        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
-            try:
-                s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
-            except OSError:
-                continue
-            return domain
-    raise RuntimeError("no free DDS domain id from 180")
-
-
 def test_real_rclpy_action_nodes_are_imported_and_inspected(
     runner: CliRunner, tmp_path: Path
 ) -> None:
     if not ROS2_PYTHON.exists():
         pytest.fail(f"{ROS2_PYTHON} is missing: run make ros2-venvs (make test does)")
-    domain = _free_domain()
+    domain = ros2_harness.free_domain()  # locked for this run: no other test takes it
     env = {**os.environ, "ROS_DOMAIN_ID": str(domain), "ROS_LOG_DIR": str(tmp_path)}
     env.pop("CYCLONEDDS_URI", None)
     argv = [str(ROS2_PYTHON), str(HERE / "ros2_action_nodes.py"), "/fibonacci",
