@@ -62,10 +62,11 @@ typecheck: $(STAMP)
 # are the same too: `make test` passes or fails the same way on every clean checkout.
 # Four worker processes (pytest-xdist): a live test mostly waits on real nodes, so on 2 cores
 # the suite takes half the wall time of one process. Each worker takes its own DDS domain ids
-# and ROS master ports (tests/ros2_harness.py, tests/ros_harness.py). TEST_WORKERS=0: one process.
+# and ROS master ports (tests/ros2_harness.py, tests/ros_harness.py); the tests on many real
+# ROS 2 nodes run in two lanes (tests/conftest.py, LIVE_ROS2_LANES). TEST_WORKERS=0: one process.
 TEST_WORKERS ?= 4
 pytest: $(STAMP)
-	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 $(BIN)/pytest -n $(TEST_WORKERS)
+	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 
 ## Search for new counterexamples by hand: only the property tests, random seeds, 50 times the
 ## examples. Pin what it finds with @example; failures replay from .hypothesis until fixed.

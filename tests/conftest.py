@@ -145,6 +145,32 @@ def pytest_runtest_setup(item: pytest.Item) -> None:
             require_tool(marker)
 
 
+LIVE_ROS2_LANES = 2
+"""Tests on many real ROS 2 nodes run in this many lanes under xdist (``--dist loadgroup``):
+each such test starts 13 to 40 rclpy processes, and four at once on two cores (load 18, and
+30-48 with a second ``make test`` beside it) made their waits time out. The other workers
+run the rest of the suite meanwhile."""
+
+
+NOT_ROS2 = frozenset({"test_watch_live", "test_watch_loop", "test_watch_performance"})
+"""test_watch_* files that start no ROS 2 node (ROS 1, or no live system at all)."""
+
+
+def _live_ros2(item: pytest.Item) -> bool:
+    """Tell whether ``item`` runs real ROS 2 nodes (its file, by name; one test by its own)."""
+    stem = item.path.stem
+    if stem.startswith(("test_ros2_", "test_watch_")):
+        return stem not in NOT_ROS2
+    return stem == "test_live_ros2" or item.name.startswith("test_real_rclpy_")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Put the tests on real ROS 2 nodes in ``LIVE_ROS2_LANES`` xdist groups, in turn."""
+    live = [item for item in items if _live_ros2(item)]
+    for n, item in enumerate(live):
+        item.add_marker(pytest.mark.xdist_group(f"ros2-live-{n % LIVE_ROS2_LANES}"))
+
+
 @pytest.fixture
 def runner() -> CliRunner:
     """Return a CLI runner; stdout and stderr are kept apart so JSON can be parsed."""
