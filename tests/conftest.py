@@ -5,6 +5,8 @@ The helpers behind the ROS fixtures live in tests/ros_harness.py.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import functools
 import importlib.util
 import json
@@ -12,6 +14,7 @@ import os
 import shutil
 import signal
 import sys
+import tempfile
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -169,6 +172,56 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     live = [item for item in items if _live_ros2(item)]
     for n, item in enumerate(live):
         item.add_marker(pytest.mark.xdist_group(f"ros2-live-{n % LIVE_ROS2_LANES}"))
+
+
+LANE_LOCKS = Path(tempfile.gettempdir()) / "rosreconf-test-lanes"
+"""Host-wide slots for the tests on many real ROS 2 nodes: ``LIVE_ROS2_LANES`` lock files.
+A test holds one (``flock``) while it runs, so two ``make test`` runs on one host (two
+fresh clones at once) still run at most ``LIVE_ROS2_LANES`` such tests at a time: four at
+once took the load to 30-65 and their waits timed out."""
+
+
+@pytest.fixture(autouse=True)
+def _live_ros2_slot(request: pytest.FixtureRequest) -> Iterator[None]:
+    """Hold one of the host's ``LIVE_ROS2_LANES`` slots while a live ROS 2 test runs."""
+    if not _live_ros2(request.node):
+        yield
+        return
+    LANE_LOCKS.mkdir(exist_ok=True)
+    if request.node.path.stem == "test_ros2_shm_debris":  # it plants host-wide port files
+        with _exclusive(LANE_LOCKS / "shm.lock"):
+            yield from _slot()
+        return
+    yield from _slot()
+
+
+@contextlib.contextmanager
+def _exclusive(path: Path) -> Iterator[None]:
+    """Hold ``path``'s lock (waiting for it) while the block runs."""
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
+
+
+def _slot() -> Iterator[None]:
+    """Take one of the host's ``LIVE_ROS2_LANES`` slots (waiting for one); yield once."""
+    while True:
+        for lane in range(LIVE_ROS2_LANES):
+            fd = os.open(LANE_LOCKS / f"{lane}.lock", os.O_RDWR | os.O_CREAT, 0o666)
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                os.close(fd)
+                continue
+            try:
+                yield
+            finally:
+                os.close(fd)  # releases the slot
+            return
+        time.sleep(0.2)  # both taken (by another run on this host): wait for one
 
 
 @pytest.fixture

@@ -125,6 +125,7 @@ class Ros2Control:
         gone = []
         for own, code in self.nodes.exited():
             self.dead.add(own.node)
+            self.standbys.lost |= own.node in self.parked  # a standby gone: started again
             self.parked.discard(own.node)
             self.states.pop(own.component, None)
             gone.append((own.component, own.node, code))

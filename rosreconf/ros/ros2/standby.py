@@ -46,6 +46,7 @@ class Standbys:
         unready: standby components started and not yet configured (``tend`` does it).
         tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
         last: the configuration and failures the standbys were last prepared for.
+        lost: a standby's process exited: the set is prepared again on the next tick.
     """
 
     library: ComponentLibrary
@@ -57,6 +58,7 @@ class Standbys:
     unready: list[str] = field(default_factory=list)
     tries: dict[str, int] = field(default_factory=dict)
     last: tuple[Configuration, frozenset[str]] | None = None
+    lost: bool = False
 
     def node_of(self, component: str) -> str:
         """Return the live node name of ``component``."""
@@ -150,13 +152,15 @@ class Standbys:
             )
 
     def replace_hung(self, states: Mapping[str, str | None]) -> None:
-        """Stop each hung standby and start it anew for the configuration it would join."""
+        """Stop each hung standby and start it anew for the configuration it would join;
+        start again any that exited (``lost``)."""
         standing = [c for c in self.nodes.nodes if self.node_of(c) in self.parked]
         hung = self.hung(standing, states)
-        if not hung:
+        if not hung and not self.lost:
             return
         self.drop(hung, "started anew")
-        if self.last is not None:
+        self.lost = False
+        if self.last is not None:  # the hung ones, and any that exited, start again
             self.prepare(*self.last)
 
     def _joins(self, configuration: Configuration, failed: set[str]) -> dict[str, Configuration]:
