@@ -215,13 +215,17 @@ def _managed_library(tmp: Path) -> Path:
     return path
 
 
+def standby_watch(tmp: Path, domain: int) -> Watch:
+    """Start ``watch --standby`` on the bundled library with every component managed."""
+    library = _managed_library(tmp)
+    schema = SCHEMAS / "object_repositioning.yaml"
+    return Watch(tmp, domain, "--library", str(library), "--schema", str(schema), "--standby")
+
+
 def test_standby_failover_is_activate_and_the_states_read_back(
     ros2_domain: int, tmp_path: Path
 ) -> None:
-    library = _managed_library(tmp_path)
-    schema = SCHEMAS / "object_repositioning.yaml"
-    watch = Watch(tmp_path, ros2_domain, "--library", str(library), "--schema", str(schema),
-                  "--standby")  # fmt: skip
+    watch = standby_watch(tmp_path, ros2_domain)
     try:
         watch.wait("conformant")
         deadline = time.monotonic() + UP_TIMEOUT

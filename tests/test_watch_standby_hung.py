@@ -16,21 +16,17 @@ from pathlib import Path
 from test_watch_ros2 import (
     DC_ARM,
     NOMINAL,
-    SCHEMAS,
     UP_TIMEOUT,
-    Watch,
-    _managed_library,
     alive,
+    probe,
+    standby_watch,
 )
 
 
 def test_a_hung_standby_is_started_anew_and_one_hung_at_the_failover_is_started_cold(
     ros2_domain: int, tmp_path: Path
 ) -> None:
-    library = _managed_library(tmp_path)
-    schema = SCHEMAS / "object_repositioning.yaml"
-    watch = Watch(tmp_path, ros2_domain, "--library", str(library), "--schema", str(schema),
-                  "--standby")  # fmt: skip
+    watch = standby_watch(tmp_path, ros2_domain)
     try:
         watch.wait("conformant")
         deadline = time.monotonic() + UP_TIMEOUT
@@ -65,5 +61,12 @@ def test_a_hung_standby_is_started_anew_and_one_hung_at_the_failover_is_started_
         tried = [e for e in since if e.get("transition") and e["component"] == "NDC3"]
         assert tried and all(e["ok"] for e in tried), tried
         assert tried[-1]["state"] == "active"
+        # rclpy's own view, not rosreconf's: the cold NDC3 serves, and no call or
+        # subscription of an active node is left on the stopped NDC3 or the dead NSM3
+        seen = probe(watch.env, ros2_domain, "/NDC3", "/NREA", wait_for=["/NDC3", "/NREA"],
+                     until_wired=True)  # fmt: skip
+        assert seen["states"]["/NDC3"] == "active", seen["states"]
+        dangling = seen["dangling"]["calls"] + seen["dangling"]["subscriptions"]
+        assert not [d for d in dangling if d[0] in ("/NDC3", "/NREA")], dangling
     finally:
         watch.stop(signal.SIGKILL)
