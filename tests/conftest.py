@@ -160,18 +160,51 @@ NOT_ROS2 = frozenset({"test_watch_live", "test_watch_loop", "test_watch_performa
 
 
 def _live_ros2(item: pytest.Item) -> bool:
-    """Tell whether ``item`` runs real ROS 2 nodes (its file, by name; one test by its own)."""
-    stem = item.path.stem
+    """Tell whether ``item`` runs real ROS 2 nodes."""
+    return _live_ros2_by_name(item.nodeid)
+
+
+def _live_ros2_by_name(nodeid: str) -> bool:
+    """Tell whether a test runs real ROS 2 nodes, from its file's name or, for one, its own."""
+    path, _, name = nodeid.partition("::")
+    stem = Path(path).stem
     if stem.startswith(("test_ros2_", "test_watch_")):
         return stem not in NOT_ROS2
-    return stem == "test_live_ros2" or item.name.startswith("test_real_rclpy_")
+    return stem == "test_live_ros2" or name.startswith("test_real_rclpy_")
 
 
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Put the tests on real ROS 2 nodes in ``LIVE_ROS2_LANES`` xdist groups, in turn."""
+    """Put the tests on real ROS 2 nodes in ``LIVE_ROS2_LANES`` xdist groups, in turn.
+
+    ``tryfirst``: pytest-xdist reads the groups in its own hook of this name, which pluggy
+    otherwise calls before this one: it found no groups, and every worker ran live tests.
+    """
     live = [item for item in items if _live_ros2(item)]
     for n, item in enumerate(live):
         item.add_marker(pytest.mark.xdist_group(f"ros2-live-{n % LIVE_ROS2_LANES}"))
+
+
+def pytest_xdist_node_collection_finished(node: Any, ids: list[str]) -> None:
+    """Refuse to run when pytest-xdist's grouping of the live ROS 2 tests did not take effect.
+
+    pytest-xdist marks a grouped test by suffixing its node id, in its own hook that pluggy
+    calls before ours unless ours is ``tryfirst``; and pytest 9.2 keeps node ids elsewhere, so
+    the suffix is lost (pytest-dev/pytest-xdist#1386, open). Either way the groups silently
+    vanished: every worker ran live ROS 2 tests and two of them waited for a host slot (a
+    0.5 s test waited 122 s). pyproject.toml holds pytest below 9.2; this says so plainly if
+    another pytest comes in.
+    """
+    if node.config.getoption("dist") != "loadgroup":
+        return
+    live = [nodeid for nodeid in ids if _live_ros2_by_name(nodeid)]
+    if live and not any("@ros2-live-" in nodeid for nodeid in live):
+        pytest.exit(
+            f"pytest-xdist's --dist loadgroup did not take effect on {node.gateway.id} with"
+            f" pytest {pytest.__version__}: install the pytest the test extra allows"
+            " (pip install -e '.[test]'), or run with -n 0",
+            returncode=pytest.ExitCode.USAGE_ERROR,
+        )
 
 
 LANE_LOCKS = Path(tempfile.gettempdir()) / "rosreconf-test-lanes"
