@@ -11,7 +11,9 @@ probe itself, /rosout and /parameter_events left out), read per node from rclpy'
 
 It reads once every ``--wait-for`` name (a node, topic or service) is seen and the graph has
 then not changed for 1 s, or after SECONDS at most: discovery takes longer on a busy machine,
-so a fixed sleep would make the tests that read it fail by chance.
+so a fixed sleep would make the tests that read it fail by chance. ``--until-wired`` then reads
+again until nothing dangles (of the NODEs, when some are named: nodes taken out of service
+may keep calling a dead provider for good, and waiting on them ran out the whole SECONDS).
 """
 
 from __future__ import annotations
@@ -55,6 +57,11 @@ def _dangling(node: Any) -> dict[str, list[list[str]]]:
     return {"calls": sorted(calls), "subscriptions": sorted(subscriptions)}
 
 
+def _of(dangling: dict[str, list[list[str]]], nodes: list[str]) -> list[list[str]]:
+    """Return the dangling calls and subscriptions of ``nodes`` (of every node if none)."""
+    return [d for found in dangling.values() for d in found if not nodes or d[0] in nodes]
+
+
 def main() -> int:
     """Print what rclpy's graph API and the nodes' get_state services say."""
     ap = argparse.ArgumentParser()
@@ -79,7 +86,7 @@ def main() -> int:
     # "nothing dangles" is a claim about the settled graph: a provider's endpoints that this
     # reader has not discovered yet are read again until they are, or the deadline passes
     dangling = _dangling(node)
-    while args.until_wired and any(dangling.values()) and time.monotonic() < deadline:
+    while args.until_wired and _of(dangling, nodes) and time.monotonic() < deadline:
         rclpy.spin_once(node, timeout_sec=0.2)
         dangling = _dangling(node)
     names, topics, services = _graph(node)
