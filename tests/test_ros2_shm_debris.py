@@ -82,8 +82,9 @@ def test_a_team_executable_stuck_on_a_broken_port_is_named_with_the_file(
     monkeypatch.delenv("FASTDDS_BUILTIN_TRANSPORTS")
     prefix = _ament_prefix(tmp_path, _python("jazzy"))
     with broken_ports() as made:
-        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", stand_ins=False,
-                      env={"AMENT_PREFIX_PATH": str(prefix)})  # fmt: skip
+        # --settle 5: the stuck processes never come up, so the 30 s default only waited
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--settle", "5",
+                      stand_ins=False, env={"AMENT_PREFIX_PATH": str(prefix)})  # fmt: skip
         try:
             said = watch.wait("missing")
             while "shared-memory" not in said["message"]:  # said again once the file is seen
