@@ -64,9 +64,12 @@ typecheck: $(STAMP)
 # the suite takes half the wall time of one process. Each worker takes its own DDS domain ids
 # and ROS master ports (tests/ros2_harness.py, tests/ros_harness.py); the tests on many real
 # ROS 2 nodes run in two lanes (tests/conftest.py, LIVE_ROS2_LANES). TEST_WORKERS=0: one process.
+# Bytecode is written even where PYTHONDONTWRITEBYTECODE is set: otherwise every worker and
+# every `python -m rosreconf` the tests start compiles the same sources again.
 TEST_WORKERS ?= 4
 pytest: $(STAMP)
-	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
+	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 PYTHONDONTWRITEBYTECODE= \
+	  $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
 
 ## Search for new counterexamples by hand: only the property tests, random seeds, 50 times the
 ## examples. Pin what it finds with @example; failures replay from .hypothesis until fixed.

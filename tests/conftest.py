@@ -152,37 +152,51 @@ LIVE_ROS2_LANES = 2
 """Tests on many real ROS 2 nodes run in this many lanes under xdist (``--dist loadgroup``):
 each such test starts 13 to 40 rclpy processes, and four at once on two cores (load 18, and
 30-48 with a second ``make test`` beside it) made their waits time out. The other workers
-run the rest of the suite meanwhile."""
+run the rest of the suite meanwhile. Three lanes were slower than two (10 min 32 s against
+10 min 04 s, 1010 CPU s against 909: the two cores are the limit, not the waits)."""
 
 
 NOT_ROS2 = frozenset({"test_watch_live", "test_watch_loop", "test_watch_performance"})
 """test_watch_* files that start no ROS 2 node (ROS 1, or no live system at all)."""
 
+FEW_NODES = frozenset({
+    "test_ros2_real", "test_ros2_discovery", "test_ros2_supervise", "test_ros2_parameters",
+    "test_ros2_lifecycle_agent", "test_ros2_names_qos",
+})  # fmt: skip
+"""test_ros2_* files whose tests start a few rclpy processes at most (0.1-3 CPU s a test, a
+module's 4-node system 7 s once): they run beside the rest of the suite, not in a lane, each
+file in an xdist group of its own so that its module fixtures start once."""
 
-def _live_ros2(item: pytest.Item) -> bool:
-    """Tell whether ``item`` runs real ROS 2 nodes."""
-    return _live_ros2_by_name(item.nodeid)
+
+def _many_nodes(nodeid: str) -> bool:
+    """Tell whether a test starts many real ROS 2 nodes (a watch's stand-ins, a team)."""
+    stem = Path(nodeid.partition("::")[0]).stem
+    if stem.startswith("test_watch_"):
+        return stem not in NOT_ROS2
+    return stem == "test_live_ros2" or (stem.startswith("test_ros2_") and stem not in FEW_NODES)
 
 
-def _live_ros2_by_name(nodeid: str) -> bool:
-    """Tell whether a test runs real ROS 2 nodes, from its file's name or, for one, its own."""
+def _few_nodes(nodeid: str) -> str | None:
+    """Return the group of a test that starts a few real ROS 2 nodes (its file), else None."""
     path, _, name = nodeid.partition("::")
     stem = Path(path).stem
-    if stem.startswith(("test_ros2_", "test_watch_")):
-        return stem not in NOT_ROS2
-    return stem == "test_live_ros2" or name.startswith("test_real_rclpy_")
+    return stem if stem in FEW_NODES or name.startswith("test_real_rclpy_") else None
 
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """Put the tests on real ROS 2 nodes in ``LIVE_ROS2_LANES`` xdist groups, in turn.
+    """Put the tests on many real ROS 2 nodes in ``LIVE_ROS2_LANES`` xdist groups, in turn,
+    and the tests on a few in a group per file.
 
     ``tryfirst``: pytest-xdist reads the groups in its own hook of this name, which pluggy
     otherwise calls before this one: it found no groups, and every worker ran live tests.
     """
-    live = [item for item in items if _live_ros2(item)]
-    for n, item in enumerate(live):
+    many = [item for item in items if _many_nodes(item.nodeid)]
+    for n, item in enumerate(many):
         item.add_marker(pytest.mark.xdist_group(f"ros2-live-{n % LIVE_ROS2_LANES}"))
+    for item in items:
+        if (few := _few_nodes(item.nodeid)) is not None:
+            item.add_marker(pytest.mark.xdist_group(f"ros2-few-{few}"))
 
 
 def pytest_xdist_node_collection_finished(node: Any, ids: list[str]) -> None:
@@ -197,7 +211,7 @@ def pytest_xdist_node_collection_finished(node: Any, ids: list[str]) -> None:
     """
     if node.config.getoption("dist") != "loadgroup":
         return
-    live = [nodeid for nodeid in ids if _live_ros2_by_name(nodeid)]
+    live = [nodeid for nodeid in ids if _many_nodes(nodeid)]
     if live and not any("@ros2-live-" in nodeid for nodeid in live):
         pytest.exit(
             f"pytest-xdist's --dist loadgroup did not take effect on {node.gateway.id} with"
@@ -217,7 +231,7 @@ once took the load to 30-65 and their waits timed out."""
 @pytest.fixture(autouse=True)
 def _live_ros2_slot(request: pytest.FixtureRequest) -> Iterator[None]:
     """Hold one of the host's ``LIVE_ROS2_LANES`` slots while a live ROS 2 test runs."""
-    if not _live_ros2(request.node):
+    if not _many_nodes(request.node.nodeid):
         yield
         return
     LANE_LOCKS.mkdir(exist_ok=True)
