@@ -190,8 +190,10 @@ def test_a_managed_node_deactivated_by_hand_is_a_fault_and_made_active_again(
             env={**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)},
             capture_output=True, text=True, timeout=120,
         )  # fmt: skip
-        said = out.stdout.splitlines()[-1]  # Fast DDS may log to stdout before (see probe)
-        assert json.loads(said) == {"ok": True, "state": "inactive"}, out.stderr
+        said = json.loads(out.stdout.splitlines()[-1])  # Fast DDS may log to stdout first
+        # the transition succeeded; the state read back after it may already be "active"
+        # again: watch repairs within its 0.5 s interval (seen once in a fresh clone's run)
+        assert said["ok"] is True and said["state"] in ("inactive", "active"), out.stderr
         fault = watch.wait("not-active", after=before)
         assert fault["component"] == "NSM1" and fault["state"] == "inactive"
         watch.wait("conformant", after=before)
