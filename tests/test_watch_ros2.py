@@ -295,7 +295,9 @@ def test_sigterm_and_sigint_stop_watch_and_its_nodes_every_time(
         for j in range(4):
             i = 4 * batch + j
             (tmp_path / f"run{i}").mkdir()
-            domain = ros2_domain if j == 0 else ros2_harness.free_domain()
+            # a fresh domain for every run: one reused across batches is unlocked between them
+            # (a process keeps its newest KEEP_LOCKED) and may be taken there by another test
+            domain = ros2_harness.free_domain()
             runs.append((i, Watch(tmp_path / f"run{i}", domain, *files)))
         try:
             for _, watch in runs:
