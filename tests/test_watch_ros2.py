@@ -283,9 +283,7 @@ nominal: {speaker: TALKER}
 """
 
 
-def test_sigterm_and_sigint_stop_watch_and_its_nodes_every_time(
-    ros2_domain: int, tmp_path: Path
-) -> None:
+def test_sigterm_and_sigint_stop_watch_and_its_nodes_every_time(tmp_path: Path) -> None:
     (tmp_path / "tiny.yaml").write_text(TINY_LIBRARY)
     (tmp_path / "tiny_schema.yaml").write_text(TINY_SCHEMA)
     files = ["--library", str(tmp_path / "tiny.yaml")]
