@@ -388,8 +388,17 @@ Announce = Callable[..., Any]
 
 
 @pytest.fixture
-def ros2_domain(monkeypatch: pytest.MonkeyPatch) -> int:
-    """Return an unused DDS domain id (>= 42); this process's DDS uses loopback only."""
+def domain_id() -> Iterator[int]:
+    """Hold an unused DDS domain id (42 and up) for the test; it is given back when it ends."""
+    import ros2_harness
+
+    with ros2_harness.held_domain() as domain:
+        yield domain
+
+
+@pytest.fixture
+def ros2_domain(monkeypatch: pytest.MonkeyPatch, domain_id: int) -> int:
+    """Return an unused DDS domain id (``domain_id``); this process's DDS uses loopback only."""
     import importlib.util
 
     import ros2_harness
@@ -399,7 +408,7 @@ def ros2_domain(monkeypatch: pytest.MonkeyPatch) -> int:
         pytest.fail("cyclonedds is not installed: pip install -e '.[ros2]' (make test does)")
 
     monkeypatch.setenv("CYCLONEDDS_URI", ros2_harness.loopback_config())
-    return ros2_harness.free_domain()
+    return domain_id
 
 
 @pytest.fixture

@@ -9,6 +9,7 @@ tests and other runs on the machine never see each other.
 
 from __future__ import annotations
 
+import contextlib
 import fcntl
 import json
 import os
@@ -19,7 +20,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -62,7 +63,23 @@ def xdist_worker() -> tuple[int, int]:
     return (int(name[2:]) if name.startswith("gw") else 0), max(count, 1)
 
 
-_next = [FIRST_DOMAIN + (os.getpid() * 7) % max(1, 232 - FIRST_DOMAIN - 40)]
+def _last_domain() -> int:
+    """Return the highest domain id whose RTPS ports all lie below the kernel's ephemeral ports.
+
+    Domain d's ports are 7400 + 250 d up to 7400 + 250 (d + 1) - 1. Above that limit (101 with
+    Linux's default range 32768-60999) a port may already be taken as an ephemeral one, by any
+    socket's send side or TCP client on the host (seen: ``watch`` on domain 189 could not bind
+    54651). The range is only read here, never changed.
+    """
+    try:
+        low = int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        low = 32768
+    return max(FIRST_DOMAIN + 20, min(231, (low - 7400) // 250 - 1))
+
+
+LAST_DOMAIN = _last_domain()
+_next = [FIRST_DOMAIN + (os.getpid() * 7) % (LAST_DOMAIN + 1 - FIRST_DOMAIN)]
 
 
 def _domains() -> list[int]:
@@ -72,16 +89,14 @@ def _domains() -> list[int]:
     worker's first participant would mix two tests' graphs.
     """
     index, count = xdist_worker()
-    return [d for d in range(FIRST_DOMAIN, 232) if (d - FIRST_DOMAIN) % count == index]
+    return [d for d in range(FIRST_DOMAIN, LAST_DOMAIN + 1) if (d - FIRST_DOMAIN) % count == index]
 
 
 LOCKS = Path(tempfile.gettempdir()) / "rosreconf-test-domains"
-"""Where each test process locks the domain ids it took (``flock``): a second test run on
+"""Where each test process locks the domain ids it holds (``flock``): a second test run on
 this host (another clone's ``make test``, whose workers have the same indices) skips them."""
-KEEP_LOCKED = 4
-"""Domains a test process keeps locked after taking newer ones (a module's long-lived system
-may span tests); older ones are released for other runs."""
-_locked: list[tuple[int, int]] = []
+_locked: dict[int, int] = {}
+"""Domain id -> the descriptor holding its lock, for every domain this process holds."""
 
 
 def _lock(domain: int) -> bool:
@@ -93,33 +108,53 @@ def _lock(domain: int) -> bool:
     except OSError:
         os.close(fd)
         return False
-    _locked.append((domain, fd))
-    while len(_locked) > KEEP_LOCKED:
-        os.close(_locked.pop(0)[1])  # closing the descriptor releases its lock
+    _locked[domain] = fd
     return True
 
 
+def release(domain: int) -> None:
+    """Give ``domain`` back when nothing of the test runs on it any more (idempotent)."""
+    fd = _locked.pop(domain, None)
+    if fd is not None:
+        os.close(fd)  # closing the descriptor releases its lock
+
+
 def free_domain() -> int:
-    """Return a DDS domain id >= FIRST_DOMAIN that no test process here holds and whose first
-    unicast discovery port is free.
+    """Return a DDS domain id that no test process here holds and whose first unicast
+    discovery port is free, locked (``LOCKS``) until ``release`` or this process's end.
 
     Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
-    a bound port 0 means someone uses the domain here. The domain is locked for this process
-    (``LOCKS``) until it has taken ``KEEP_LOCKED`` newer ones, or ends.
+    a bound port means someone uses the domain here. Each test gives back what it took
+    (``held_domain``, the ``ros2_domain`` fixture): a lock that lapsed while its nodes still
+    ran would let another run on this host take their domain.
     """
     mine = _domains()
     for _ in range(len(mine)):
         domain = min((d for d in mine if d >= _next[0]), default=mine[0])
         _next[0] = domain + 1
-        if any(d == domain for d, _ in _locked) or not _lock(domain):
+        if domain in _locked or not _lock(domain):
             continue
         with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
             try:
                 s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
             except OSError:
+                release(domain)
                 continue
             return domain
-    raise RuntimeError(f"no free DDS domain id of {mine[0]}, {mine[1:2]}... up to 231")
+    raise RuntimeError(
+        f"no free DDS domain id of {mine} (this process holds {sorted(_locked)}): "
+        "a test that never gave its domain back (release), or another run holds them"
+    )
+
+
+@contextlib.contextmanager
+def held_domain() -> Iterator[int]:
+    """Hold a free domain for the ``with`` block (``free_domain``), then give it back."""
+    domain = free_domain()
+    try:
+        yield domain
+    finally:
+        release(domain)
 
 
 def ros2_type(ros1_type: str, kind: str) -> str:

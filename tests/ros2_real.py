@@ -15,12 +15,12 @@ import signal
 import subprocess
 import time
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import pytest
-from ros2_harness import start_ready
+from ros2_harness import free_domain, release, start_ready
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE = Path(__file__).with_name("ros2_node.py")
@@ -61,6 +61,13 @@ class Ros2System:
     domain: int
     tmp: Path
     processes: list[Process]
+    holds_domain: bool = field(default=False, kw_only=True)
+    """True when this system took its domain (``on_a_free_domain``): ``stop`` gives it back."""
+
+    @classmethod
+    def on_a_free_domain(cls, distro: str, tmp: Path) -> Ros2System:
+        """Return an empty system on a domain it holds until ``stop`` (a module may keep it)."""
+        return cls(distro, free_domain(), tmp, [], holds_domain=True)
 
     def start(self, *nodes: dict[str, Any]) -> Process:
         """Start one process holding ``nodes``; return once it says ``ready``."""
@@ -89,6 +96,8 @@ class Ros2System:
         """Stop every process (SIGTERM: the participant says goodbye; SIGKILL after 10 s)."""
         stop_all(p.process for p in self.processes)
         self.processes.clear()
+        if self.holds_domain:
+            release(self.domain)
 
 
 def stop_all(processes: Iterable[subprocess.Popen[bytes]]) -> None:

@@ -28,7 +28,6 @@ from typing import Any
 import jsonschema
 import pydot
 import pytest
-import ros2_harness
 import xmlschema
 import yaml
 from pddlcheck import plan_all
@@ -457,12 +456,11 @@ def test_ros1_stand_ins_act_out_actions_on_a_real_master(
 
 
 def test_real_rclpy_action_nodes_are_imported_and_inspected(
-    runner: CliRunner, tmp_path: Path
+    runner: CliRunner, domain_id: int, tmp_path: Path
 ) -> None:
     if not ROS2_PYTHON.exists():
         pytest.fail(f"{ROS2_PYTHON} is missing: run make ros2-venvs (make test does)")
-    domain = ros2_harness.free_domain()  # locked for this run: no other test takes it
-    env = {**os.environ, "ROS_DOMAIN_ID": str(domain), "ROS_LOG_DIR": str(tmp_path)}
+    env = {**os.environ, "ROS_DOMAIN_ID": str(domain_id), "ROS_LOG_DIR": str(tmp_path)}
     env.pop("CYCLONEDDS_URI", None)
     argv = [str(ROS2_PYTHON), str(HERE / "ros2_action_nodes.py"), "/fibonacci",
             "server=fib_server", "client=fib_client"]  # fmt: skip
@@ -476,7 +474,7 @@ def test_real_rclpy_action_nodes_are_imported_and_inspected(
         for _ in range(5):  # discovery may not have met both nodes at the first read
             taken = subprocess.run(
                 [sys.executable, "-m", "rosreconf", "snapshot", "--ros2", "--domain",
-                 str(domain), "-o", str(snapshot)],
+                 str(domain_id), "-o", str(snapshot)],
                 env=env, capture_output=True, text=True, timeout=120,
             )  # fmt: skip
             assert taken.returncode == 0, taken.stderr

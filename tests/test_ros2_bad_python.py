@@ -42,18 +42,19 @@ NAMED = {
 
 
 @pytest.mark.parametrize("fault", sorted(FAKES))
-def test_a_bad_ros2_python_is_named_within_seconds(fault: str, tmp_path: Path) -> None:
+def test_a_bad_ros2_python_is_named_within_seconds(
+    fault: str, domain_id: int, tmp_path: Path
+) -> None:
     if not JAZZY.exists():  # make test builds it: missing is a failure, never a skip
         pytest.fail("the Jazzy venv is missing: run `make ros2-venvs`", pytrace=False)
     fake = tmp_path / f"fake-python-{fault}"
     script = FAKES[fault].replace("{real}", str(JAZZY))
     fake.write_text("#!/bin/sh\n# provoked fault (tests/test_ros2_bad_python.py)\n" + script)
     fake.chmod(0o755)
-    domain = ros2_harness.free_domain()
     env = {**ros2_harness.dds_env(), "ROSRECONF_ROS2_PYTHON": str(fake), "HOME": str(tmp_path)}
     env.update(ROS_LOG_DIR=str(tmp_path))
     env.pop("CYCLONEDDS_URI", None)
-    argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain),
+    argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain_id),
             "--only", "object_repositioning", "--apply", "--stand-ins", "--once",
             "--settle", "150"]  # fmt: skip  # 13 rclpy imports at once, no zygote: slow when busy
     start = time.monotonic()

@@ -22,7 +22,6 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-import ros2_harness
 import ros2_real
 from typer.testing import CliRunner
 
@@ -109,13 +108,13 @@ def _same(got: object, want: object) -> bool:
 
 @pytest.mark.parametrize("distro", ros2_real.DISTROS)
 def test_each_parameter_reaches_a_real_node_with_the_library_type(
-    distro: str, tmp_path: Path
+    distro: str, domain_id: int, tmp_path: Path
 ) -> None:
     library = load_paths([_library(tmp_path)]).library
     given = dict(library["PROBE"].launch.parameters)  # type: ignore[union-attr]
     assert given == {name: value for name, (_, value) in HOSTILE.items()}
     argv = ros2_node_arguments(library, "PROBE", {})
-    env = ros2_real.node_env(ros2_harness.free_domain(), tmp_path / "home")
+    env = ros2_real.node_env(domain_id, tmp_path / "home")
     done = subprocess.run(
         [str(ros2_real.python_of(distro)), str(PROBE), *argv],
         env=env,

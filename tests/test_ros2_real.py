@@ -68,7 +68,7 @@ def loopback() -> Iterator[None]:
 
 
 def _system(distro: str, tmp: Path) -> ros2_real.Ros2System:
-    return ros2_real.Ros2System(distro, ros2_harness.free_domain(), tmp, [])
+    return ros2_real.Ros2System.on_a_free_domain(distro, tmp)
 
 
 @pytest.fixture(scope="module")
@@ -171,8 +171,10 @@ def test_wrong_distro_is_refused_plainly(nominal: ros2_real.Ros2System, runner: 
     assert result.stdout == ""
 
 
-def test_nothing_on_the_domain_is_said_plainly(loopback: None, runner: CliRunner) -> None:
-    result = runner.invoke(app, ["snapshot", "--ros2", "--domain", str(ros2_harness.free_domain())])
+def test_nothing_on_the_domain_is_said_plainly(
+    loopback: None, domain_id: int, runner: CliRunner
+) -> None:
+    result = runner.invoke(app, ["snapshot", "--ros2", "--domain", str(domain_id)])
     assert result.exit_code == 3
     assert "nothing seen on ROS 2 domain" in result.stderr
     assert result.stdout == ""

@@ -64,8 +64,8 @@ def forty(
 ) -> Iterator[ros2_real.Ros2System]:
     """Run the 40 nodes, eight per process, on a private domain of the round's distro."""
     distro = str(request.param)
-    system = ros2_real.Ros2System(
-        distro, ros2_harness.free_domain(), tmp_path_factory.mktemp(f"forty-{distro}"), []
+    system = ros2_real.Ros2System.on_a_free_domain(
+        distro, tmp_path_factory.mktemp(f"forty-{distro}")
     )
     with pytest.MonkeyPatch.context() as mp:
         mp.setenv("CYCLONEDDS_URI", ros2_harness.loopback_config())

@@ -67,7 +67,7 @@ def robot(
     with pytest.MonkeyPatch.context() as mp:
         mp.setenv("CYCLONEDDS_URI", ros2_harness.loopback_config())
         tmp = tmp_path_factory.mktemp(f"supervise-{distro}")
-        system = ros2_real.Ros2System(distro, ros2_harness.free_domain(), tmp, [])
+        system = ros2_real.Ros2System.on_a_free_domain(distro, tmp)
         try:
             for name in SOLO:
                 system.start({"name": name[1:], "namespace": "/"})

@@ -290,12 +290,10 @@ def test_sigterm_and_sigint_stop_watch_and_its_nodes_every_time(tmp_path: Path) 
     files += ["--schema", str(tmp_path / "tiny_schema.yaml")]
     for batch in range(5):  # 20 runs, 4 at a time on domains of their own (cheaper)
         runs = []
-        for j in range(4):
+        domains = [ros2_harness.free_domain() for _ in range(4)]  # given back after the batch
+        for j, domain in enumerate(domains):
             i = 4 * batch + j
             (tmp_path / f"run{i}").mkdir()
-            # a fresh domain for every run: one reused across batches is unlocked between them
-            # (a process keeps its newest KEEP_LOCKED) and may be taken there by another test
-            domain = ros2_harness.free_domain()
             runs.append((i, Watch(tmp_path / f"run{i}", domain, *files)))
         try:
             for _, watch in runs:
@@ -310,6 +308,8 @@ def test_sigterm_and_sigint_stop_watch_and_its_nodes_every_time(tmp_path: Path) 
         finally:
             for _, watch in runs:
                 watch.stop(signal.SIGKILL)
+            for domain in domains:
+                ros2_harness.release(domain)
 
 
 def test_stand_ins_without_a_python_that_has_rclpy_say_how_to_get_one(
