@@ -10,9 +10,6 @@ node starts. The reference for what is unwired is the library file read by hand 
 from __future__ import annotations
 
 import json
-import select
-import subprocess
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -20,13 +17,13 @@ from typing import Any
 import jsonschema
 import pytest
 import ros2_real
+from ros2_team import STANDIN, Member, Team, wait_ready
 from test_json_outputs import schema_of
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
 
 ROOT = Path(__file__).resolve().parent.parent
-STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 DATA = Path(__file__).with_name("data") / "wiring"
 PAIR = ["-l", str(DATA / "pair_library.yaml"), "-s", str(DATA / "pair_schema.yaml")]
 TRIGGER, STRING = "std_srvs/srv/Trigger", "std_msgs/msg/String"
@@ -40,37 +37,38 @@ WIRED = ["--ros-args", "-r", "svc_a:=/real/svc_a", "-r", "t_data:=/real/t_data"]
 
 
 class Nodes:
-    """Stand-in processes of one distribution on one domain, stopped at the end."""
+    """Stand-in processes of one distribution on one domain, stopped at the end.
+
+    Each is its own process, forked from one warm process of the distro's venv
+    (``ros2_team``), as a launch file would start it: its own pid and DDS participant, its
+    remappings on its command line.
+    """
 
     def __init__(self, distro: str, domain: int, tmp: Path) -> None:
         self.distro, self.domain, self.tmp = distro, domain, tmp
-        self.processes: dict[str, subprocess.Popen[bytes]] = {}
+        self.processes: dict[str, Member] = {}
+        env = ros2_real.node_env(domain, tmp / "home")
+        self.team = Team(ros2_real.python_of(distro), env, tmp / "team")
 
     def start(self, key: str, spec: dict[str, Any], *ros_args: str) -> None:
         """Start one stand-in acting out ``spec``; return once its node exists."""
         argv = [str(ros2_real.python_of(self.distro)), str(STANDIN), json.dumps(spec), *ros_args]
-        env = ros2_real.node_env(self.domain, self.tmp / "home")
-        err = self.tmp / f"{key}.err"
-        proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=err.open("wb"), env=env,
-                                start_new_session=True)  # fmt: skip
-        assert proc.stdout is not None
-        deadline, said = time.monotonic() + ros2_real.START_TIMEOUT, []
-        while not said or b'"ready"' not in said[-1]:  # Fast DDS may log on stdout first
-            left = deadline - time.monotonic()
-            if left <= 0 or not select.select([proc.stdout], [], [], left)[0]:
-                break
-            said.append(proc.stdout.readline())
-            if not said[-1]:
-                break  # it exited
-        if not said or b'"ready"' not in said[-1]:
-            proc.kill()
-            proc.wait(5)
-            pytest.fail(f"stand-in {key} did not start: {said!r} {err.read_text()[-2000:]}")
-        self.processes[key] = proc
+        node = self.team.start(key, argv)
+        try:
+            wait_ready({key: node}, ros2_real.START_TIMEOUT)
+        except AssertionError as exc:
+            node.kill()
+            pytest.fail(f"stand-in {key} did not start: {exc} {node.log.read_text()[-2000:]}")
+        self.processes[key] = node
 
     def stop(self, *keys: str) -> None:
         """Stop the given processes (all without keys): their participants say goodbye."""
         ros2_real.stop_all([self.processes.pop(k) for k in (keys or list(self.processes))])
+
+    def close(self) -> None:
+        """Stop every process left, then the process they were forked from."""
+        self.stop()
+        self.team.close()
 
 
 @pytest.fixture(params=ros2_real.DISTROS)
@@ -81,7 +79,7 @@ def nodes(request: pytest.FixtureRequest, ros2_domain: int, tmp_path: Path) -> I
     try:
         yield started
     finally:
-        started.stop()
+        started.close()
 
 
 def _inspect(domain: int, *files: str) -> tuple[int, dict[str, Any]]:

@@ -16,10 +16,11 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from ros2_team import STANDIN, Member, Team, wait_ready
 from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
 from test_watch_wiring import _python
 
-STANDIN = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
+Node = subprocess.Popen[bytes] | Member
 HANG = Path(__file__).with_name("ros2_hang_on_usr1.py")
 """The fault injector: the node's executor stops for good on SIGUSR1 (its process runs on)."""
 
@@ -30,13 +31,14 @@ def _team(
     library_file: Path | None = None,
     hang: str = "",
     python: Path | None = None,
-) -> dict[str, subprocess.Popen[bytes]]:
+) -> tuple[Team, dict[str, Node]]:
     """Start the nominal configuration's 13 nodes as the team's launch file would.
 
     Each is its own rclpy process, wired by the ``-r`` rules a launch file gives it, with Fast
-    DDS's default 20 s lease; each is up (it said ``ready``) when this returns. The library
-    is the bundled one unless ``library_file`` is given; ``hang`` runs under ``HANG``; the
-    nodes run under ``python`` (default: the Jazzy venv's).
+    DDS's default 20 s lease, forked from one warm process (``ros2_team``); each is up (it
+    said ``ready``) when this returns. The library is the bundled one unless ``library_file``
+    is given; ``hang`` runs under ``HANG``, a process of its own; the nodes run under
+    ``python`` (default: the Jazzy venv's).
     """
     from rosreconf.formats.loader import load_bundled, load_paths
     from rosreconf.model import Configuration
@@ -49,32 +51,39 @@ def _team(
     nominal = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     remaps = wiring(library, schema, nominal)
     env = {**_env(tmp), "ROS_DOMAIN_ID": str(domain)}
-    ours = {}
-    for c in NOMINAL:
-        spec = json.dumps(ros2_standin_spec(library[c]))
-        run = [str(python or _ros2_python()), *([str(HANG)] if c == hang else [])]
-        argv = [*run, str(STANDIN), spec]
-        argv += ros2_node_arguments(library, c, remaps)
-        ours[c] = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
-                                   stderr=subprocess.DEVNULL)  # fmt: skip
+    interpreter = python or _ros2_python()
+    team = Team(interpreter, env, tmp / "team")
+    ours: dict[str, Node] = {}
     try:
-        for p in ours.values():  # all up before watch looks, or it would start its own
-            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+        for c in NOMINAL:
+            argv = [str(interpreter), str(STANDIN), json.dumps(ros2_standin_spec(library[c]))]
+            argv += ros2_node_arguments(library, c, remaps)
+            if c == hang:  # the fault injector wraps the script: a process of its own
+                wrapped = [argv[0], str(HANG), *argv[1:]]
+                quiet = subprocess.DEVNULL
+                ours[c] = subprocess.Popen(wrapped, env=env, stdout=subprocess.PIPE, stderr=quiet)
+            else:
+                ours[c] = team.start(c, argv)
+        for c, p in ours.items():  # all up before watch looks, or it would start its own
+            if isinstance(p, subprocess.Popen):
+                assert p.stdout is not None and b'"ready"' in p.stdout.readline(), c
+        wait_ready({c: p for c, p in ours.items() if isinstance(p, Member)})
     except BaseException:
-        _end(None, ours)
+        _end(None, team, ours)
         raise
-    return ours
+    return team, ours
 
 
-def _end(watch: Watch | None, ours: dict[str, subprocess.Popen[bytes]]) -> None:
+def _end(watch: Watch | None, team: Team, ours: dict[str, Node]) -> None:
     """Stop the watch, then every team node left (a stopped one is resumed to be killed)."""
     if watch is not None:
         watch.stop(signal.SIGKILL)
     for p in ours.values():
         if p.poll() is None:
-            os.kill(p.pid, signal.SIGCONT)
+            p.send_signal(signal.SIGCONT)
             p.kill()
         p.wait()
+    team.close()
 
 
 @pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # Fast DDS 2.14 and 3.2: GUID layouts
@@ -82,7 +91,7 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
     ros2_domain: int, tmp_path: Path, distro: str
 ) -> None:
     python = _python(distro)
-    ours = _team(tmp_path, ros2_domain, python=python)
+    team, ours = _team(tmp_path, ros2_domain, python=python)
     watch: Watch | None = None
     try:
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", python=python)
@@ -106,7 +115,7 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
         # (no configuration is left without both NCA1 and NSM3 that meets the schema's
         # performance requirements: watch says so and keeps watching)
     finally:
-        _end(watch, ours)
+        _end(watch, team, ours)
 
 
 def test_an_impostor_named_like_a_component_is_a_name_clash_never_the_component(
@@ -144,7 +153,7 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
 ) -> None:
     """SIGSTOP of a team's node: failed as hung, replaced, and (--stop-outside) its process
     stopped though it is stopped itself (stopproc resumes it after each signal)."""
-    ours = _team(tmp_path, ros2_domain)
+    team, ours = _team(tmp_path, ros2_domain)
     watch: Watch | None = None
     try:
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside")
@@ -164,7 +173,7 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
         assert (stop["how"], stop["pid"]) == ("signal", ours["NCA1"].pid)
         assert ours["NCA1"].wait(5) is not None  # gone: stopped by rosreconf, not by the test
     finally:
-        _end(watch, ours)
+        _end(watch, team, ours)
 
 
 @pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # the state query over plain DDS
@@ -179,7 +188,7 @@ def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_proc
     library = tmp_path / "nca1_managed.yaml"
     library.write_text(text[:at] + "      lifecycle: true\n" + text[at:])
     python = _python(distro)
-    ours = _team(tmp_path, ros2_domain, library, hang="NCA1", python=python)
+    team, ours = _team(tmp_path, ros2_domain, library, hang="NCA1", python=python)
     watch: Watch | None = None
     try:
         schema = str(ROOT / "schemas" / "object_repositioning.yaml")
@@ -202,4 +211,4 @@ def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_proc
         # (the kept team nodes that must be rewired are named "restart this by hand":
         # rosreconf cannot restart what it did not start, so no conformant is awaited here)
     finally:
-        _end(watch, ours)
+        _end(watch, team, ours)

@@ -21,6 +21,7 @@ from typing import Any
 
 import pytest
 import ros2_harness
+from ros2_team import Member, Team, wait_ready
 
 ROOT = Path(__file__).resolve().parent.parent
 JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
@@ -389,16 +390,16 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
            "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}  # fmt: skip
     script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
 
-    def start(c: str, args: list[str]) -> subprocess.Popen[bytes]:
+    team = Team(_ros2_python(), env, tmp_path / "team")  # each node forked, as ros2_team says
+
+    def start(c: str, args: list[str]) -> Member:
         spec = json.dumps(ros2_standin_spec(library[c]))
-        return subprocess.Popen([str(_ros2_python()), str(script), spec, *args], env=env,
-                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+        return team.start(c, [str(_ros2_python()), str(script), spec, *args])
 
     ours = {c: start(c, ros2_node_arguments(library, c, remaps)) for c in NOMINAL}
     watch: Watch | None = None
     try:
-        for p in ours.values():  # all up before watch looks, or it would start its own
-            assert p.stdout is not None and b'"ready"' in p.stdout.readline()
+        wait_ready(ours)  # all up before watch looks, or it would start its own
         flags = ["--stop-outside"] if stop_outside else []
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", *flags)
         watch.wait("running")  # the test's own nodes: watch started none of them
@@ -442,6 +443,7 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
             if p.poll() is None:
                 p.kill()
             p.wait()
+        team.close()
 
 
 def test_a_components_executable_is_run_as_ros2_run_runs_it(tmp_path: Path) -> None:
