@@ -87,11 +87,25 @@ def _ros1_copy(tmp_path: Path) -> Path:
 def _brute_force(
     library: ComponentLibrary, schema: InteroperabilitySchema, failed: tuple[str, ...] = ()
 ) -> set[Configuration]:
-    """Return every configuration the definition accepts, trying each component everywhere."""
+    """Return every configuration the definition accepts, trying each component everywhere.
+
+    A role takes only a component of its own abstraction (Def. 5): that each other component
+    is refused in each role is checked once per (role, component), the other roles holding
+    components of their abstractions; the configurations are then every combination of those
+    (here 8-12 combinations and 45-54 refusals, against 531,441-1,000,000 checks for the whole
+    product of 9-10 components over 6 roles: 29 CPU s of the suite before).
+    """
     roles = schema.graph.roles
     names = [c.name for c in library]
+    matching = {r.name: [c.name for c in library if c.abstraction == r.abstraction] for r in roles}
+    some = {r: (m[0] if m else names[0]) for r, m in matching.items()}
+    for role in roles:
+        for name in names:
+            if name not in matching[role.name]:
+                alien = Configuration.of(schema.name, {**some, role.name: name}, roles)
+                assert not is_valid(alien, library, schema, failed), (role.name, name)
     out = set()
-    for combo in itertools.product(names, repeat=len(roles)):
+    for combo in itertools.product(*(matching[r.name] for r in roles)):
         mapping = dict(zip([r.name for r in roles], combo, strict=True))
         config = Configuration.of(schema.name, mapping, roles)
         if is_valid(config, library, schema, failed):
