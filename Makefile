@@ -4,16 +4,13 @@ VENV   ?= .venv
 PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
-# pip installs without compiling every module of every package (--no-compile): a fresh
-# clone's three venvs then install in about 88 s, not 100 s (measured once each), and Python
-# writes bytecode only for what runs (make test lets it: PYTHONDONTWRITEBYTECODE= below).
 
 .PHONY: demo test lint typecheck pytest explore system-deps ros2-venvs bench architecture clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet --no-compile -e '.[test,planners,plot,dask,ros2]'
+	$(PY) -m pip install --quiet -e '.[test,planners,plot,dask,ros2]'
 	touch $(STAMP)
 
 ## Install the Debian packages the tests need (ROS 1, Graphviz); a no-op when present.
@@ -46,7 +43,7 @@ ros2-venvs: $(foreach d,$(ROS2_DISTROS),.venv-ros2-$(d)/.installed-stamp)
 .venv-ros2-%/.installed-stamp: requirements/ros2-%.txt
 	@if cmp -s $< $@; then touch $@; else \
 	  set -ex; python3 -m venv .venv-ros2-$*; \
-	  .venv-ros2-$*/bin/python -m pip install --quiet --no-compile -r $<; \
+	  .venv-ros2-$*/bin/python -m pip install --quiet -r $<; \
 	  HOME=$${HOME:-/tmp} .venv-ros2-$*/bin/python -c 'import rclpy, rclpy.lifecycle, rclpy.action'; \
 	  cp $< $@; fi
 
