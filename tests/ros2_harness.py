@@ -66,10 +66,10 @@ def xdist_worker() -> tuple[int, int]:
 def _last_domain() -> int:
     """Return the highest domain id whose RTPS ports all lie below the kernel's ephemeral ports.
 
-    Domain d's ports are 7400 + 250 d up to 7400 + 250 (d + 1) - 1. Above that limit (101 with
-    Linux's default range 32768-60999) a port may already be taken as an ephemeral one, by any
-    socket's send side or TCP client on the host (seen: ``watch`` on domain 189 could not bind
-    54651). The range is only read here, never changed.
+    Domain d's ports are 7400 + 250 d up to 7400 + 250 (d + 1) - 1, so with Linux's default
+    range (32768-60999) the highest is 100. Above it a port may already be taken as an
+    ephemeral one, by any socket's send side or TCP client on the host (seen: ``watch`` on
+    domain 189 could not bind 54651). The range is only read here, never changed.
     """
     try:
         low = int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
