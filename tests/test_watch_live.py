@@ -9,13 +9,18 @@ that no process is left.
 
 from __future__ import annotations
 
+import json
+import os
+import signal
+import subprocess
+import sys
 import time
 import xmlrpc.client
 from pathlib import Path
 
 import pytest
 import ros_harness
-from conftest import StartStandIn
+from conftest import FAKES, StartStandIn
 from typer.testing import CliRunner
 
 from rosreconf.cli.app import app
@@ -159,3 +164,47 @@ def test_without_apply_a_restart_leaves_components_missing_not_failed(
     assert kinds == ["running", "master-restarted", "missing"], kinds
     assert not check.ok and "failed" not in kinds
     assert events[2].data["components"] == list(watcher.current.components)
+
+
+def test_sigterm_says_what_was_stopped_though_roslaunch_is_slow_to_stop(
+    ros_master: ros_harness.Master, tmp_path: Path
+) -> None:
+    """A roslaunch that does not end on SIGINT is killed within watch's bounded stop, and
+    watch still says so (``stopped``, ``kept``) before it exits 143.
+
+    A fault injector stands in for roslaunch (``fakes/roslaunch_slow_to_stop.py``, first on
+    PATH as ``roslaunch``): a real one whose nodes are slow to stop cannot be made on demand.
+    """
+    fake_bin = tmp_path / "bin"
+    fake_bin.mkdir()
+    (fake_bin / "roslaunch").symlink_to(FAKES / "roslaunch_slow_to_stop.py")
+    env = ros_master.env()
+    env["PATH"] = f"{fake_bin}{os.pathsep}{env.get('PATH', os.defpath)}"
+    log = tmp_path / "watch.jsonl"
+    argv = [sys.executable, "-m", "rosreconf", "watch", "--master", ros_master.uri,
+            "--only", SCHEMA, "--apply", "--stand-ins", "--interval", "0.2",
+            "--json-log", str(log)]  # fmt: skip
+    watch = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL, start_new_session=True)  # fmt: skip
+    try:
+        ros_harness.wait_until(
+            lambda: (
+                bool(list(ros_master.home.glob("log/rosreconf-watch-*/*.fake-pid")))
+                or watch.poll() is not None
+            ),
+            60.0,
+            "the fake roslaunch to start",
+            interval=0.1,
+        )
+        (pid_file,) = ros_master.home.glob("log/rosreconf-watch-*/*.fake-pid")
+        fake = int(pid_file.read_text())
+        watch.send_signal(signal.SIGTERM)
+        assert watch.wait(10) == 143
+        said = [json.loads(line)["event"] for line in log.read_text().splitlines()]
+        assert said[-2:] == ["stopped", "kept"], said
+        gone = lambda: not Path(f"/proc/{fake}").exists()  # noqa: E731
+        ros_harness.wait_until(gone, 5.0, "the fake roslaunch to be gone")  # killed, reaped
+    finally:
+        if watch.poll() is None:
+            watch.kill()
+            watch.wait()

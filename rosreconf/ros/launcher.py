@@ -30,6 +30,13 @@ from rosreconf.ros.printable import printable
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.sources import LiveSource
 
+CLOSE_GRACE_SECONDS = 2.0
+"""Seconds the launch processes get to stop their nodes when the watcher ends, before their
+groups are killed. With ``stopped`` and ``kept`` said after it, this fits inside the CLI's
+bounded stop (``rosreconf.cli.stopping``: the process ends 4 s after SIGTERM or SIGINT), as
+ROS 2's SIGINT, SIGTERM, SIGKILL steps of 1 s do. It was ``stop_all``'s 5 s: a roslaunch
+slow to stop (a loaded machine) then ended watch by the hard stop, before it said anything."""
+
 
 @dataclass
 class Launcher:
@@ -129,11 +136,15 @@ class Launcher:
                 )
         return bool(self.launches) and self.launches[-1].process.poll() is not None
 
-    def stop(self) -> int:
-        """Stop every launch process started, and the nodes they run; return how many."""
+    def stop(self, grace: float = 5.0) -> int:
+        """Stop every launch process started, and the nodes they run; return how many.
+
+        Each gets SIGINT (roslaunch then stops its nodes) and ``grace`` seconds, then its
+        group is killed.
+        """
         n = len(self.launches)
         if self.launches:
-            stop_all(self.launches)
+            stop_all(self.launches, grace)
         self.launches.clear()
         return n
 
@@ -150,7 +161,7 @@ class Launcher:
 
     def close(self) -> None:
         """Stop every launch process, and say where the launch files are kept."""
-        n = self.stop()
+        n = self.stop(CLOSE_GRACE_SECONDS)
         if n:
             self.say("stopped", f"stopped the {n} roslaunch process(es) started")
         if self.steps and self.launch_dir is not None:
