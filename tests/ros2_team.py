@@ -80,10 +80,6 @@ class Member:
         """SIGKILL its process."""
         self.send_signal(signal.SIGKILL)
 
-    def terminate(self) -> None:
-        """SIGTERM its process."""
-        self.send_signal(signal.SIGTERM)
-
     def ready(self) -> bool:
         """Tell whether the node has said ``ready`` (in its log)."""
         return self.log.exists() and b'"ready"' in self.log.read_bytes()

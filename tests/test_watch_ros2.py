@@ -21,7 +21,7 @@ from typing import Any
 
 import pytest
 import ros2_harness
-from ros2_team import Member, Team, wait_ready
+from ros2_team import STANDIN, Member, Team, wait_ready
 
 ROOT = Path(__file__).resolve().parent.parent
 JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
@@ -388,13 +388,11 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
     profile.write_text(lease_profile(2.0))  # a crash is seen by DDS within seconds
     env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain),
            "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}  # fmt: skip
-    script = ROOT / "rosreconf" / "ros" / "ros2" / "scripts" / "standin_node.py"
-
     team = Team(_ros2_python(), env, tmp_path / "team")  # each node forked, as ros2_team says
 
     def start(c: str, args: list[str]) -> Member:
         spec = json.dumps(ros2_standin_spec(library[c]))
-        return team.start(c, [str(_ros2_python()), str(script), spec, *args])
+        return team.start(c, [str(_ros2_python()), str(STANDIN), spec, *args])
 
     ours = {c: start(c, ros2_node_arguments(library, c, remaps)) for c in NOMINAL}
     watch: Watch | None = None
