@@ -99,13 +99,24 @@ _locked: dict[int, int] = {}
 """Domain id -> the descriptor holding its lock, for every domain this process holds."""
 
 
+COOLDOWN = 15.0
+"""Seconds a domain given back stays unavailable to every run on the host: the test's
+processes die asynchronously after it ends (stand-ins by their watchdogs after ``watch``'s
+SIGKILL), and a dying /NCA1 of one run must not be seen by the next test on that domain."""
+
+
 def _lock(domain: int) -> bool:
-    """Lock ``domain`` for this process; False when another process holds it."""
+    """Lock ``domain`` for this process; False when another process holds it, or gave it back
+    less than ``COOLDOWN`` s ago (the time of the release is written in the lock file)."""
     LOCKS.mkdir(exist_ok=True)
     fd = os.open(LOCKS / f"{domain}.lock", os.O_RDWR | os.O_CREAT, 0o666)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError:
+        released = float(os.pread(fd, 64, 0).decode() or 0.0)
+    except (OSError, ValueError):
+        os.close(fd)
+        return False
+    if 0.0 <= time.time() - released < COOLDOWN:
         os.close(fd)
         return False
     _locked[domain] = fd
@@ -116,31 +127,49 @@ def release(domain: int) -> None:
     """Give ``domain`` back when nothing of the test runs on it any more (idempotent)."""
     fd = _locked.pop(domain, None)
     if fd is not None:
+        stamp = f"{time.time():.3f}".encode()
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, stamp, 0)
         os.close(fd)  # closing the descriptor releases its lock
 
 
-def free_domain() -> int:
-    """Return a DDS domain id that no test process here holds and whose first unicast
-    discovery port is free, locked (``LOCKS``) until ``release`` or this process's end.
-
-    Domain d's participant i listens on UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping);
-    a bound port means someone uses the domain here. Each test gives back what it took
-    (``held_domain``, the ``ros2_domain`` fixture): a lock that lapsed while its nodes still
-    ran would let another run on this host take their domain.
-    """
-    mine = _domains()
-    for _ in range(len(mine)):
-        domain = min((d for d in mine if d >= _next[0]), default=mine[0])
-        _next[0] = domain + 1
-        if domain in _locked or not _lock(domain):
-            continue
+def _ports_free(domain: int) -> bool:
+    """True when no participant of ``domain`` listens here: domain d's participant i binds
+    UDP 7400 + 250 d + 10 + 2 i (the RTPS port mapping), i up to the tests' maximum of 40."""
+    for index in range(41):
         with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
             try:
-                s.bind(("127.0.0.1", 7400 + 250 * domain + 10))
+                s.bind(("127.0.0.1", 7400 + 250 * domain + 10 + 2 * index))
             except OSError:
-                release(domain)
+                return False
+    return True
+
+
+def free_domain() -> int:
+    """Return a DDS domain id that no test process here holds, nobody gave back in the last
+    ``COOLDOWN`` s, and no participant listens on, locked (``LOCKS``) until ``release`` or this
+    process's end.
+
+    Each test gives back what it took (``held_domain``, the ``ros2_domain`` fixture): a lock
+    that lapsed while its nodes still ran would let another run on this host take their
+    domain. A bound participant port means someone still uses the domain here. When every
+    domain is cooling down, wait for one rather than fail.
+    """
+    mine = _domains()
+    deadline = time.monotonic() + COOLDOWN + 5.0
+    while True:
+        for _ in range(len(mine)):
+            domain = min((d for d in mine if d >= _next[0]), default=mine[0])
+            _next[0] = domain + 1
+            if domain in _locked or not _lock(domain):
+                continue
+            if not _ports_free(domain):
+                os.close(_locked.pop(domain))  # not ours to stamp: someone else's nodes run
                 continue
             return domain
+        if time.monotonic() > deadline:
+            break
+        time.sleep(0.5)
     raise RuntimeError(
         f"no free DDS domain id of {mine} (this process holds {sorted(_locked)}): "
         "a test that never gave its domain back (release), or another run holds them"
