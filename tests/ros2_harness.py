@@ -197,7 +197,7 @@ def _join(namespace: str, name: str) -> str:
     return "/" + "/".join(parts)
 
 
-def _live(component: Component, label: str) -> str:
+def live_name(component: Component, label: str) -> str:
     """Return the global name ``component``'s executable uses for ``label`` (its remapping)."""
     launch = component.launch
     ns = (launch.namespace if launch else None) or "/"
@@ -223,12 +223,12 @@ def node_spec(
     ns = (launch.namespace if launch else None) or "/"
 
     def live(label: str) -> str:
-        return _live(component, label)
+        return live_name(component, label)
 
     def wired(option: Any) -> str:
         for p in providers:
             if option in p.provides:
-                return _live(p, option.label)
+                return live_name(p, option.label)
         return live(option.label)
 
     node: dict[str, Any] = {

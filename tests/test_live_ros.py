@@ -3,7 +3,8 @@
 Stand-ins of the nominal Object Repositioning configuration (NSM arm, camera 1) run on a
 private roscore; ``import`` and ``inspect`` read them; NSM3 is SIGKILLed (it lingers in the
 master); ``watch --apply --stand-ins`` runs as a real subprocess and must bring the DC-arm
-configuration up through the real roslaunch, which ``inspect`` then confirms. Everything
+configuration up through the real roslaunch, which ``inspect`` then confirms, and the
+master's own getSystemState too (read here, not through rosreconf). Everything
 started here is stopped at the end, and the master fixture asserts no process is left.
 """
 
@@ -19,6 +20,7 @@ from typing import Any
 import pytest
 import ros_harness
 from conftest import StartStandIn
+from ros2_harness import live_name
 
 from rosreconf.cli.app import app
 from rosreconf.errors import Severity
@@ -99,6 +101,7 @@ def test_import_inspect_and_self_repair(
         assert new["camera"] == "NCA1" and new["reasoner"] == "NREA"
         assert events[-1]["event"] == "conformant", events[-1]
         print(f"kill -> conformant: {took:.2f} s after watch started")
+        _assert_master_holds_only(uri, library, set(new.values()))
 
         config = tmp_path / "dc.json"
         config.write_text(render_configurations({SCHEMA: new}))
@@ -125,3 +128,28 @@ def test_import_inspect_and_self_repair(
         if p not in ours
     }
     assert not left, f"watch left processes behind: {left}"
+
+
+def _assert_master_holds_only(uri: str, library: Any, chosen: set[str]) -> None:
+    """Read the repaired graph from the master itself (getSystemState), not through rosreconf:
+    only the chosen components' nodes are registered (the replaced ones stopped, dead NSM3
+    purged), every topic one of them subscribes to has a publisher among them, and every
+    service a chosen component requires is served by a chosen provider, at the name that
+    provider's launch entry gives it. (ROS 1 service clients are not known to the master, so
+    which name a consumer calls cannot be read there.)"""
+    state = ros_harness.system_state(uri)
+    assert state is not None, "the master did not answer getSystemState"
+    pubs, subs, srvs = ({name: set(nodes) for name, nodes in part} for part in state)
+    ours = {f"/{c}" for c in chosen}
+    seen = {n for part in (pubs, subs, srvs) for nodes in part.values() for n in nodes}
+    assert seen - {"/rosout"} == ours, f"registered beyond the configuration: {seen - ours}"
+    dangling = {
+        t: nodes for t, nodes in subs.items() if nodes & ours and not pubs.get(t, set()) & ours
+    }
+    assert not dangling, f"subscribed with no publisher of the configuration: {dangling}"
+    for name in chosen:
+        for need in library[name].requires:
+            wanted = [o for o in need.options if o.kind == "service"]
+            at = [(p, live_name(library[p], o.label)) for p in chosen for o in wanted
+                  if o in library[p].provides]  # fmt: skip
+            assert any(f"/{p}" in srvs.get(live, set()) for p, live in at), (name, wanted, at)
