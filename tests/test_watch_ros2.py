@@ -430,6 +430,17 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
         for c in for_a_person:  # a person stops them
             ours[c].send_signal(signal.SIGINT)
             ours[c].wait(20)
+        if not stop_outside:  # restarted first with its old rules: watch says what is wrong
+            mark = len(watch.events())
+            ours["NREA"] = start("NREA", ros2_node_arguments(library, "NREA", remaps))
+            said = watch.wait("left-running", after=mark)
+            while not any("NREA is not wired" in f for f in said["findings"]):
+                mark = watch.events().index(said) + 1
+                said = watch.wait("left-running", after=mark)
+            assert said["nodes"] == ["/NREA"] and "restart rewired by hand: /NREA" in said[
+                "message"]  # fmt: skip
+            ours["NREA"].send_signal(signal.SIGINT)
+            ours["NREA"].wait(20)
         rules = [a for r in restart["remappings"] for a in ("-r", r)]
         ours["NREA"] = start("NREA", ["--ros-args", "-r", "__node:=NREA", *rules])
         done = watch.wait("conformant", after=before)

@@ -45,6 +45,8 @@ class ByHand:
         nodes: live node name -> component, for nodes a person must stop or restart.
         restarting: components a person was asked to restart, rewired (until conformant).
         left: the nodes last said to be left for a person.
+        findings: what kept the system from conforming then: said again when it changes (a
+            node a person restarted with the wrong rules is named with what is still wrong).
     """
 
     library: ComponentLibrary
@@ -56,6 +58,7 @@ class ByHand:
     nodes: dict[str, str] = field(default_factory=dict)
     restarting: set[str] = field(default_factory=set)
     left: tuple[str, ...] = ()
+    findings: tuple[str, ...] = ()
 
     def retire(self, leaving: list[tuple[str, str, str, bool]]) -> None:
         """Take outside nodes out of service: stop their processes (all at once), or name them.
@@ -132,14 +135,15 @@ class ByHand:
 
     def settled(self) -> None:
         """Forget what a person was asked to do: the system conforms."""
-        self.left = ()
+        self.left, self.findings = (), ()
         self.nodes.clear()
         self.restarting.clear()
 
     def left_running(self, check: Conformance) -> bool:
         """Say once what is left when only nodes for a person keep ``check`` from conforming."""
         for node in set(self.nodes) - set(check.live.names):  # stopped by a person
-            del self.nodes[node]
+            if self.nodes[node] not in self.restarting:  # one to restart is half done: gone
+                del self.nodes[node]
 
         def for_a_person(f: Finding) -> bool:  # a node to stop, or to restart rewired
             if f.code == "extra-node":
@@ -156,12 +160,19 @@ class ByHand:
                 }
             )
         )
-        if left != self.left:
-            self.left = left
+        findings = tuple(sorted(f.message for f in check.findings))
+        if (left, findings) != (self.left, self.findings):
+            self.left, self.findings = left, findings
+            rewire = [n for n in left if self.nodes.get(n) in self.restarting]
+            stop = [n for n in left if n not in rewire]
+            todo = [f"to stop by hand: {', '.join(stop)}"] if stop else []
+            todo += [f"to restart rewired by hand: {', '.join(rewire)}"] if rewire else []
             self.say(
                 "left-running",
-                f"the configuration runs; left to stop by hand: {', '.join(left)} "
-                "(conformant is logged once they are gone)",
+                f"the configuration runs; left {'; '.join(todo)} (conformant is logged once "
+                f"that is done); still: {'; '.join(findings[:3])}"
+                + (f" and {len(findings) - 3} more" if len(findings) > 3 else ""),
                 nodes=list(left),
+                findings=list(findings),
             )
         return True
