@@ -62,11 +62,17 @@ def test_stand_ins_come_up_beside_a_broken_shared_memory_port(
         python = _python(distro)
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", python=python)
         try:
-            watch.wait("conformant")
+            done = watch.wait("conformant")
+            # What watch says runs: the nominal configuration, or the repair of a stand-in that
+            # died on its own (seen once in a fresh clone: NVP1 exited -11 at its start, and
+            # watch replanned onto the second camera group). A stand-in stuck on a broken port
+            # never comes up and is never failed, so watch would not get here.
+            running = {f"/{c}" for c in done["configuration"].values() if c}
+            assert len(running) == len(NOMINAL)
             # rclpy's own view (a UDP-only probe: it must not wait on the files either)
             env = {**watch.env, "FASTDDS_BUILTIN_TRANSPORTS": "UDPv4"}
-            seen = probe(env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL], python=python)
-            assert {f"/{c}" for c in NOMINAL} <= set(seen["nodes"]), seen["nodes"]
+            seen = probe(env, ros2_domain, wait_for=sorted(running), python=python)
+            assert running <= set(seen["nodes"]), seen["nodes"]
         finally:
             assert watch.stop() == 128 + signal.SIGTERM  # its documented exit on SIGTERM
         assert all(p.stat().st_size == 0 for p in made)  # nobody waited on them, or wrote
