@@ -119,7 +119,8 @@ class Ros2Actuator(Actuator):
         dead = set(self.control.dead)
         now = self.control.exits(current, failed)
         newly = self.control.dead - dead  # their participants linger until their lease ends
-        self.hide({g for g, nodes in participants.items() if newly & set(nodes)})
+        ended = self.control.ended_participants()  # outside processes: exactly theirs
+        self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
         if tend and not now:  # a failure's repair first: standby upkeep never delays it
             self.control.tend()
         return now

@@ -144,6 +144,11 @@ class Ros2Control:
             wanted = {self._node(c) for c in current.components} - own
             self.outside.track(participants, wanted)
 
+    def ended_participants(self) -> set[bytes]:
+        """Return the participants of outside processes found exited or hung since last asked:
+        DDS announces them until their lease ends, so the graph must leave them out."""
+        return self.outside.take_ended() if self.outside is not None else set()
+
     def any_exited(self) -> bool:
         """Tell whether a watched process (own or outside) ended or hung, not yet said."""
         outside = self.outside is not None and self.outside.poll()
@@ -156,7 +161,7 @@ class Ros2Control:
         comps = {self._node(c): (r, c) for r, c in current.assignment if c}
         now = set()
         for node, how in sorted(self.outside.take().items()):
-            self.dead.add(node)  # hidden from the graph: DDS shows it until its lease ends
+            # its participant is hidden from the graph (``ended_participants``), not its name
             if node not in comps or comps[node][1] in {*failed, *self.by_hand.restarting}:
                 continue  # a person restarting it (rewired) stops it first: not a failure
             role, comp = comps[node]

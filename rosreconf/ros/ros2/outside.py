@@ -51,6 +51,12 @@ class OutsideNodes:
             comes back has a participant of its own).
         hung: the processes found stopped for ``HUNG_SECONDS`` -> their nodes (no longer
             watched, but still there to be stopped).
+        participant_of: watched process -> the participant it was confirmed to run.
+        ended: the participants of processes found exited or hung, until ``take_ended``:
+            what the graph must leave out (DDS announces them until their lease ends). The
+            participant, never the node name: a team may have restarted the node already,
+            and its new participant must be seen (fc42, fc66: a restart by hand noticed
+            before its predecessor's exit was hidden for ever).
     """
 
     domain: int
@@ -62,6 +68,8 @@ class OutsideNodes:
     gone: dict[str, str] = field(default_factory=dict)
     located: set[bytes] = field(default_factory=set)
     hung: dict[ProcId, tuple[str, ...]] = field(default_factory=dict)
+    participant_of: dict[ProcId, bytes] = field(default_factory=dict)
+    ended: set[bytes] = field(default_factory=set)
     _watch: ProcessWatch = field(default_factory=ProcessWatch)
 
     @property
@@ -93,6 +101,7 @@ class OutsideNodes:
             if found.proc is not None:  # one that exited already: the next poll says so
                 self._watch.add(found.proc)
                 self.nodes[found.proc] = names
+                self.participant_of[found.proc] = guid
                 self.say(
                     "watched",
                     f"{', '.join(mine)}: watched by its process (pid {found.proc.pid}; "
@@ -117,6 +126,7 @@ class OutsideNodes:
         events = self._watch.poll(0.0)
         for proc in events.exited:
             self.stopped_since.pop(proc, None)
+            self._ended(proc)
             for n in self.nodes.pop(proc, ()):
                 self.gone[n] = "exited"
         for proc in events.stopped:
@@ -128,6 +138,7 @@ class OutsideNodes:
                 del self.stopped_since[proc]
                 self._watch.remove(proc)
                 self.hung[proc] = self.nodes.pop(proc, ())
+                self._ended(proc)
                 for n in self.hung[proc]:
                     self.gone[n] = "hung"
         return bool(self.gone)
@@ -142,11 +153,21 @@ class OutsideNodes:
         gone, self.gone = self.gone, {}
         return gone
 
+    def _ended(self, proc: ProcId) -> None:
+        if (guid := self.participant_of.pop(proc, None)) is not None:
+            self.ended.add(guid)
+
+    def take_ended(self) -> set[bytes]:
+        """Return the participants whose process ended or hung since last asked, and forget."""
+        ended, self.ended = self.ended, set()
+        return ended
+
     def forget(self, nodes: Collection[str]) -> None:
         """Stop watching these nodes' processes (replaced, or started by rosreconf now)."""
         for proc, names in list(self.nodes.items()):
             if set(names) & set(nodes):
                 del self.nodes[proc]
+                self.participant_of.pop(proc, None)
                 self._watch.remove(proc)
         for n in nodes:
             self.lease_only.pop(n, None)
