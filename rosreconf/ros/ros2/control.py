@@ -134,8 +134,9 @@ class Ros2Control:
     def track(self, participants: Mapping[bytes, tuple[str, ...]], current: Configuration) -> None:
         """Watch the processes of ``current``'s nodes that rosreconf did not start."""
         if self.outside is not None:
-            # a node whose process was seen to end is hidden until a new participant (a new
-            # process) announces it: a team restarting it by hand brings it back
+            # an own node whose process was seen to end is hidden by name until a new
+            # participant (a new process) announces it: a team restarting it by hand brings it
+            # back (an outside node's ended process hides only its participant: exits)
             self.dead -= {
                 n for g, ns in participants.items() if g not in self.outside.seen_at for n in ns
             }
