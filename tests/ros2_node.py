@@ -13,8 +13,10 @@ the spec, each its own ``rclpy.node.Node``::
                 "lifecycle": "inactive"}]}
 
 ``lifecycle`` (unconfigured, inactive or active) makes the node an
-``rclpy.lifecycle.LifecycleNode`` taken to that state. The script prints ``ready`` once every
-node exists and spins until SIGTERM or SIGINT (then it leaves the domain cleanly).
+``rclpy.lifecycle.LifecycleNode`` taken to that state; ``configure_seconds`` makes its
+``on_configure`` take that long (a node slow to configure, as on a loaded robot). The script
+prints ``ready`` once every node exists and spins until SIGTERM or SIGINT (then it leaves the
+domain cleanly).
 
 ``--graph N SECONDS`` instead joins the domain with one node of its own (``_rclpy_graph``,
 hidden), waits until at least N other nodes are seen and the graph has not changed for 3.5 s
@@ -80,9 +82,16 @@ def _make(spec: dict[str, Any], context: Any) -> Node:
     ns = spec.get("namespace", "/")
     state = spec.get("lifecycle")
     if state is not None:
-        from rclpy.lifecycle import LifecycleNode
+        from rclpy.lifecycle import LifecycleNode, TransitionCallbackReturn
 
-        node: Node = LifecycleNode(spec["name"], namespace=ns, context=context)
+        delay = float(spec.get("configure_seconds", 0.0))
+
+        class Managed(LifecycleNode):  # type: ignore[misc]
+            def on_configure(self, state: Any) -> Any:
+                time.sleep(delay)  # in the node's executor, as a slow real configure is
+                return TransitionCallbackReturn.SUCCESS
+
+        node: Node = Managed(spec["name"], namespace=ns, context=context)
     else:
         node = Node(spec["name"], namespace=ns, context=context)
     for p in spec.get("publishers", []):

@@ -54,3 +54,41 @@ def test_configure_twice_is_done_and_an_activate_out_of_order_is_refused(
     }
     refused = agent.transitions([("/right", "activate")], appear=60.0)[0]
     assert refused.error == "/right is unconfigured: activate is not a transition from it"
+
+
+def test_a_node_asked_twice_in_one_batch_is_asked_once_and_lives(
+    agent: LifecycleAgent, tmp_path: Path
+) -> None:
+    """Two configures of one node in one batch: rclpy would end the node at the second (it is
+    inactive by then, and rclpy raises "Transition is not registered" out of its executor)."""
+    outcomes = agent.transitions([("/left", "configure"), ("/left", "configure")], appear=60.0)
+    assert [(o.ok, o.state) for o in outcomes[:1]] == [(True, "inactive")]
+    assert not outcomes[1].ok and "already" in (outcomes[1].error or ""), outcomes[1]
+    # the node lives: it takes the next transition
+    assert _results(agent, ("/left", "activate")) == {"/left": (True, "active")}
+
+
+def test_a_configure_slower_than_its_timeout_is_not_asked_again_while_it_runs(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """watch's standbys are configured with a 0.5 s timeout and tried again on a later tick; a
+    node whose ``on_configure`` takes 2 s must be configured once, and never ended by a retry."""
+    system = ros2_real.Ros2System("jazzy", ros2_domain, tmp_path, [])
+    env = ros2_real.node_env(ros2_domain, tmp_path / "agent-home")
+    env["ROSRECONF_ROS2_PYTHON"] = str(ros2_real.python_of("jazzy"))
+    try:
+        slow = system.start({"name": "slow", "lifecycle": "unconfigured", "configure_seconds": 2})
+        agent = LifecycleAgent(env, tmp_path / "agent.log", timeout=10.0)
+        try:
+            (first,) = agent.transitions([("/slow", "configure")], appear=60.0, timeout=0.5)
+            assert not first.ok and "did not answer" in (first.error or ""), first
+            (again,) = agent.transitions([("/slow", "configure")], timeout=0.5)  # while it runs
+            assert not again.ok, again
+            (done,) = agent.transitions([("/slow", "configure")], timeout=10.0)
+            assert (done.ok, done.state) == (True, "inactive"), done
+            assert slow.process.poll() is None, slow.process.returncode  # not ended
+            assert _results(agent, ("/slow", "activate")) == {"/slow": (True, "active")}
+        finally:
+            agent.close()
+    finally:
+        system.stop()

@@ -113,7 +113,10 @@ class Standbys:
             pids=pids,
             standby=True,
         )
-        self.unready += wanted
+        # each started process is configured afresh: listed once, with attempts of its own
+        self.unready += [c for c in wanted if c not in self.unready]
+        for c in wanted:
+            self.tries.pop(c, None)
 
     def hung(self, components: Collection[str], states: Mapping[str, str | None]) -> list[str]:
         """Return those of ``components`` whose own process is stopped or whose node is hung.
@@ -183,7 +186,7 @@ class Standbys:
 
     def tend(self) -> None:
         """Configure the standby nodes whose services have come up (never waits for one)."""
-        self.unready = [c for c in self.unready if c in self.nodes.nodes]
+        self.unready = [c for c in dict.fromkeys(self.unready) if c in self.nodes.nodes]
         if not self.unready:
             return
         nodes = [self.node_of(c) for c in self.unready]

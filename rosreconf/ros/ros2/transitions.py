@@ -104,8 +104,10 @@ class Transitions:
     ) -> dict[str, bool]:
         """Perform several (component, transition) at once; say each; component -> ok.
 
-        ``timeout``: seconds each may take (default: ``self.timeout``).
+        ``timeout``: seconds each may take (default: ``self.timeout``). A step listed twice is
+        performed once (the agent asks each node once per batch).
         """
+        steps = list(dict.fromkeys(steps))
         if not steps:
             return {}
         nodes = {self.node_of(c): c for c, _ in steps}

@@ -18,10 +18,12 @@ stdout (same ``id``)::
 from ``timeout``, which bounds each call: a node just started needs seconds to come up.
 
 Each result fails ("ok": false, "error": "...") when a service did not appear, a call timed
-out, the node is in a state the transition does not leave, the node refused, or the state read
-back is not the one the transition leads to. The node is not left half-way by the agent: it
-either did the transition or not. A node already in the state the transition leads to counts
-as done: a retried ``configure`` whose first answer was lost on a busy machine must not fail.
+out, the node is in a state the transition does not leave, the node refused, the state read
+back is not the one the transition leads to, or the node was already asked in this batch (only
+its first item is sent: rclpy ends a node asked for a transition it has just left). The node
+is not left half-way by the agent: it either did the transition or not. A node already in the
+state the transition leads to counts as done: a retried ``configure`` whose first answer was
+lost on a busy machine must not fail.
 """
 
 from __future__ import annotations
@@ -107,7 +109,9 @@ class Agent:
         A transition is asked for only from a state it leaves: rclpy's ``LifecycleNode``
         (Jazzy, Kilted) raises out of its executor on any other, which ends the node's
         process, where rclcpp answers ``success: false``. A node already in the state the
-        transition leads to counts as done.
+        transition leads to counts as done. So one node is asked once per batch: a second
+        ``configure`` sent beside the first reaches it inactive, and ends it (seen: a standby
+        listed twice for configuring exited 1 on every start).
         """
         start = time.monotonic()
         errors: dict[int, str] = {}
@@ -119,9 +123,13 @@ class Agent:
         asking = [i for i in range(len(items)) if i not in errors]
         before = self._states(items, asking, timeout)
         calls: dict[int, Any] = {}
+        first: dict[str, int] = {}
         for i in asking:
             node, name = items[i]["node"], items[i]["transition"]
-            if before[i] is None:
+            if first.setdefault(node, i) != i:
+                asked = items[first[node]]["transition"]
+                errors[i] = f"{node} was asked for {asked} in this batch already: {name} not sent"
+            elif before[i] is None:
                 errors[i] = f"{node}/get_state did not answer within {timeout:g} s ({name})"
             elif before[i] != GOAL[name] and before[i] not in FROM[name]:
                 errors[i] = f"{node} is {before[i]}: {name} is not a transition from it"
