@@ -43,17 +43,25 @@ def _python(distro: str) -> Path:
 
 
 def _camera_switch(
-    watch: Watch, domain: int, python: Path, until_wired: bool = True
+    watch: Watch,
+    domain: int,
+    python: Path,
+    until_wired: bool = True,
+    sig: signal.Signals = signal.SIGKILL,
 ) -> dict[str, object]:
-    """Kill NCA1, wait for ``conformant``; return what happened and rclpy's view after.
+    """End NCA1 with ``sig``, wait for ``conformant``; return what happened and rclpy's view.
 
     ``until_wired``: rclpy's view is read again until nothing dangles (or its deadline).
     """
     watch.wait("conformant")
     before = len(watch.events())
-    os.kill(watch.pids()["NCA1"], signal.SIGKILL)
+    os.kill(watch.pids()["NCA1"], sig)
     done = watch.wait("conformant", after=before)
     after = watch.events()[before:]
+    failed = [e["component"] for e in after if e["event"] == "failed"]
+    assert failed == ["NCA1"], (  # a second failure the test did not cause: say which
+        f"failed on their own beside NCA1: {failed}; watch's events: {after}"
+    )
     (replanned,) = (e for e in after if e["event"] == "replanned")
     nodes = {f"/{c}" for c in done["configuration"].values() if c}  # type: ignore[union-attr]
     wait_for = [*nodes, "/gripper2/feeling"]
@@ -158,7 +166,11 @@ def test_real_executables_are_restarted_with_their_new_remappings(
     try:
         watch.wait("conformant")
         nominal = probe(watch.env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL])
-        got = _camera_switch(watch, ros2_domain, python, until_wired=False)
+        # NCA1 ends by SIGTERM here (an rclpy executable exits 0 and leaves the domain): a real
+        # Fast DDS 2.14 participant hung once beside a SIGKILLed one on a loaded host (NSM4:
+        # gone from the graph for 60 s, alive, ended only by SIGKILL; fresh clone fc82), which
+        # watch rightly failed and replanned away from; SIGKILL repairs are tested above
+        got = _camera_switch(watch, ros2_domain, python, until_wired=False, sig=signal.SIGTERM)
         seen = got["seen"]
         assert isinstance(seen, dict)
         # the reasoner's DC-arm alternatives are its own, never wired (the servo arm runs):
