@@ -186,7 +186,7 @@ class Standbys:
 
     def tend(self) -> None:
         """Configure the standby nodes whose services have come up (never waits for one)."""
-        self.unready = [c for c in dict.fromkeys(self.unready) if c in self.nodes.nodes]
+        self.unready = [c for c in self.unready if c in self.nodes.nodes]
         if not self.unready:
             return
         nodes = [self.node_of(c) for c in self.unready]
