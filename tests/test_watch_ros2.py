@@ -15,7 +15,7 @@ import signal
 import subprocess
 import sys
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -92,11 +92,23 @@ class Watch:
         events = self.events()
         return {e["component"] for e in events if e.get("transition") == "configure" and e["ok"]}
 
-    def wait(self, kind: str, after: int = 0, timeout: float = UP_TIMEOUT) -> dict[str, Any]:
-        """Return the first event of ``kind`` after the first ``after`` events."""
+    def wait(
+        self,
+        kind: str,
+        after: int = 0,
+        timeout: float = UP_TIMEOUT,
+        each: Callable[[list[dict[str, Any]]], None] | None = None,
+    ) -> dict[str, Any]:
+        """Return the first event of ``kind`` after the first ``after`` events.
+
+        ``each``: called with those events on every look, to act on one as it comes.
+        """
         deadline = time.monotonic() + timeout
         while True:
-            found = [e for e in self.events()[after:] if e["event"] == kind]
+            said = self.events()[after:]
+            if each is not None:
+                each(said)
+            found = [e for e in said if e["event"] == kind]
             if found:
                 return found[0]
             if self.process.poll() is not None:  # what it said on stderr tells why

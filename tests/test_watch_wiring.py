@@ -17,6 +17,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+import ros2_harness
 from test_watch_ros2 import (
     DC_ARM,
     NOMINAL,
@@ -56,11 +57,22 @@ def _camera_switch(
     watch.wait("conformant")
     before = len(watch.events())
     os.kill(watch.pids()["NCA1"], sig)
-    done = watch.wait("conformant", after=before)
+    stacks: dict[str, str] = {}
+
+    def stack_of_a_bystander(said: list[dict[str, object]]) -> None:
+        """A node the test did not touch is failed: take its threads' stacks while it lives."""
+        for e in said:
+            c = e.get("component")
+            if e["event"] == "failed" and isinstance(c, str) and c != "NCA1" and c not in stacks:
+                out = watch.log.with_name(f"{c}-stacks.txt")
+                stacks[c] = ros2_harness.thread_stacks(watch.pids().get(c), out)
+
+    done = watch.wait("conformant", after=before, each=stack_of_a_bystander)
     after = watch.events()[before:]
     failed = [e["component"] for e in after if e["event"] == "failed"]
     assert failed == ["NCA1"], (  # a second failure the test did not cause: say which
-        f"failed on their own beside NCA1: {failed}; watch's events: {after}"
+        f"failed on their own beside NCA1: {failed}; their stacks: {stacks}; "
+        f"watch's events: {after}"
     )
     (replanned,) = (e for e in after if e["event"] == "replanned")
     nodes = {f"/{c}" for c in done["configuration"].values() if c}  # type: ignore[union-attr]
