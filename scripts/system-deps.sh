@@ -5,6 +5,8 @@
 #   python3-roslaunch   roscore, rosmaster, roslaunch and rosout (ROS 1 from Debian, docs/ros.md)
 #   python3-rospy       rospy (and std_msgs) for /usr/bin/python3, run by tests/standin_node.py
 #   python3-std-srvs    std_srvs/Trigger, the stand-ins' service type
+#   gdb                 a diagnosis only: the thread stacks of a ROS 2 node that fails beside a
+#                       test's kill without being touched (tests/ros2_harness.thread_stacks)
 set -euo pipefail
 need=()
 command -v dot >/dev/null 2>&1 || need+=(graphviz)
@@ -12,6 +14,7 @@ command -v roscore >/dev/null 2>&1 || need+=(python3-roslaunch)
 /usr/bin/python3 -c 'import roslaunch.xmlloader' >/dev/null 2>&1 || need+=(python3-roslaunch)
 /usr/bin/python3 -c 'import rospy' >/dev/null 2>&1 || need+=(python3-rospy)
 /usr/bin/python3 -c 'import std_srvs.srv' >/dev/null 2>&1 || need+=(python3-std-srvs)
+command -v gdb >/dev/null 2>&1 || need+=(gdb)
 if [ ${#need[@]} -eq 0 ]; then
   echo "system-deps: all present"
   exit 0
