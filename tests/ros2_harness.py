@@ -349,5 +349,7 @@ def thread_stacks(pid: int | None, out: Path) -> str:
         elif threads and line.startswith("#") and " in " in line:
             function = line.split(" in ", 1)[1].split(" (", 1)[0]
             threads[-1].append(function.split("(", 1)[0][-60:])
+    if not threads:  # ptrace refused (a container without CAP_SYS_PTRACE), or the pid gone
+        return f"pid {pid}: gdb read no thread: {(run.stderr or run.stdout).strip()[-300:]}"
     digest = "\n".join(" <- ".join(frames[:6]) for frames in threads)
     return f"pid {pid}: every thread's stack in {out}; each thread's innermost frames:\n{digest}"
