@@ -389,6 +389,21 @@ def test_a_stand_in_announces_the_librarys_invented_types(
             node.wait()
 
 
+def _stop_by_hand(member: Member) -> None:
+    """Stop one of the team's own nodes as a person does: Ctrl-C, then kill -9 if it stays.
+
+    Its clean exit is not under test. Fast DDS 2.14 can busy-spin for ever in participant
+    destruction while a discovery callback is in flight (Fast-DDS #6513; in fresh clone fc121 a
+    SIGINTed NREA had not ended after 20 s), and a person then kills it.
+    """
+    member.send_signal(signal.SIGINT)
+    try:
+        member.wait(20)
+    except subprocess.TimeoutExpired:
+        member.kill()
+        member.wait(20)
+
+
 @pytest.mark.parametrize("stop_outside", [False, True], ids=["by-hand", "stop-outside"])
 def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
     ros2_domain: int, tmp_path: Path, stop_outside: bool
@@ -453,8 +468,7 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
         assert sorted(left["nodes"]) == sorted(f"/{c}" for c in for_a_person)
         assert not [e for e in after if e["event"] == "conformant"]
         for c in for_a_person:  # a person stops them
-            ours[c].send_signal(signal.SIGINT)
-            ours[c].wait(20)
+            _stop_by_hand(ours[c])
         if not stop_outside:  # restarted first with its old rules: watch says what is wrong
             mark = len(watch.events())
             ours["NREA"] = start("NREA", ros2_node_arguments(library, "NREA", remaps))
@@ -464,8 +478,7 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
                 said = watch.wait("left-running", after=mark)
             assert said["nodes"] == ["/NREA"] and "restart rewired by hand: /NREA" in said[
                 "message"]  # fmt: skip
-            ours["NREA"].send_signal(signal.SIGINT)
-            ours["NREA"].wait(20)
+            _stop_by_hand(ours["NREA"])
         rules = [a for r in restart["remappings"] for a in ("-r", r)]
         ours["NREA"] = start("NREA", ["--ros-args", "-r", "__node:=NREA", *rules])
         done = watch.wait("conformant", after=before)
