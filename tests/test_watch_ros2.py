@@ -9,6 +9,7 @@ not from rosreconf's reader. No timing is asserted here: speed goals are ``make 
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import signal
@@ -150,17 +151,17 @@ def probe(
     waits = [arg for name in {*wait_for, *nodes} for arg in ("--wait-for", name)]
     wired = ["--until-wired"] if until_wired else []
     argv = [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *wired, *nodes]
-    for attempt in (1, 2):
-        out = subprocess.run(
-            argv, env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
-            timeout=PROBE_SECONDS + 60, check=False,
-        )  # fmt: skip
-        if out.returncode >= 0 or attempt == 2:
-            break
+    run = functools.partial(
+        subprocess.run, argv, env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
+        timeout=PROBE_SECONDS + 60, check=False,
+    )  # fmt: skip
+    out = run()
+    if out.returncode < 0:
         # The probe is the test's instrument, not rosreconf: a crash of its own rclpy process
         # (Kilted's segfaulted once in fresh clone fc117, under load) is read again once and
         # said; a second crash, or any error exit, fails the test
         warnings.warn(f"ros2_probe.py died of signal {-out.returncode}; read again", stacklevel=2)
+        out = run()
     if out.returncode != 0:
         raise subprocess.CalledProcessError(out.returncode, argv, out.stdout, out.stderr)
     # Fast DDS logs its own errors to stdout too (an SHM port another run holds, seen under
