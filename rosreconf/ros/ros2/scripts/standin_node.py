@@ -32,13 +32,17 @@ A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode``
 unconfigured, creates its endpoints on ``configure``, publishes only while active, and
 destroys them on ``cleanup``.
 
-Stops cleanly on SIGINT/SIGTERM (its participant says goodbye). Writes one JSON line to stdout
-once its node exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
+Stops cleanly on SIGINT/SIGTERM (its participant says goodbye) within ``SHUTDOWN_BOUND_SECONDS``;
+past it (Fast DDS 2.14 can busy-spin for ever destroying a participant, holding the GIL:
+Fast-DDS #6513, 1 in about 400 SIGINTs under load here) it exits 1, each thread's stack in its
+log, and its peers see it go when its lease ends. Writes one JSON line to stdout once its node
+exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
 """
 
 from __future__ import annotations
 
 import ctypes
+import faulthandler
 import functools
 import importlib
 import json
@@ -54,6 +58,7 @@ from rclpy.action import ActionClient, ActionServer
 from rclpy.executors import ExternalShutdownException
 from rclpy.type_support import check_for_type_support
 
+SHUTDOWN_BOUND_SECONDS = 4.0  # a healthy teardown takes milliseconds; ros2 launch waits 5 s
 POSING: set[str] = set()
 _KEEP: list[Any] = []  # every buffer and callback the posed type supports point to
 _FAST = b"rosidl_typesupport_fastrtps_c"
@@ -65,18 +70,13 @@ _API.PyCapsule_GetPointer.restype = _P
 _API.PyCapsule_GetPointer.argtypes = [ctypes.py_object, ctypes.c_char_p]
 _API.PyCapsule_New.restype = ctypes.py_object
 _API.PyCapsule_New.argtypes = [_P, ctypes.c_char_p, _P]
-_MSG_HANDLE_BYTES = 6 * 8
-"""rosidl_message_type_support_t (Iron+): identifier, data, func, three type-description hooks."""
-_SRV_HANDLE_BYTES = 11 * 8
-"""rosidl_service_type_support_t (Iron+): identifier, data, func, 3 message handles, 5 hooks."""
-_MSG_CALLBACKS_BYTES = 16 * 8
-"""More than message_type_support_callbacks_t holds; only the first two fields are changed."""
-_ACTION_HANDLE_BYTES = 8 * 8
-"""rosidl_action_type_support_t (Iron+): five part type supports, three type-description hooks."""
+_MSG_HANDLE_BYTES = 6 * 8  # rosidl_message_type_support_t (Iron+): identifier, data, func, 3 hooks
+_SRV_HANDLE_BYTES = 11 * 8  # rosidl_service_type_support_t: ident., data, func, 3 msgs, 5 hooks
+_MSG_CALLBACKS_BYTES = 16 * 8  # more than message_type_support_callbacks_t; 2 fields changed
+_ACTION_HANDLE_BYTES = 8 * 8  # rosidl_action_type_support_t (Iron+): 5 type supports, 3 hooks
 POSE_ACTIONS_AS = ("test_msgs", "example_interfaces")
 """Packages whose ``action/Fibonacci`` poses as an action type that is not installed."""
-_SRV_CALLBACKS_BYTES = 4 * 8
-"""service_type_support_callbacks_t: namespace, name, request and response handles."""
+_SRV_CALLBACKS_BYTES = 4 * 8  # service_type_support_callbacks_t: namespace, name, req., resp.
 
 
 class _Handle(ctypes.Structure):
@@ -385,6 +385,7 @@ def main(argv: list[str]) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
+        faulthandler.dump_traceback_later(SHUTDOWN_BOUND_SECONDS, exit=True)  # a C thread: no GIL
         if node is not None:
             node.destroy_node()  # while the posed type supports it points to still exist
         rclpy.try_shutdown()  # the participant says goodbye
