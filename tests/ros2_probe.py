@@ -19,6 +19,7 @@ may keep calling a dead provider for good, and waiting on them ran out the whole
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import json
 import sys
 import time
@@ -64,6 +65,7 @@ def _of(dangling: dict[str, list[list[str]]], nodes: list[str]) -> list[list[str
 
 def main() -> int:
     """Print what rclpy's graph API and the nodes' get_state services say."""
+    faulthandler.enable()  # a crash of rclpy (Kilted's SIGSEGV) leaves its stacks on stderr
     ap = argparse.ArgumentParser()
     ap.add_argument("seconds", type=float)
     ap.add_argument("--wait-for", action="append", default=[])

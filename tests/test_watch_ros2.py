@@ -160,7 +160,8 @@ def probe(
         # The probe is the test's instrument, not rosreconf: a crash of its own rclpy process
         # (Kilted's segfaulted once in fresh clone fc117, under load) is read again once and
         # said; a second crash, or any error exit, fails the test
-        warnings.warn(f"ros2_probe.py died of signal {-out.returncode}; read again", stacklevel=2)
+        said = f"ros2_probe.py died of signal {-out.returncode}; read again. Its stacks:"
+        warnings.warn(f"{said}\n{out.stderr[-4000:]}", stacklevel=2)
         out = run()
     if out.returncode != 0:
         raise subprocess.CalledProcessError(out.returncode, argv, out.stdout, out.stderr)

@@ -28,6 +28,7 @@ lost on a busy machine must not fail.
 
 from __future__ import annotations
 
+import faulthandler
 import json
 import sys
 import time
@@ -191,6 +192,7 @@ class Agent:
 
 def main() -> int:
     """Answer requests until stdin closes (rosreconf ended) or a signal stops it."""
+    faulthandler.enable()  # a crash in rclpy or DDS leaves every thread's stack on stderr
     rclpy.init(args=sys.argv)
     agent = Agent()
     print(json.dumps({"ready": agent.node.get_fully_qualified_name()}), flush=True)

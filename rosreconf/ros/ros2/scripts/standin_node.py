@@ -235,9 +235,8 @@ class Endpoints:
             self.pubs.append((pub, cls))
             self.made.append(pub)
         for s in spec.get("subscribe", []):
-            self.made.append(
-                node.create_subscription(message_class(s["type"]), s["topic"], _ignore, 10)
-            )
+            cls = message_class(s["type"])
+            self.made.append(node.create_subscription(cls, s["topic"], _ignore, 10))
         for s in spec.get("serve", []):
             cls = service_class(s["type"])
             self.made.append(node.create_service(cls, s["service"], _answer(node)))
@@ -358,6 +357,7 @@ def warm() -> None:
 
 def main(argv: list[str]) -> int:
     """Create the spec's node and spin until told to stop."""
+    faulthandler.enable()  # a crash in rclpy or DDS (Kilted's SIGSEGV) leaves its stacks in the log
     args = rclpy.utilities.remove_ros_args(argv)
     if len(args) != 2:
         print(f"usage: {args[0]} SPEC_JSON_OR_FILE", file=sys.stderr)
