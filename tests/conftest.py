@@ -233,10 +233,11 @@ def _sigint_as_started() -> Iterator[None]:
     """Give every test the SIGINT action pytest started with, whatever ran before it.
 
     rosreconf's CLI gives SIGINT its default action once a run is over (``cli.app._over``,
-    after an error exit, say); run in-process (CliRunner) it left that in the worker, and every later subprocess inherited it. A
-    test that sends SIGINT to a rosreconf it started then passed or failed by which tests its
-    worker had run before (fresh clone fc131: a capped run started with SIGINT ignored, as in
-    a background job, never stopped). A test that needs SIGINT's default sets it itself.
+    after an error exit, say); run in-process (CliRunner) it left that in the worker, and
+    every later subprocess inherited it. A test that sends SIGINT to a rosreconf it started
+    then passed or failed by which tests its worker had run before (fresh clone fc131: a
+    capped run started with SIGINT ignored, as in a background job, never stopped). A test
+    that needs SIGINT's default sets it itself.
     """
     started = signal.getsignal(signal.SIGINT)
     yield
