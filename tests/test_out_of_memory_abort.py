@@ -20,6 +20,7 @@ from pathlib import Path
 import pytest
 
 from rosreconf.cli.capped import OUT_OF_MEMORY
+from rosreconf.procs.signals import sigint_default  # as in a terminal, not a background job
 
 CAP = 4_000_000_000
 """Address-space cap (bytes): a cap in force, larger than the runs here need."""
@@ -37,12 +38,6 @@ def _verb_pid(wrapper: subprocess.Popen[bytes], out: Path) -> int:
         time.sleep(0.05)
 
 
-def _sigint_default() -> None:
-    """Give the run SIGINT's default action, as in a terminal: a test run in the background of
-    a shell inherits "ignore", and then SIGINT means nothing to rosreconf, capped or not."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def _start(tmp_path: Path, out: Path) -> subprocess.Popen[bytes]:
     subprocess.run(
         [sys.executable, "-m", "rosreconf", "generate", "--roles", "16", "--candidates", "4",
@@ -54,7 +49,7 @@ def _start(tmp_path: Path, out: Path) -> subprocess.Popen[bytes]:
     with out.open("wb") as stdout:
         # prlimit sets the cap on itself, then execs Python: the run's pid is prlimit's
         return subprocess.Popen(["prlimit", f"--as={CAP}", "--", *argv], stdout=stdout,
-                                stderr=subprocess.PIPE, preexec_fn=_sigint_default)  # fmt: skip
+                                stderr=subprocess.PIPE, preexec_fn=sigint_default())  # fmt: skip
 
 
 def test_an_abort_under_a_memory_cap_is_exit_3_with_one_line(tmp_path: Path) -> None:
