@@ -30,7 +30,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from concurrent.futures import Executor, as_completed
+from concurrent.futures import Executor
 from dataclasses import dataclass
 
 from rosreconf.analysis.lti import (
@@ -42,6 +42,7 @@ from rosreconf.analysis.lti import (
     step_response,
 )
 from rosreconf.analysis.numeric import np
+from rosreconf.analysis.results import Results
 from rosreconf.errors import RosreconfError
 from rosreconf.model.dynamics import METRICS, PerformanceRequirements, TransferFunction
 
@@ -228,10 +229,12 @@ def simulate_all(
             if progress:
                 progress(len(chunk))
         return cache
-    futures = {executor.submit(simulate_chunk, chunk): chunk for chunk in chunks}
-    for future in as_completed(futures):
+    results: Results[list[LoopResult]] = Results()
+    futures = {results.watch(executor.submit(simulate_chunk, chunk)): chunk for chunk in chunks}
+    while results.pending:
+        future, simulated = results.next()
         chunk = futures[future]
-        cache.update(zip(chunk, future.result(), strict=True))
+        cache.update(zip(chunk, simulated, strict=True))
         if progress:
             progress(len(chunk))
     return cache

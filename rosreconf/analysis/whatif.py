@@ -20,7 +20,7 @@ import itertools
 import math
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import FIRST_COMPLETED, Executor, Future, as_completed, wait
+from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
 from rosreconf.analysis.failsolve import (
@@ -33,6 +33,7 @@ from rosreconf.analysis.failsolve import (
     relevant_components,
 )
 from rosreconf.analysis.marginals import Marginals, marginals
+from rosreconf.analysis.results import Results
 from rosreconf.analysis.workers import executor as open_executor
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, InteroperabilitySchema
@@ -351,12 +352,10 @@ def _run(chunks: Iterable[Chunk], executor: Executor | None) -> Iterable[list[Ou
         for chunk in chunks:
             yield evaluate_chunk(chunk)
         return
-    flying: set[Future[list[Outcome]]] = set()
+    results: Results[list[Outcome]] = Results()
     for chunk in chunks:
-        flying.add(executor.submit(evaluate_chunk, chunk))
-        if len(flying) >= IN_FLIGHT:
-            done, flying = wait(flying, return_when=FIRST_COMPLETED)
-            for future in done:
-                yield future.result()
-    for future in as_completed(flying):
-        yield future.result()
+        results.watch(executor.submit(evaluate_chunk, chunk))
+        if results.pending >= IN_FLIGHT:
+            yield results.next()[1]
+    while results.pending:
+        yield results.next()[1]

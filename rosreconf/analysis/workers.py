@@ -12,6 +12,8 @@ executor's own faults end a sweep:
 - local workers die with rosreconf (parent-death signal, ``procs.pool_worker_setup``), ignore
   a terminal's Ctrl-C (rosreconf decides), and are killed at once when the sweep ends by an
   exception, Ctrl-C or SIGTERM (``Terminated``), instead of finishing the queued work first;
+- a Ctrl-C or SIGTERM is raised in rosreconf only outside the futures' locks (``submit`` and
+  ``results.Results`` keep it until they end: ``procs.stops_deferrable``), so none stays taken;
 - a worker that dies (killed, out of memory) ends the sweep with ``ExternalToolError``;
 - on a Dask cluster, a lost scheduler, cancelled work, and a cluster that stays without any
   worker (or does not answer) for ``LOST_TIMEOUT`` seconds end the sweep with
@@ -32,7 +34,13 @@ from concurrent.futures import BrokenExecutor, CancelledError, Executor, Future,
 from typing import Any, ParamSpec, TypeVar
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.procs import pool_worker_setup, sigterm_raises, stops_held
+from rosreconf.procs import (
+    pool_worker_setup,
+    sigterm_raises,
+    stops_deferrable,
+    stops_deferred,
+    stops_held,
+)
 
 P = ParamSpec("P")
 T = TypeVar("T")
@@ -89,15 +97,16 @@ class Watched(Executor):
 
     def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
         """Submit ``fn(*args, **kwargs)`` to the inner executor; return a future of ours."""
-        outer: Future[T] = Future()
-        try:  # a local pool forks its workers in submit: stops wait until it is done
-            with stops_held() if self._hold_stops else contextlib.nullcontext():
-                inner = self.inner.submit(fn, *args, **kwargs)
-        except (BrokenExecutor, RuntimeError) as exc:
-            raise ExternalToolError(f"{self.where}: cannot take more work ({exc})") from None
-        with self._lock:
-            self._pending[outer] = inner
-        inner.add_done_callback(functools.partial(self._settle, outer))
+        with stops_deferred():  # a stop is raised once the futures' locks are let go
+            outer: Future[T] = Future()
+            try:  # a local pool forks its workers in submit: stops wait until it is done
+                with stops_held() if self._hold_stops else contextlib.nullcontext():
+                    inner = self.inner.submit(fn, *args, **kwargs)
+            except (BrokenExecutor, RuntimeError) as exc:
+                raise ExternalToolError(f"{self.where}: cannot take more work ({exc})") from None
+            with self._lock:
+                self._pending[outer] = inner
+            inner.add_done_callback(functools.partial(self._settle, outer))
         if self._health is not None and self._watchdog is None:
             self._watchdog = threading.Thread(
                 target=self._watch, name="cluster-health", daemon=True
@@ -221,7 +230,7 @@ def _local(n: int) -> Iterator[Executor]:
         max_workers=n, initializer=pool_worker_setup, initargs=(os.getpid(),)
     )
     try:
-        with sigterm_raises():
+        with sigterm_raises(), stops_deferrable():
             yield Watched(pool, f"--workers {n}", hold_stops=True)
     except BaseException:  # an error, Ctrl-C or SIGTERM: the queued work is not wanted
         _kill(pool)
@@ -275,7 +284,7 @@ def _dask(address: str) -> Iterator[Executor]:
     for logger in quiet.values():
         logger.setLevel(logging.CRITICAL)
     try:
-        with sigterm_raises():
+        with sigterm_raises(), stops_deferrable():
             client = _connect(distributed, address, where)
             try:
                 yield Watched(

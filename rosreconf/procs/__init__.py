@@ -45,7 +45,13 @@ from rosreconf.procs.run import (
     ProgramResult,
     run_program,
 )
-from rosreconf.procs.signals import Terminated, sigterm_raises, stops_held
+from rosreconf.procs.signals import (
+    Terminated,
+    sigterm_raises,
+    stops_deferrable,
+    stops_deferred,
+    stops_held,
+)
 from rosreconf.procs.workdirs import WORKDIR_PREFIX, clean_stale_workdirs, private_workdir
 
 __all__ = [
@@ -64,5 +70,7 @@ __all__ = [
     "sigterm_raises",
     "start_program",
     "stop_all",
+    "stops_deferrable",
+    "stops_deferred",
     "stops_held",
 ]

@@ -10,6 +10,7 @@ see the rules in the ``rosreconf.procs`` docstring.
 from __future__ import annotations
 
 import contextlib
+import functools
 import os
 import signal
 import threading
@@ -93,3 +94,70 @@ def stops_held() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+_deferring = [0]
+"""How deep the main thread is in ``stops_deferred`` blocks."""
+_kept: list[int] = []
+"""The stop that arrived inside them (the first one), raised when the outermost ends."""
+
+
+@contextlib.contextmanager
+def stops_deferrable() -> Iterator[None]:
+    """Let ``stops_deferred`` blocks keep a Ctrl-C or SIGTERM until they end (main thread).
+
+    For the lifetime of a worker pool. Python raises a signal's exception (KeyboardInterrupt,
+    ``Terminated``) at whatever bytecode the main thread runs, also right after a lock was
+    taken in a ``with`` block's ``__enter__`` and before its ``__exit__`` is armed (CPython
+    bpo-29988); a ``threading.Condition``'s ``__enter__`` is such a place, and every future
+    has one. The lock then stays taken: the process pool's manager thread, which settles and
+    cancels those futures, waits for it for ever, and so does the interpreter's exit, which
+    joins that thread (``simulate --workers 2`` hung after "rosreconf: interrupted", 2 runs in
+    60 beside a load; its stacks showed the manager in ``Future.cancel``). Only handlers that
+    raise are wrapped; an ignored SIGINT stays ignored.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous: dict[int, Callable[[int, FrameType | None], object]] = {}
+    for sig in STOPS:
+        handler = signal.getsignal(sig)
+        if callable(handler):
+            previous[sig] = handler
+            signal.signal(sig, functools.partial(_keep_or_raise, handler))
+    try:
+        yield
+    finally:
+        for signum, kept in previous.items():
+            signal.signal(signum, kept)
+
+
+def _keep_or_raise(
+    handler: Callable[[int, FrameType | None], object], signum: int, frame: FrameType | None
+) -> None:
+    if _deferring[0]:
+        _kept[:] = _kept or [signum]
+        return
+    handler(signum, frame)
+
+
+@contextlib.contextmanager
+def stops_deferred() -> Iterator[None]:
+    """Keep a stop that arrives in the block; raise it as the block ends (``stops_deferrable``).
+
+    For the code that takes the futures' locks: handing work out, waiting for results. Keep
+    its waits short (polls), so that a stop is raised soon.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    _deferring[0] += 1
+    try:
+        yield
+    finally:
+        _deferring[0] -= 1
+        if not _deferring[0] and _kept:
+            signum = _kept.pop()
+            handler = signal.getsignal(signum)
+            if callable(handler):
+                handler(signum, None)  # raises its KeyboardInterrupt or Terminated
