@@ -327,10 +327,14 @@ def start_standin(master: Master, spec: dict[str, Any]) -> StandIn:
     )  # fmt: skip
     out.close()
     node = StandIn(name, spec, proc)
+    # rospy registers a node's own logger services after its topics (RegManager.start), in a
+    # thread: wait for them too, so a stop sent once this returns finds nothing in flight (an
+    # unregister that reaches the master before a late register leaves the node listed).
+    loggers = {f"{name}/get_loggers", f"{name}/set_logger_level"}
     want = (
         {p["topic"] for p in spec.get("publish", [])},
         {s["topic"] for s in spec.get("subscribe", [])},
-        {s["service"] for s in spec.get("serve", [])},
+        {s["service"] for s in spec.get("serve", [])} | loggers,
     )
 
     def listed() -> bool:
