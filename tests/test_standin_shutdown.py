@@ -40,6 +40,25 @@ sys.argv = sys.argv[1:]
 runpy.run_path(sys.argv[0], run_name="__main__")
 """
 
+STOPPED_AS_SPIN_BEGINS = """\
+# A FAKE moment: the context is shut down (as rclpy's signal thread does on SIGINT) just as
+# the stand-in begins to spin, before Python has raised the KeyboardInterrupt.
+import runpy, sys
+import rclpy
+
+spin = rclpy.spin
+
+
+def stopped_then_spin(node, executor=None):
+    rclpy.get_default_context().try_shutdown()
+    spin(node, executor)
+
+
+rclpy.spin = stopped_then_spin
+sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name="__main__")
+"""
+
 SPEC = {"name": "SPINNER", "namespace": "/", "component": "SPINNER",
         "publish": [{"topic": "/spinner_out", "type": "std_msgs/msg/String"}]}  # fmt: skip
 
@@ -101,6 +120,27 @@ def test_a_stand_in_whose_teardown_is_healthy_ends_at_once_with_exit_0(
         node.send_signal(signal.SIGINT)
         assert node.wait(30) == 0, log.read_text()
         assert "Timeout" not in log.read_text()
+    finally:
+        if node.poll() is None:
+            node.kill()
+            node.wait()
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])
+def test_a_stand_in_stopped_as_it_begins_to_spin_ends_cleanly(
+    distro: str, ros2_domain: int, tmp_path: Path
+) -> None:
+    """A SIGINT just after the ready line: rclpy's signal thread can shut the context down
+    while the main thread is in rclpy's C code, before the KeyboardInterrupt is raised; spin
+    then failed with an RCLError traceback and exit 1 (fresh clones fc165, fc166: the control
+    above, Jazzy). Provoked here by a fake that shuts the context down as spin begins."""
+    driver = tmp_path / "stopped_as_spin_begins.py"
+    driver.write_text(STOPPED_AS_SPIN_BEGINS)
+    argv = [str(_python(distro)), str(driver), str(STANDIN), json.dumps(SPEC)]
+    node, log = _start(argv, ros2_domain, tmp_path)
+    try:
+        assert node.wait(30) == 0, log.read_text()
+        assert "RCLError" not in log.read_text()  # (rclpy's own Executor.__del__ may complain)
     finally:
         if node.poll() is None:
             node.kill()

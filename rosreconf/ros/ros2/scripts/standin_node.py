@@ -28,15 +28,14 @@ served and called with rclpy's ``ActionServer`` / ``ActionClient`` (every goal s
 once); one not installed is posed by ``test_msgs`` (or ``example_interfaces``) Fibonacci, its
 send_goal, get_result and feedback renamed; without both, exit 3 naming what to install.
 
-A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode`` that starts
-unconfigured, creates its endpoints on ``configure``, publishes only while active, and
-destroys them on ``cleanup``.
+A managed component (``lifecycle: true``) is a ``rclpy.lifecycle.LifecycleNode``: unconfigured
+at start, endpoints made on ``configure``, published only while active, gone on ``cleanup``.
 
-Stops cleanly on SIGINT/SIGTERM (its participant says goodbye) within ``SHUTDOWN_BOUND_SECONDS``;
-past it (Fast DDS 2.14 can busy-spin for ever destroying a participant, holding the GIL:
-Fast-DDS #6513, 1 in about 400 SIGINTs under load here) it exits 1, each thread's stack in its
-log, and its peers see it go when its lease ends. Writes one JSON line to stdout once its node
-exists: {"ready": "/<name>", "pid": ..., "posing_as": [types]}.
+Stops cleanly on SIGINT/SIGTERM (its participant says goodbye), also one that comes as it
+begins to spin, within ``SHUTDOWN_BOUND_SECONDS``; past it (Fast DDS 2.14 can busy-spin for
+ever destroying a participant, holding the GIL: Fast-DDS #6513, 1 in about 400 SIGINTs under
+load here) it exits 1, each thread's stack in its log, and its peers see it go when its lease
+ends. Once its node exists, one JSON line on stdout: {"ready": "/<name>", "pid": ..., ...}.
 """
 
 from __future__ import annotations
@@ -47,6 +46,7 @@ import functools
 import importlib
 import json
 import os
+import signal
 import sys
 from pathlib import Path
 from typing import Any
@@ -375,16 +375,16 @@ def main(argv: list[str]) -> int:
     node = None
     try:
         node = managed_node(spec) if spec.get("lifecycle") else plain_node(spec)
-        ready = {
-            "ready": node.get_fully_qualified_name(),
-            "pid": os.getpid(),
-            "posing_as": sorted(POSING),
-        }
-        print(json.dumps(ready), flush=True)
+        ready = {"ready": node.get_fully_qualified_name(), "pid": os.getpid()}
+        print(json.dumps({**ready, "posing_as": sorted(POSING)}), flush=True)
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:  # stopped as spin began: rclpy's signal thread shut the context (RCLError)
+        if rclpy.ok():
+            raise
     finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C still to be raised: stopping now
         faulthandler.dump_traceback_later(SHUTDOWN_BOUND_SECONDS, exit=True)  # a C thread: no GIL
         if node is not None:
             node.destroy_node()  # while the posed type supports it points to still exist
