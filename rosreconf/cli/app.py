@@ -175,6 +175,29 @@ def out_of_memory(*_: object) -> NoReturn:
         os._exit(ExitCode.PLANNER)
 
 
+def _stop_dropped(args: Any) -> None:
+    """End the run when Python drops a Ctrl-C or SIGTERM ("Exception ignored in ...").
+
+    A signal's exception raised inside a finalizer or a weakref callback (an import's module
+    lock has one; the garbage collector runs them at any allocation) cannot propagate: Python
+    prints it and the run goes on as if no signal came (fresh clone fc166: a capped
+    ``enumerate --limit 1000000`` was still running 60 s after SIGINT). Here it ends the run as
+    ``guard`` would, at once: one line, 130 or 143, no half document left in a file; the
+    children die with rosreconf (parent-death signal) and its temp folders go with a later run.
+    Any other dropped exception is printed as Python prints it.
+    """
+    if not issubclass(args.exc_type, (KeyboardInterrupt, Terminated)):
+        sys.__unraisablehook__(args)
+        return
+    capped.take_back_stdout()
+    interrupted = issubclass(args.exc_type, KeyboardInterrupt)
+    try:
+        sys.stderr.write(f"rosreconf: {'interrupted' if interrupted else 'terminated'}\n")
+        sys.stderr.flush()
+    finally:
+        os._exit(ExitCode.INTERRUPTED if interrupted else ExitCode.TERMINATED)
+
+
 def _thread_failed(args: threading.ExceptHookArgs) -> None:
     """End as ``out_of_memory`` when a thread ran out of memory; else Python's own hook."""
     if args.exc_type is MemoryError:
@@ -285,6 +308,7 @@ def main() -> None:
     memory still ends in exit 3 with ``OUT_OF_MEMORY`` (``rosreconf.cli.capped``).
     """
     threading.excepthook = _thread_failed  # a thread out of memory ends the run as the main would
+    sys.unraisablehook = _stop_dropped
     try:
         capped.run(app)
     finally:
