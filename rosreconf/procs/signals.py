@@ -136,7 +136,8 @@ def _keep_or_raise(
     handler: Callable[[int, FrameType | None], object], signum: int, frame: FrameType | None
 ) -> None:
     if _deferring[0]:
-        _kept[:] = _kept or [signum]
+        if not _kept:  # the first stop is the one raised
+            _kept.append(signum)
         return
     handler(signum, frame)
 
