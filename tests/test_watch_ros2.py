@@ -240,11 +240,14 @@ def _managed_library(tmp: Path) -> Path:
     return path
 
 
-def standby_watch(tmp: Path, domain: int) -> Watch:
+def standby_watch(
+    tmp: Path, domain: int, env: dict[str, str] | None = None, python: Path | None = None
+) -> Watch:
     """Start ``watch --standby`` on the bundled library with every component managed."""
     library = _managed_library(tmp)
     schema = SCHEMAS / "object_repositioning.yaml"
-    return Watch(tmp, domain, "--library", str(library), "--schema", str(schema), "--standby")
+    args = ("--library", str(library), "--schema", str(schema), "--standby")
+    return Watch(tmp, domain, *args, env=env, python=python)
 
 
 def test_standby_failover_is_activate_and_the_states_read_back(

@@ -17,6 +17,7 @@ from test_watch_ros2 import (
     DC_ARM,
     NOMINAL,
     UP_TIMEOUT,
+    _ros2_python,
     alive,
     probe,
     standby_watch,
@@ -68,5 +69,89 @@ def test_a_hung_standby_is_started_anew_and_one_hung_at_the_failover_is_started_
         assert seen["states"]["/NDC3"] == "active", seen["states"]
         dangling = seen["dangling"]["calls"] + seen["dangling"]["subscriptions"]
         assert not [d for d in dangling if d[0] in ("/NDC3", "/NREA")], dangling
+    finally:
+        watch.stop(signal.SIGKILL)
+
+
+NO_GOODBYE_THEN_SLOW = """\
+# A FAKE, loaded as sitecustomize by the ROS 2 Python that runs watch's stand-ins (one process,
+# forked per node, so a file marker tells NDC1's first process from its next). NDC1's first
+# process ignores SIGINT and SIGTERM (a node hung in C code): stopping it ends in SIGKILL, so
+# its participant says no DDS goodbye and is announced until its lease ends. Its next process
+# takes 6 s to make its node (a slow start).
+import os, signal, time
+
+try:
+    import rclpy.lifecycle
+except ImportError:  # the interpreter's own checks before rclpy: nothing to fake
+    rclpy = None
+
+if rclpy is not None:
+    real_init = rclpy.lifecycle.LifecycleNode.__init__
+
+    def init(self, name, *args, **kwargs):
+        if name == "NDC1":
+            marker = os.path.join(os.environ["FAKE_MARKS"], "NDC1-started")
+            if os.path.exists(marker):
+                time.sleep(6.0)
+            else:
+                open(marker, "w").close()
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        real_init(self, name, *args, **kwargs)
+
+    rclpy.lifecycle.LifecycleNode.__init__ = init
+"""
+
+TEAM_LEASE = """\
+<?xml version="1.0" encoding="UTF-8"?>
+<dds xmlns="http://www.eprosima.com"><profiles>
+  <participant profile_name="team" is_default_profile="true"><rtps><builtin><discovery_config>
+    <leaseDuration><sec>20</sec><nanosec>0</nanosec></leaseDuration>
+    <leaseAnnouncement><sec>3</sec><nanosec>0</nanosec></leaseAnnouncement>
+  </discovery_config></builtin></rtps></participant>
+</profiles></dds>
+"""
+
+
+def test_a_standby_started_anew_is_never_taken_for_its_dead_predecessor(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """A hung standby stopped without a DDS goodbye is announced until its lease ends (the
+    team's Fast DDS profile: 20 s). Its state query, unanswered, was read as the state of
+    the node started anew under its name: the new, healthy process was then stopped as
+    "hung" (fresh clone fc177: at a failover; here, slow to start, on the next ticks)."""
+    fake = tmp_path / "fake"
+    fake.mkdir()
+    (fake / "sitecustomize.py").write_text(NO_GOODBYE_THEN_SLOW)
+    python = fake / "python"  # watch hands no PYTHONPATH on: the ROS 2 Python sets it itself
+    python.write_text(f'#!/bin/sh\nPYTHONPATH={fake} exec {_ros2_python()} "$@"\n')
+    python.chmod(0o755)
+    profile = tmp_path / "team_fastdds.xml"
+    profile.write_text(TEAM_LEASE)
+    env = {"FAKE_MARKS": str(fake), "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile)}
+    watch = standby_watch(tmp_path, ros2_domain, env, python)
+    try:
+        watch.wait("conformant")
+        deadline = time.monotonic() + UP_TIMEOUT
+        while "NDC1" not in watch.configured():
+            assert time.monotonic() < deadline, watch.events()[-5:]
+            time.sleep(0.2)
+        first = watch.pids()["NDC1"]
+        before = len(watch.events())
+        os.kill(first, signal.SIGSTOP)
+        hung = watch.wait("standby-hung", after=before)
+        assert (hung["component"], hung["pid"]) == ("NDC1", first)
+        assert not alive(first)  # SIGKILLed: no goodbye
+        again = watch.wait("launch", after=before)
+        assert again["components"] == ["NDC1"], again
+        while not [e for e in watch.events()[before:] if e.get("transition") == "configure"
+                   and e["component"] == "NDC1" and e["ok"]]:  # fmt: skip
+            assert time.monotonic() < deadline, watch.events()[-5:]
+            time.sleep(0.2)
+        after = watch.events()[before:]
+        hung_pids = [e["pid"] for e in after if e["event"] == "standby-hung"]
+        assert hung_pids == [first], [e["message"] for e in after]  # the new one never "hung"
+        assert alive(again["pids"]["NDC1"])
     finally:
         watch.stop(signal.SIGKILL)

@@ -21,7 +21,16 @@ from rosreconf.ros.launcher import LaunchActuator
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.control import Ros2Control
+from rosreconf.ros.ros2.fastdds_ids import fastdds_fields
+from rosreconf.ros.ros2.nodes import OwnNode
 from rosreconf.ros.ros2.shmdebris import diagnose
+
+
+def _may_run(participant: bytes, pid: int) -> bool:
+    """Tell whether ``participant`` may be process ``pid``'s: a Fast DDS GUID carries the low
+    16 bits of its pid (``fastdds_ids``); another vendor's carries nothing to tell by."""
+    fields = fastdds_fields(participant)
+    return fields is None or fields[1] == pid & 0xFFFF
 
 
 @dataclass
@@ -55,6 +64,26 @@ class Ros2Actuator(Actuator):
             stand_ins=a.stand_ins,
             standby=a.standby,
             stop_outside=a.stop_outside,
+        )
+        self.control.nodes.stopping = self._hide_stopping
+
+    def _hide_stopping(self, stopping: list[OwnNode]) -> None:
+        """Leave out of later reads the participants of processes rosreconf is stopping.
+
+        A process stopped without a DDS goodbye (SIGKILLed, or its goodbye lost) is announced
+        until its lease ends, and a node started anew under its name would then be two: the
+        dead one's state query, unanswered, read as the new one's "hung" (fresh clone fc177).
+        Taken from the last read, before any restart: each participant naming a stopped node
+        whose Fast DDS GUID carries that process's pid (another vendor's carries none, and
+        its node name is then what tells).
+        """
+        pids = {own.node: own.pid for own in stopping}
+        self.hide(
+            {
+                g
+                for g, nodes in self.participants().items()
+                if any(n in pids and _may_run(g, pids[n]) for n in nodes)
+            }
         )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:

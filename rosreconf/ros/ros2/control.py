@@ -217,6 +217,7 @@ class Ros2Control:
         The lifecycle states read are kept for ``tend``: a parked standby's too.
         """
         self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
+        self.standbys.saw(self.read_states)
         if not self.dead & set(graph.names):
             return graph
         return dataclasses.replace(

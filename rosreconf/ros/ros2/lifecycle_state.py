@@ -178,12 +178,16 @@ def _qos(dds: Any) -> Any:
 def managed_servers(session: Ros2Discovery, graph: LiveGraph) -> dict[str, bytes]:
     """Return node -> participant GUID of each node of ``graph`` serving ``<node>/get_state``.
 
-    Read from the request readers the session's last read saw (``rq<node>/get_stateRequest``).
+    Read from the request readers the session's last read saw (``rq<node>/get_stateRequest``),
+    never a hidden participant's: a process known dead is announced until its lease ends, and
+    its unanswered query would be read as the state of the node started anew under its name.
     """
     servers: dict[str, bytes] = {}
     for e in session.last_endpoints.values():
         named = ros_name(e.topic)
         if e.writer or named is None or named[0] is not Channel.REQUEST:
+            continue
+        if e.participant in session.hidden:
             continue
         if named[1].endswith(_GET_STATE):
             servers[named[1][: -len(_GET_STATE)]] = e.participant

@@ -27,7 +27,7 @@ import json
 import signal
 import subprocess
 import time
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
@@ -124,6 +124,9 @@ class NodeProcesses:
             stand-ins start on their own), each once, for the caller to say and clear.
         helpers: helper deaths seen (the stand-in zygote killed or crashed), each once, for
             the caller to say: never a component's failure (its stand-ins run on).
+        stopping: told of the nodes ``stop`` is about to stop, before any signal: their
+            processes' participants are still the graph's last read, and none started
+            after (a node started anew under the same name) is among them.
     """
 
     env: Mapping[str, str]
@@ -133,6 +136,7 @@ class NodeProcesses:
     nodes: dict[str, OwnNode] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
     helpers: list[str] = field(default_factory=list)
+    stopping: Callable[[list[OwnNode]], None] = lambda _: None
     _profile: Path | None = None
     _zygote: Zygote | None = None
     _zygote_failed: bool = False
@@ -306,6 +310,8 @@ class NodeProcesses:
     def stop(self, components: Collection[str], grace: float = GRACE_SECONDS) -> list[OwnNode]:
         """Stop these components' processes: SIGINT, SIGTERM, SIGKILL, ``grace`` s apart."""
         own = [self.nodes.pop(c) for c in components if c in self.nodes]
+        if own:
+            self.stopping(own)
         for sig in (signal.SIGINT, signal.SIGTERM):
             alive = [n for n in own if n.program.process.poll() is None]
             for n in alive:

@@ -47,6 +47,7 @@ class Standbys:
         tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
         last: the configuration and failures the standbys were last prepared for.
         lost: a standby's process exited: the set is prepared again on the next tick.
+        seen: node names of the graph last read, less the standbys started since (``tend``).
     """
 
     library: ComponentLibrary
@@ -59,6 +60,7 @@ class Standbys:
     tries: dict[str, int] = field(default_factory=dict)
     last: tuple[Configuration, frozenset[str]] | None = None
     lost: bool = False
+    seen: set[str] = field(default_factory=set)
 
     def node_of(self, component: str) -> str:
         """Return the live node name of ``component``."""
@@ -103,7 +105,9 @@ class Standbys:
         finally:
             for problem in self.nodes.take_problems():  # a broken zygote: started alone
                 self.say("launch-error", problem)
-        self.parked |= {self.node_of(c) for c in wanted}
+        started = {self.node_of(c) for c in wanted}
+        self.parked |= started
+        self.seen -= started  # up only once a later read shows the new processes
         self.lifecycle.call(lambda agent: agent.watch([self.node_of(c) for c in wanted]))
         self.say(
             "launch",
@@ -184,12 +188,25 @@ class Standbys:
                     joins.setdefault(c, new)
         return joins
 
+    def saw(self, names: Collection[str]) -> None:
+        """Take the node names of the graph just read (``tend`` configures only those)."""
+        self.seen = set(names)
+
     def tend(self) -> None:
-        """Configure the standby nodes whose services have come up (never waits for one)."""
+        """Configure the standby nodes that have come up (never waits for one).
+
+        Up means both: the lifecycle agent's client has matched the node's services, and the
+        node is in a graph rosreconf read after starting it (``seen``). The agent alone is not
+        enough: it also matches a dead predecessor's services while DDS still announces them,
+        and rosreconf's own reads leave those out (``Ros2Actuator._hide_stopping``). A
+        configure sent before the node itself is up goes unanswered and uses up its tries.
+        """
         self.unready = [c for c in self.unready if c in self.nodes.nodes]
         if not self.unready:
             return
-        nodes = [self.node_of(c) for c in self.unready]
+        nodes = [self.node_of(c) for c in self.unready if self.node_of(c) in self.seen]
+        if not nodes:
+            return
         ready = self.lifecycle.call(lambda agent: agent.ready(nodes)) or set()
         up = [c for c in self.unready if self.node_of(c) in ready]
         self.unready = [c for c in self.unready if c not in up]
