@@ -80,6 +80,12 @@ class Member:
         """SIGKILL its process."""
         self.send_signal(signal.SIGKILL)
 
+    def tail(self, size: int = 3000) -> str:
+        """Return the end of its log (a crash's stacks, a traceback), for a failure's message."""
+        if not self.log.exists():
+            return "(no log)"
+        return self.log.read_bytes()[-size:].decode(errors="replace")
+
     def ready(self) -> bool:
         """Tell whether the node has said ``ready`` (in its log)."""
         return self.log.exists() and b'"ready"' in self.log.read_bytes()
@@ -171,7 +177,8 @@ def wait_ready(members: Mapping[str, Member], timeout: float = 60.0) -> None:
         late = [k for k, m in members.items() if not m.ready()]
         gone = [k for k in late if members[k].poll() is not None]
         if gone:
-            raise AssertionError(f"team nodes exited before ready: {gone}")
+            said = "; ".join(f"{k} (exit {members[k].returncode}): {members[k].tail()}" for k in gone)
+            raise AssertionError(f"team nodes exited before ready: {said}")
         if not late:
             return
         time.sleep(0.05)
