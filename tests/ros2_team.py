@@ -21,6 +21,7 @@ import signal
 import subprocess
 import threading
 import time
+import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -47,8 +48,16 @@ class Member:
     stdout = None
     """Its output is in ``log`` (as ``Popen`` says of a process whose stdout is not a pipe)."""
 
-    def __init__(self, team: Team, pid: int, log: Path) -> None:
+    def __init__(self, team: Team, pid: int, log: Path, key: str, argv: Sequence[str]) -> None:
         self.team, self.pid, self.log = team, pid, log
+        self.key, self.argv = key, list(argv)
+        self.crashed: list[str] = []
+        """What each earlier process of this member left in its log when it crashed."""
+
+    def start_again(self) -> None:
+        """Fork this node once more (same argv, a new log): it is then that new process."""
+        again = self.team.start(self.key, self.argv)
+        self.pid, self.log = again.pid, again.log
 
     @property
     def returncode(self) -> int | None:
@@ -144,7 +153,7 @@ class Team:
             answer = self._answers.pop(self._next)
         if "pid" not in answer:
             raise RuntimeError(f"the team's zygote could not fork {key}: {answer}")
-        return Member(self, int(answer["pid"]), log)
+        return Member(self, int(answer["pid"]), log, key, argv)
 
     def exit_of(self, pid: int) -> int | None:
         """Return the exit status the zygote reported for ``pid``, or None."""
@@ -171,13 +180,28 @@ class Team:
 
 
 def wait_ready(members: Mapping[str, Member], timeout: float = 60.0) -> None:
-    """Return once every member has said ``ready``; fail naming those that did not."""
+    """Return once every member has said ``ready``; fail naming those that did not.
+
+    A member killed by a signal before ready (a crash in rclpy or DDS, as Kilted's SIGSEGV;
+    the team's robot, not what a test is about) is started once more, with a warning that
+    carries its log (faulthandler's stacks). Any other exit before ready fails, with its log.
+    """
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         late = [k for k, m in members.items() if not m.ready()]
         gone = [k for k in late if members[k].poll() is not None]
+        crashed = [k for k in gone if (members[k].returncode or 0) < 0 and not members[k].crashed]
+        for k in crashed:
+            m = members[k]
+            m.crashed.append(m.tail())
+            warnings.warn(f"team node {k} crashed before ready (exit {m.returncode}), started "
+                          f"once more; its log ends:\n{m.crashed[-1]}", stacklevel=2)  # fmt: skip
+            m.start_again()
+        gone = [k for k in gone if k not in crashed]
         if gone:
-            said = "; ".join(f"{k} (exit {members[k].returncode}): {members[k].tail()}" for k in gone)
+            said = "; ".join(
+                f"{k} (exit {members[k].returncode}): {members[k].tail()}" for k in gone
+            )
             raise AssertionError(f"team nodes exited before ready: {said}")
         if not late:
             return
