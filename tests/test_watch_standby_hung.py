@@ -12,16 +12,36 @@ import os
 import signal
 import time
 from pathlib import Path
+from typing import Any
 
 from test_watch_ros2 import (
     DC_ARM,
     NOMINAL,
     UP_TIMEOUT,
+    Watch,
     _ros2_python,
     alive,
     probe,
     standby_watch,
 )
+
+
+def _hang_ndc1(watch: Watch, deadline: float) -> tuple[int, dict[str, Any]]:
+    """Stop (SIGSTOP) standby NDC1's process; wait until watch has stopped it, started it
+    anew and configured it. Return the stopped pid and the new process's launch event."""
+    first = watch.pids()["NDC1"]
+    before = len(watch.events())
+    os.kill(first, signal.SIGSTOP)
+    hung = watch.wait("standby-hung", after=before)
+    assert (hung["component"], hung["pid"]) == ("NDC1", first)
+    assert not alive(first)
+    again = watch.wait("launch", after=before)
+    assert again["components"] == ["NDC1"] and again.get("standby"), again
+    while not [e for e in watch.events()[before:] if e.get("transition") == "configure"
+               and e["component"] == "NDC1" and e["ok"]]:  # fmt: skip
+        assert time.monotonic() < deadline, watch.events()[-5:]
+        time.sleep(0.2)
+    return first, again
 
 
 def test_a_hung_standby_is_started_anew_and_one_hung_at_the_failover_is_started_cold(
@@ -35,18 +55,7 @@ def test_a_hung_standby_is_started_anew_and_one_hung_at_the_failover_is_started_
             assert time.monotonic() < deadline, watch.events()[-5:]
             time.sleep(0.2)
         # a standby stopped while nothing fails: stopped and started anew, configured again
-        first = watch.pids()["NDC1"]
-        before = len(watch.events())
-        os.kill(first, signal.SIGSTOP)
-        hung = watch.wait("standby-hung", after=before)
-        assert (hung["component"], hung["pid"]) == ("NDC1", first)
-        assert not alive(first)
-        again = watch.wait("launch", after=before)
-        assert again["components"] == ["NDC1"] and again.get("standby"), again
-        while not [e for e in watch.events()[before:] if e.get("transition") == "configure"
-                   and e["component"] == "NDC1" and e["ok"]]:  # fmt: skip
-            assert time.monotonic() < deadline, watch.events()[-5:]
-            time.sleep(0.2)
+        _hang_ndc1(watch, deadline)
         # a standby stopped just before the failure it stands by for: never activated
         before = len(watch.events())
         os.kill(watch.pids()["NDC3"], signal.SIGSTOP)
@@ -137,18 +146,8 @@ def test_a_standby_started_anew_is_never_taken_for_its_dead_predecessor(
         while "NDC1" not in watch.configured():
             assert time.monotonic() < deadline, watch.events()[-5:]
             time.sleep(0.2)
-        first = watch.pids()["NDC1"]
         before = len(watch.events())
-        os.kill(first, signal.SIGSTOP)
-        hung = watch.wait("standby-hung", after=before)
-        assert (hung["component"], hung["pid"]) == ("NDC1", first)
-        assert not alive(first)  # SIGKILLed: no goodbye
-        again = watch.wait("launch", after=before)
-        assert again["components"] == ["NDC1"], again
-        while not [e for e in watch.events()[before:] if e.get("transition") == "configure"
-                   and e["component"] == "NDC1" and e["ok"]]:  # fmt: skip
-            assert time.monotonic() < deadline, watch.events()[-5:]
-            time.sleep(0.2)
+        first, again = _hang_ndc1(watch, deadline)  # SIGKILLed: no goodbye
         after = watch.events()[before:]
         hung_pids = [e["pid"] for e in after if e["event"] == "standby-hung"]
         assert hung_pids == [first], [e["message"] for e in after]  # the new one never "hung"

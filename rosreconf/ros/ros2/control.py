@@ -214,8 +214,7 @@ class Ros2Control:
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes whose process rosreconf saw exit.
 
-        The lifecycle states read are kept for ``tend``: a parked standby's too.
-        """
+        The lifecycle states and names read are kept for ``tend``: parked standbys' too."""
         self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
         self.standbys.saw(self.read_states)
         if not self.dead & set(graph.names):

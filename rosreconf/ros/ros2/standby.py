@@ -105,10 +105,10 @@ class Standbys:
         finally:
             for problem in self.nodes.take_problems():  # a broken zygote: started alone
                 self.say("launch-error", problem)
-        started = {self.node_of(c) for c in wanted}
-        self.parked |= started
-        self.seen -= started  # up only once a later read shows the new processes
-        self.lifecycle.call(lambda agent: agent.watch([self.node_of(c) for c in wanted]))
+        names = [self.node_of(c) for c in wanted]
+        self.parked |= set(names)
+        self.seen -= set(names)  # up only once a later read shows the new processes
+        self.lifecycle.call(lambda agent: agent.watch(names))
         self.say(
             "launch",
             f"started standby {', '.join(wanted)} (each is configured as soon "
