@@ -122,7 +122,7 @@ def test_a_client_of_its_own_unremapped_names_is_unwired_and_wired_it_conforms(
     nodes.stop("client")
     nodes.start("client", CLIENT, *WIRED)  # rcl rewrites its names as it starts
     code, doc = _settled(nodes.domain, *PAIR)
-    assert (code, doc["findings"]) == (0, [])
+    assert (code, doc["findings"]) == (0, []), [f["message"] for f in doc["findings"]]
     checked = doc["checked"]
     assert checked["nodes"] == ["/server", "/client"] and checked["edges"] == 2
     assert checked["calls"] == [{"node": "/client", "service": "/real/svc_a"}]
@@ -176,5 +176,5 @@ def test_the_bundled_example_started_unwired_is_not_conformant_and_wired_it_is(
     for c in remaps:  # the consumers again, wired as their launch would start them
         nodes.start(c, ros2_standin_spec(library[c]), *ros2_node_arguments(library, c, remaps))
     code, doc = _settled(nodes.domain, *only)
-    assert (code, doc["findings"]) == (0, [])
+    assert (code, doc["findings"]) == (0, []), [f["message"] for f in doc["findings"]]
     assert len(doc["checked"]["nodes"]) == len(nominal.components)
