@@ -267,8 +267,9 @@ def test_standby_failover_is_activate_and_the_states_read_back(
         after = watch.events()[before:]
         # only the kept reasoner starts again, to be rewired; the standbys were started wired
         # for the configuration they join, so activating them leaves nothing dangling
+        said = [e["message"] for e in after]  # what watch did, for a failure's message
         (launch,) = (e for e in after if e["event"] == "launch")
-        assert launch["components"] == ["NREA"]
+        assert launch["components"] == ["NREA"], said
         activated = {e["component"]: e for e in after if e.get("transition") == "activate"}
         assert sorted(activated) == sorted([*DC_ARM, "NREA"])
         assert all(e["ok"] and e["state"] == "active" for e in activated.values())
