@@ -21,16 +21,9 @@ from rosreconf.ros.launcher import LaunchActuator
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.control import Ros2Control
-from rosreconf.ros.ros2.fastdds_ids import fastdds_fields
+from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.nodes import OwnNode
 from rosreconf.ros.ros2.shmdebris import diagnose
-
-
-def _may_run(participant: bytes, pid: int) -> bool:
-    """Tell whether ``participant`` may be process ``pid``'s: a Fast DDS GUID carries the low
-    16 bits of its pid (``fastdds_ids``); another vendor's carries nothing to tell by."""
-    fields = fastdds_fields(participant)
-    return fields is None or fields[1] == pid & 0xFFFF
 
 
 @dataclass
@@ -82,7 +75,7 @@ class Ros2Actuator(Actuator):
             {
                 g
                 for g, nodes in self.participants().items()
-                if any(n in pids and _may_run(g, pids[n]) for n in nodes)
+                if any(n in pids and may_be_of(g, pids[n]) for n in nodes)
             }
         )
 

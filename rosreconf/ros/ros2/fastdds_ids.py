@@ -32,6 +32,18 @@ def fastdds_fields(guid: bytes) -> tuple[int, int] | None:
     return int.from_bytes(guid[2:4], "little"), int.from_bytes(guid[4:6], "little")
 
 
+def low_pid(pid: int) -> int:
+    """Return the bits of ``pid`` a Fast DDS GUID carries (its low 16)."""
+    return pid & 0xFFFF
+
+
+def may_be_of(guid: bytes, pid: int) -> bool:
+    """Tell whether participant ``guid`` may be process ``pid``'s: a Fast DDS GUID must carry
+    its low pid bits; another vendor's carries nothing to tell by."""
+    fields = fastdds_fields(guid)
+    return fields is None or fields[1] == low_pid(pid)
+
+
 def compute_host_id(ipv4: Sequence[bytes]) -> int:
     """Return Fast DDS's host id for these IPv4 addresses, in ``getifaddrs`` order.
 

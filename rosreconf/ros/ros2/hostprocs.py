@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
 
-from rosreconf.ros.ros2.fastdds_ids import domain_ports, fastdds_fields, this_host_id
+from rosreconf.ros.ros2.fastdds_ids import domain_ports, fastdds_fields, low_pid, this_host_id
 
 PROC = Path("/proc")
 
@@ -201,7 +201,7 @@ class HostProcesses:
         self._ticks = os.sysconf("SC_CLK_TCK")
         self._by_low: dict[int, list[_Proc]] = {}
         for p in _processes(proc_root):
-            self._by_low.setdefault(p.inner_pid & 0xFFFF, []).append(p)
+            self._by_low.setdefault(low_pid(p.inner_pid), []).append(p)
 
     def locate(
         self,
