@@ -152,5 +152,8 @@ def test_a_standby_started_anew_is_never_taken_for_its_dead_predecessor(
         hung_pids = [e["pid"] for e in after if e["event"] == "standby-hung"]
         assert hung_pids == [first], [e["message"] for e in after]  # the new one never "hung"
         assert alive(again["pids"]["NDC1"])
+        # rclpy's own view, not rosreconf's: /NDC1 answers, a configured standby
+        seen = probe(watch.env, ros2_domain, "/NDC1", wait_for=["/NDC1"])
+        assert seen["states"]["/NDC1"] == "inactive", seen["states"]
     finally:
         watch.stop(signal.SIGKILL)
