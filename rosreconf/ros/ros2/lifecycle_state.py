@@ -119,10 +119,10 @@ class StateReader:
             if node not in self._pairs:
                 topics = (f"rq{node}/get_stateRequest", f"rr{node}/get_stateReply")
                 writer = dds.pub.DataWriter(
-                    dp, dds.topic.Topic(dp, topics[0], request), qos=_qos(dds)
+                    dp, dds.topic.Topic(dp, topics[0], request), qos=_qos(dds, reliable=True)
                 )
                 reader = dds.sub.DataReader(
-                    dp, dds.topic.Topic(dp, topics[1], response), qos=_qos(dds)
+                    dp, dds.topic.Topic(dp, topics[1], response), qos=_qos(dds, reliable=False)
                 )
                 self._pairs[node] = (participant, writer, reader)
         pending = dict.fromkeys(asked, -RESEND)
@@ -164,11 +164,30 @@ class StateReader:
         return got and not drain
 
 
-def _qos(dds: Any) -> Any:
-    """Return the QoS of a request writer and reply reader (as rmw's services use)."""
+def _qos(dds: Any, *, reliable: bool) -> Any:
+    """Return the QoS of a request writer (reliable, as rmw's service readers require) or of
+    a reply reader (best effort).
+
+    A reliable reader hands replies over in order: one reply lost on the way (a loaded host's
+    UDP receive buffers overflow: this 2-core machine counts millions of such drops, in
+    bursts, while tests start their nodes) holds every later reply of that node behind it
+    until the server's writer says what it sent, and Fast DDS says so every 3 s (its default
+    heartbeat period). The node then looks silent for up to 3 s, and ``unanswered`` (hung)
+    after 1.5 s: the likely cause of fresh clone fc198, twelve healthy nodes failed at once
+    as hung just after twelve standbys started. Measured with every fifth answer the
+    reader's process receives lost (``tests/faults/drop_received.c``, 40 reads 0.3 s apart,
+    Jazzy and Kilted alike): 11 of 40 reads said a healthy node ``unanswered`` with a
+    reliable reader, none with a best-effort one. Best effort takes each reply as it comes;
+    a lost one is made up by the next ask. A best-effort reader matches a reliable writer.
+    """
     policy = dds.qos.Policy
+    reliability = (
+        policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1))
+        if reliable
+        else policy.Reliability.BestEffort
+    )
     return dds.qos.Qos(
-        policy.Reliability.Reliable(max_blocking_time=dds.util.duration(seconds=1)),
+        reliability,
         policy.Durability.Volatile,
         policy.History.KeepLast(1),
         policy.DataRepresentation(use_cdrv0_representation=True),
