@@ -68,7 +68,7 @@ def child(folder: str) -> dict[str, float]:
         seconds["values"] += clock() - t
         t = clock()
         if library:
-            libraries.append(build_library(plain, src.name, tree, interfaces))
+            libraries.append(build_library(plain, src.name, lambda tree=tree: tree, interfaces))
         else:
             schemas.append(build_schema(plain, tree, src.name))
         seconds["build"] += clock() - t

@@ -9,7 +9,7 @@ a small file, has its positions recorded at once (its roles and edges carry thei
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
@@ -205,17 +205,19 @@ class _Where(Mapping[str, Span]):
     """A component's ``where``, looked up in its file's tree when first read.
 
     So positions cost nothing until a problem is reported; ``""`` is the component itself.
+    ``tree`` gives the file's tree (composed again if need be): holding the tree itself here
+    kept every file's tree for the life of the library.
     """
 
     __slots__ = ("_found", "_index", "_tree")
 
-    def __init__(self, tree: YNode, index: int) -> None:
+    def __init__(self, tree: Callable[[], YNode], index: int) -> None:
         self._tree, self._index = tree, index
         self._found: dict[str, Span] | None = None
 
     def _spans(self) -> dict[str, Span]:
         if self._found is None:
-            self._found = component_where(lookup(self._tree, ["components", self._index]))
+            self._found = component_where(lookup(self._tree(), ["components", self._index]))
         return self._found
 
     def __getitem__(self, key: str) -> Span:
@@ -229,11 +231,13 @@ class _Where(Mapping[str, Span]):
 
 
 def build_library(
-    plain: Plain, name: str, tree: YNode, seen: Interfaces | None = None
+    plain: Plain, name: str, tree: Callable[[], YNode], seen: Interfaces | None = None
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``tree`` is looked in only when a position is asked for (``_Where``). One ``seen`` for all the
+    ``tree`` gives the file's tree, called only when a position is asked for (``_Where``):
+    the loader's composes the file again then, so that no tree outlives its file's load
+    (holding every file's tree took 1.5 GB at 100,000 components). One ``seen`` for all the
     library files of a load makes every use of an interface the same object: a requirement
     and the provision meeting it then match by identity, without a comparison.
     """
