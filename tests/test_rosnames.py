@@ -108,6 +108,17 @@ def test_a_namespace_is_absolute_and_an_unknown_substitution_is_refused() -> Non
         resolve_name("{robot}/scan", "n", "/")
 
 
+def test_a_relative_namespace_is_started_absolute_as_rcl_requires() -> None:
+    """The monitor's library says ``namespace: sensors``; rcl refuses ``-r __ns:=sensors``."""
+    from rosreconf.formats.loader import load_paths
+    from rosreconf.ros.launchfiles import ros2_node_arguments
+
+    library = load_paths([DATA / "library.yaml"]).library
+    assert library["monitor"].namespace == "sensors"
+    args = ros2_node_arguments(library, "monitor", {})
+    assert args[:5] == ["--ros-args", "-r", "__node:=monitor", "-r", "__ns:=/sensors"]
+
+
 def test_rules_spell_a_private_name_for_rcl_and_move_each_name_under_an_action() -> None:
     assert rule_spelling("~scan_in") == "~/scan_in"
     assert rule_spelling("~/scan_in") == "~/scan_in" and rule_spelling("~") == "~"

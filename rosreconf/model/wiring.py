@@ -105,6 +105,16 @@ def resolve_name(
     return expanded
 
 
+def node_namespace(component: Component) -> str | None:
+    """Return the absolute namespace ``component``'s node is started in, if it has one.
+
+    A library may write ``sensors``; rcl refuses ``-r __ns:=sensors`` (a namespace rule
+    must be absolute) and resolves every name of the node in ``/sensors``, so that is what
+    launch files, ``--ros-args`` and stand-ins are given.
+    """
+    return _join("/", component.namespace) if component.namespace else None
+
+
 def node_live_name(component: Component) -> str:
     """Return the global name the node of ``component`` has on the live graph.
 

@@ -59,6 +59,7 @@ from rosreconf.model.validity import ros_graph
 from rosreconf.model.wiring import (
     interface_live_name,
     node_live_name,
+    node_namespace,
     remap_rules,
     spelled_name,
     used_interfaces,
@@ -170,8 +171,8 @@ def _stand_in_file(
     )
     for c in chosen:
         attrs = {"pkg": STANDIN_PACKAGE, "type": STANDIN_EXECUTABLE, "name": c.node_name}
-        if c.launch is not None and c.launch.namespace:
-            attrs["ns"] = c.launch.namespace
+        if (ns := node_namespace(c)) is not None:
+            attrs["ns"] = ns
         # roslaunch splits args like a shell: one single-quoted word, so no ' inside.
         spec = standin_spec(c, uses.get(c.name, frozenset()))
         attrs["args"] = "'" + json.dumps(spec).replace("'", "") + "'"
@@ -244,8 +245,8 @@ def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersi
         "type" if ros1 else "exec": launch.executable,
         "name": c.node_name,
     }
-    if launch.namespace:
-        attrs["ns" if ros1 else "namespace"] = launch.namespace
+    if (ns := node_namespace(c)) is not None:
+        attrs["ns" if ros1 else "namespace"] = ns
     if launch.args:
         attrs["args"] = shlex.join(launch.args)  # both dialects split args like a shell
     node = ET.Element("node", attrs)
@@ -348,8 +349,8 @@ def ros2_node_arguments(
     c = library[component]
     args = ["--ros-args", "-r", f"__node:={c.node_name}"]
     launch = c.launch
-    if launch is not None and launch.namespace:
-        args += ["-r", f"__ns:={launch.namespace}"]
+    if (ns := node_namespace(c)) is not None:
+        args += ["-r", f"__ns:={ns}"]
     for rule in ros2_rules(remaps.get(component, [])):
         args += ["-r", rule]
     for name, value in sorted(launch.parameters.items()) if launch is not None else ():
