@@ -5,9 +5,12 @@ Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [--until-wired] [NODE ...]. P
 document:
 {"nodes": [full names], "topics": {name: [types]}, "services": {name: [types]},
  "states": {node: lifecycle state label, via its get_state service},
- "dangling": {"calls": [[node, service]], "subscriptions": [[node, topic]]}}: each service a
-node calls that no node serves, and each topic it subscribes that no node publishes (the
-probe itself, /rosout and /parameter_events left out), read per node from rclpy's graph.
+ "dangling": {"calls": [[node, service]], "subscriptions": [[node, topic]]},
+ "endpoints": {node: {"publishes": [...], "subscribes": [...], "serves": [...], "calls": [...]}}}:
+each service a node calls that no node serves, and each topic it subscribes that no node
+publishes (the probe itself, /rosout and /parameter_events left out), read per node from
+rclpy's graph; and every node's own endpoints under the names rcl resolved for it (hidden
+nodes, /rosout, /parameter_events and a node's own parameter services left out).
 
 It reads once every ``--wait-for`` name (a node, topic or service) is seen and the graph has
 then not changed for 1 s, or after SECONDS at most: discovery takes longer on a busy machine,
@@ -58,6 +61,33 @@ def _dangling(node: Any) -> dict[str, list[list[str]]]:
     return {"calls": sorted(calls), "subscriptions": sorted(subscriptions)}
 
 
+PLUMBING = ("/rosout", "/parameter_events")
+PARAMETER_SERVICES = ("describe_parameters", "get_parameter_types", "get_parameters",
+                      "get_type_description", "list_parameters", "set_parameters",
+                      "set_parameters_atomically")  # fmt: skip
+
+
+def _endpoints(node: Any) -> dict[str, dict[str, list[str]]]:
+    """Return each node's publishers, subscriptions, servers and clients, by full name."""
+    out = {}
+    for name, ns in node.get_node_names_and_namespaces():
+        if name.startswith("_"):
+            continue
+        full = ns.rstrip("/") + "/" + name
+        own = {f"{full}/{p}" for p in PARAMETER_SERVICES}
+        reads = {
+            "publishes": node.get_publisher_names_and_types_by_node(name, ns),
+            "subscribes": node.get_subscriber_names_and_types_by_node(name, ns),
+            "serves": node.get_service_names_and_types_by_node(name, ns),
+            "calls": node.get_client_names_and_types_by_node(name, ns),
+        }
+        out[full] = {
+            k: sorted(n for n, _ in v if not n.startswith(PLUMBING) and n not in own)
+            for k, v in reads.items()
+        }
+    return out
+
+
 def _of(dangling: dict[str, list[list[str]]], nodes: list[str]) -> list[list[str]]:
     """Return the dangling calls and subscriptions of ``nodes`` (of every node if none)."""
     return [d for found in dangling.values() for d in found if not nodes or d[0] in nodes]
@@ -103,6 +133,7 @@ def main() -> int:
         states[name] = future.result().current_state.label if future.done() else None
     doc = {"nodes": names, "topics": topics, "services": services, "states": states}
     doc["dangling"] = dangling
+    doc["endpoints"] = _endpoints(node)
     print(json.dumps(doc))
     rclpy.shutdown()
     return 0

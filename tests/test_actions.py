@@ -249,7 +249,11 @@ def test_the_ros_picture_draws_actions_as_octagons_with_a_legend() -> None:
     }
 
 
-def test_launch_files_remap_an_action_by_its_name_ros2_and_its_five_topics_ros1() -> None:
+def test_launch_files_remap_each_name_under_an_action_ros2_and_ros1() -> None:
+    """A rule for an action's own name moves nothing on Jazzy (rcl 9) nor on ROS 1.
+
+    tests/test_ros2_namespaces.py shows the five ROS 2 rules moving a real rclpy client.
+    """
     library, schema = _load(CASE)
     config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     ros2 = launch_file(library, schema, config, RosVersion.ROS2).text
@@ -257,7 +261,8 @@ def test_launch_files_remap_an_action_by_its_name_ros2_and_its_five_topics_ros1(
         xmlschema.XMLSchema(str(xsd)).validate(ros2)
     (nav,) = [n for n in ET.fromstring(ros2).iter("node") if n.get("name") == "BT_NAVIGATOR"]
     assert [(r.get("from"), r.get("to")) for r in nav.iter("remap")] == [
-        ("follow_path", "/rpp/follow_path")
+        (f"follow_path/_action/{p}", f"/rpp/follow_path/_action/{p}")
+        for p in ("send_goal", "cancel_goal", "get_result", "feedback", "status")
     ]
     ros1 = launch_file(library, schema, config, RosVersion.ROS1).text
     (nav,) = [n for n in ET.fromstring(ros1).iter("node") if n.get("name") == "BT_NAVIGATOR"]
@@ -413,7 +418,9 @@ def test_ros1_actionlib_topics_of_stand_ins_make_a_conformant_graph() -> None:
     assert [(f.code, f.component, f.live_name) for f in unwired.findings] == [
         ("unwired", "BT_NAVIGATOR", "/follow_path")
     ]
-    assert "-r follow_path:=/rpp/follow_path" in unwired.findings[0].message
+    said = unwired.findings[0].message  # one rule per actionlib topic: a name's moves none
+    for part in ("goal", "cancel", "status", "feedback", "result"):
+        assert f"-r follow_path/{part}:=/rpp/follow_path/{part}" in said
     # wired as its launch file remaps it (roslaunch remaps the action's namespace)
     nodes = [
         replace(n, publishes=tuple(t.replace("/follow_path/", "/rpp/follow_path/")

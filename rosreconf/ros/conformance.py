@@ -8,12 +8,15 @@ pair of functions maps model names to live names, and everything here goes throu
     model                                   live (global ROS name)
     --------------------------------------  ------------------------------------------------
     component C                             <ros.namespace or />/<ros.node or C>  node_live_name
-    interface label X of component C        ros.remappings[X] if given, else X;  interface_live_name
-                                            a relative name is resolved in C's namespace
+    interface label X of component C        ros.remappings[X] if given, else X,  interface_live_name
+                                            resolved for C's node as ROS does (resolve_name):
+                                            /x as is; x in C's namespace; ~/x, ~x under C's node
 
 So NSM3 is ``/NSM3`` and its ``elbow/digital_servo_command`` is ``/arm_servo/elbow/servo_command``
 (its remapping); a component with ``namespace: /arm`` and no remapping for ``joint_states``
-publishes ``/arm/joint_states``.
+publishes ``/arm/joint_states``, and one whose remapping says ``~/state`` publishes
+``/arm/<node>/state``. The module that owns the mapping, ``rosreconf.model.wiring``, writes
+the launch files' remappings and the stand-ins' names with the same resolver.
 
 It reads the wiring, never assumes it: along an edge provider P -> interface (label L) ->
 consumer C of the ROS-graph, C must use P's live name ``interface_live_name(P, L)`` on the
@@ -309,7 +312,8 @@ def _clash_findings(
             continue
         has |= {h.split("/_action/")[0] for h in has if "/_action/" in h}  # ROS 2 actions
         has |= {h.removesuffix("/goal") for h in has if h.endswith("/goal")}  # actionlib
-        own = {h for h in has for label in labels if h.endswith("/" + label.lstrip("/"))}
+        own = {interface_live_name(comps[c], label) for label in labels} & has
+        own |= {h for h in has for label in labels if h.endswith("/" + label.lstrip("/"))}
         if not wanted or wanted & has or own:  # its own label unwired: miswired, not another
             continue
         launch = comps[c].launch

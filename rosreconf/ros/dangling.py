@@ -31,7 +31,7 @@ from rosreconf.model.schema import node_vertex
 from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.livenames import Finding, Providers, option_names, remap_source
+from rosreconf.ros.livenames import Finding, Providers, option_names, rules_said
 
 if TYPE_CHECKING:
     from rosreconf.model import RosGraph
@@ -101,7 +101,7 @@ def dangling_findings(
 
     ``judged`` holds the (node, kind, name) uses the edge checks explained already.
     """
-    offers = _Offers(answering, live_actions(graph))
+    offers = _Offers(answering, live_actions(graph), graph.ros_version)
     out = Uses()
     for c, comp in comps.items():
         node = answering.get(node_live_name(comp))
@@ -128,10 +128,12 @@ def dangling_findings(
 
 @dataclass
 class _Offers:
-    """Who offers what on the live graph: the answering nodes and the actions they carry."""
+    """Who offers what on the live graph: the answering nodes, the actions they carry, and
+    the graph's ROS version (1 or 2: how a rule moving an action is written)."""
 
     answering: dict[str, LiveNode]
     actions: dict[str, LiveAction]
+    ros_version: int
 
     def by(self, node: str, kind: VertexKind, name: str) -> bool:
         """Tell whether live node ``node`` publishes or serves ``name``."""
@@ -193,7 +195,8 @@ def _finding(
     ]
     if instead:
         listed = ", ".join(f"{who} {nobody} it as {live}" for who, live in instead)
-        rule = f"-r {remap_source(comp, option.label)}:={instead[0][1]}"
+        action = kind is VertexKind.ACTION
+        rule = rules_said(comp, option.label, instead[0][1], action, offers.ros_version)
         msg += f"; {listed}: {c} is not wired to it (start {c} with {rule})"
     else:
         msg += f"; no live node {nobody} {option.label} under any name"

@@ -25,7 +25,7 @@ from rosreconf.model.qos import incompatibilities
 from rosreconf.model.wiring import interface_live_name, node_live_name
 from rosreconf.ros.liveactions import LiveAction, live_actions
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.livenames import Finding, Providers, option_names, remap_source, same_type
+from rosreconf.ros.livenames import Finding, Providers, option_names, rules_said, same_type
 
 if TYPE_CHECKING:
     from rosreconf.model import RosGraph
@@ -167,13 +167,14 @@ def _consumer(
     offered = live.offered(kind)
     if uses is not None and name not in uses:
         wrong = sorted(n for n in option_names(comp, option, live.providers) if n in uses)
+        action = kind is VertexKind.ACTION
         for used in wrong:
             out.judged.add((user.name, kind, used))
             nobody = "" if used in offered else f", which nothing live {OFFER[kind]}"
             msg = (
                 f"{consumer} {USE[kind]} {used} ({label}){nobody}; {provider} {OFFER[kind]} "
                 f"it as {name}: {consumer} is not wired to it (start {consumer} with "
-                f"-r {remap_source(comp, label)}:={name})"
+                f"{rules_said(comp, label, name, action, live.graph.ros_version)})"
             )
             found.append(Finding("unwired", msg, consumer, used))
         if not wrong:

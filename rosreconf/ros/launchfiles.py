@@ -2,8 +2,11 @@
 
 Each chosen component becomes one ``<node>`` from its library ``ros:`` entry (package,
 executable, node name, namespace, args, parameters). Wiring follows the ROS-graph (Def. 1):
-for every edge topic/service -> consumer, the consumer is remapped from the name *it* uses
-for the label to the name the *provider* really uses, when the two differ::
+for every edge provider -> topic/service/action -> consumer, both names are resolved as ROS
+resolves them, each for its own node (``rosreconf.model.wiring.resolve_name``: absolute,
+relative to the node's namespace, ``~`` under the node's name, after the library's
+``remappings``), and the consumer is remapped when the two differ, from the name *its*
+executable spells to the provider's resolved name, absolute::
 
     library                                   launch file
     ----------------------------------------  -----------------------------------------------
@@ -11,17 +14,22 @@ for the label to the name the *provider* really uses, when the two differ::
          remappings {camera_image:              <remap from="camera_image"
                      /camera1/image}                   to="/camera1/image"/>
     NVP1 requires camera_image                </node>
+    sonar_array (namespace /sensors)          <node name="estimator" ...>
+         provides scan                          <remap from="scan" to="/sensors/scan"/>
+    estimator (namespace /) requires scan     </node>
+    monitor (namespace /sensors)              <node name="monitor" namespace="/sensors"/>
+         requires scan                          (/sensors/scan already: no remap)
 
 A library ``remappings`` entry says which ROS name a component's executable really uses for
 a label; the provider is therefore started as it is and its consumers are remapped to that
-name (``rosreconf.ros.conformance`` reads the same entry the same way when it checks a live
-system). An action is remapped by its name in ROS 2, like a topic (rcl_action remaps action
-names with the topic rules); ROS 1 actionlib is five topics under the action's namespace
-(``ACTIONLIB_TOPICS``), and remapping a name does not move the names under it, so a ROS 1
-file remaps each of the five. One remapping can point a name at one place only: when a
+name (``rosreconf.ros.conformance`` resolves the same entry the same way when it checks a
+live system). A rule for an action's name moves none of the names under it on ROS 1 nor on
+Jazzy, so an action takes one rule per name under it (``remap_rules``: actionlib's five
+topics, ROS 2's ``_action/`` services and topics). A private name is written ``~/x`` for
+ROS 2 (rcl refuses ``~x``). One remapping can point a name at one place only: when a
 consumer uses the same label from several providers that use different names, no remapping
-is written; a comment in the node and an entry in ``LaunchFile.notes`` say so. The XML is built with
-``xml.etree``; no user value is ever pasted into markup.
+is written; a comment in the node and an entry in ``LaunchFile.notes`` say so. The XML is
+built with ``xml.etree``; no user value is ever pasted into markup.
 
 ``only`` writes just some of the configuration's nodes, still wired against the whole
 configuration (``rosreconf watch`` starts only what a reconfiguration adds), and
@@ -48,11 +56,15 @@ from rosreconf.model import (
 )
 from rosreconf.model import VertexKind as K
 from rosreconf.model.validity import ros_graph
-from rosreconf.model.wiring import node_live_name, used_interfaces
+from rosreconf.model.wiring import (
+    interface_live_name,
+    node_live_name,
+    node_namespace,
+    remap_rules,
+    spelled_name,
+    used_interfaces,
+)
 from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
-
-ACTIONLIB_TOPICS = ("goal", "cancel", "status", "feedback", "result")
-"""The topics ROS 1 actionlib puts under an action's name (``<action>/goal`` ...)."""
 
 
 class RosVersion(enum.StrEnum):
@@ -159,17 +171,16 @@ def _stand_in_file(
     )
     for c in chosen:
         attrs = {"pkg": STANDIN_PACKAGE, "type": STANDIN_EXECUTABLE, "name": c.node_name}
-        if c.launch is not None and c.launch.namespace:
-            attrs["ns"] = c.launch.namespace
+        if (ns := node_namespace(c)) is not None:
+            attrs["ns"] = ns
         # roslaunch splits args like a shell: one single-quoted word, so no ' inside.
         spec = standin_spec(c, uses.get(c.name, frozenset()))
         attrs["args"] = "'" + json.dumps(spec).replace("'", "") + "'"
         attrs["output"] = "log"
         node = ET.SubElement(root, "node", attrs)
         for old, new, action in remaps.get(c.name, []):
-            for part in ACTIONLIB_TOPICS if action else ("",):
-                tail = f"/{part}" if part else ""
-                node.append(ET.Element("remap", {"from": old + tail, "to": new + tail}))
+            for a, b in remap_rules(old, new, action, 1):
+                node.append(ET.Element("remap", {"from": a, "to": b}))
     ET.indent(root)
     text = '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(root, encoding="unicode")
     return LaunchFile(text + "\n", tuple(c.name for c in chosen), ())
@@ -182,29 +193,39 @@ Remap = tuple[str, str, bool]
 def _wiring(
     library: ComponentLibrary, schema: InteroperabilitySchema, configuration: Configuration
 ) -> tuple[dict[str, list[Remap]], dict[str, list[str]]]:
-    """Return per consumer its remappings and the notes about what cannot be."""
+    """Return per consumer its remappings and the notes about what cannot be.
+
+    Names are compared resolved, each for its own node (``interface_live_name``): a consumer
+    in ``/`` and a provider in ``/sensors`` that both say ``scan`` use ``/scan`` and
+    ``/sensors/scan``, so the consumer gets ``scan:=/sensors/scan``; two nodes of one
+    namespace that say ``scan`` need none. ``from`` is the consumer's own spelling, ``to``
+    the provider's resolved name, absolute, so it means the same in any namespace.
+    """
     g = ros_graph(configuration, library, schema)
-    wanted: dict[tuple[str, str], dict[str, str]] = {}  # (consumer, own name) -> provider: real
+    # (consumer, its spelling) -> (its resolved name, provider -> the provider's resolved name)
+    wanted: dict[tuple[str, str], tuple[str, dict[str, str]]] = {}
     actions: set[tuple[str, str]] = set()
     for vertex, (kind, consumer) in g.edges:
         if vertex[0] is K.NODE or kind is not K.NODE:
             continue
         label = str(g.nodes[vertex]["label"])
-        own = _real_name(library[consumer], label)
+        user = library[consumer]
+        key = (consumer, spelled_name(user, label))
+        _, targets = wanted.setdefault(key, (interface_live_name(user, label), {}))
         # a topic may have several publishers (Nav2's controller_server and behavior_server
         # both publish cmd_vel_nav): each one's real name is wanted, one remapping if they agree
         for provider_vertex, _ in g.in_edges(vertex):
             if provider_vertex[0] is K.NODE:
                 provider = library[provider_vertex[1]]
-                wanted.setdefault((consumer, own), {})[provider.name] = _real_name(provider, label)
+                targets[provider.name] = interface_live_name(provider, label)
         if vertex[0] is K.ACTION:
-            actions.add((consumer, own))
+            actions.add(key)
     remaps: dict[str, list[Remap]] = {}
     notes: dict[str, list[str]] = {}
-    for (consumer, own), targets in sorted(wanted.items()):
+    for (consumer, own), (resolved, targets) in sorted(wanted.items()):
         names = sorted(set(targets.values()))
         if len(names) == 1:
-            if names[0] != own:
+            if names[0] != resolved:
                 remaps.setdefault(consumer, []).append((own, names[0], (consumer, own) in actions))
             continue
         listed = ", ".join(f"{p} ({n})" for p, n in sorted(targets.items()))
@@ -213,11 +234,6 @@ def _wiring(
             "one remapping cannot wire them all, so none is written"
         )
     return remaps, notes
-
-
-def _real_name(component: Component, label: str) -> str:
-    launch = component.launch
-    return launch.remappings.get(label, label) if launch is not None else label
 
 
 def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersion) -> ET.Element:
@@ -229,8 +245,8 @@ def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersi
         "type" if ros1 else "exec": launch.executable,
         "name": c.node_name,
     }
-    if launch.namespace:
-        attrs["ns" if ros1 else "namespace"] = launch.namespace
+    if (ns := node_namespace(c)) is not None:
+        attrs["ns" if ros1 else "namespace"] = ns
     if launch.args:
         attrs["args"] = shlex.join(launch.args)  # both dialects split args like a shell
     node = ET.Element("node", attrs)
@@ -239,11 +255,8 @@ def _node(c: Component, remaps: list[Remap], notes: list[str], version: RosVersi
     for name, value in sorted(launch.parameters.items()):
         node.append(ET.Element("param", _param(name, value, version)))
     for old, new, action in remaps:
-        if action and ros1:  # actionlib: five topics under the name, each remapped
-            for part in ACTIONLIB_TOPICS:
-                node.append(ET.Element("remap", {"from": f"{old}/{part}", "to": f"{new}/{part}"}))
-        else:
-            node.append(ET.Element("remap", {"from": old, "to": new}))
+        for a, b in remap_rules(old, new, action, 1 if ros1 else 2):
+            node.append(ET.Element("remap", {"from": a, "to": b}))
     return node
 
 
@@ -336,10 +349,19 @@ def ros2_node_arguments(
     c = library[component]
     args = ["--ros-args", "-r", f"__node:={c.node_name}"]
     launch = c.launch
-    if launch is not None and launch.namespace:
-        args += ["-r", f"__ns:={launch.namespace}"]
-    for old, new, _ in remaps.get(component, []):  # rcl remaps an action's name as a topic's
-        args += ["-r", f"{old}:={new}"]
+    if (ns := node_namespace(c)) is not None:
+        args += ["-r", f"__ns:={ns}"]
+    for rule in ros2_rules(remaps.get(component, [])):
+        args += ["-r", rule]
     for name, value in sorted(launch.parameters.items()) if launch is not None else ():
         args += ["-p", f"{name}:={rcl_value(value)}"]
     return args
+
+
+def ros2_rules(remaps: list[Remap]) -> list[str]:
+    """Return the rcl rules ``from:=to`` that wire a node by ``remaps`` (from ``wiring``).
+
+    One per topic or service, one per name under an action (``remap_rules``), a private
+    name spelled ``~/x``: what ``--ros-args -r`` takes, in order.
+    """
+    return [f"{a}:={b}" for old, new, action in remaps for a, b in remap_rules(old, new, action, 2)]

@@ -2,8 +2,9 @@
 
 The model names nodes after components and interfaces after labels (Omega); a live system
 uses global ROS names. ``rosreconf.model.wiring``'s ``node_live_name`` and
-``interface_live_name`` are the one mapping (the table is in ``rosreconf.ros.conformance``);
-used here by ``library_providers``. ``Finding`` is one difference found, and
+``interface_live_name``, on its one resolver of ROS names, are the one mapping (the table is
+in ``rosreconf.model.wiring`` and ``rosreconf.ros.conformance``); used here by
+``library_providers``. ``Finding`` is one difference found, and
 ``same_type`` the one comparison of a live type with the library's.
 """
 
@@ -13,18 +14,23 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from rosreconf.model import Component, ComponentLibrary, Interface, type_key
-from rosreconf.model.wiring import interface_live_name, node_live_name
+from rosreconf.model.wiring import (
+    interface_live_name,
+    node_live_name,
+    remap_rules,
+    spelled_name,
+)
 
 
-def remap_source(component: Component, label: str) -> str:
-    """Return the name a ``-r FROM:=TO`` rule of ``component`` would rewrite for ``label``.
+def rules_said(component: Component, label: str, target: str, action: bool, ros: int) -> str:
+    """Say the ``-r FROM:=TO`` rules that point ``component``'s name for ``label`` at ``target``.
 
-    Its own remapping target if the library gives one, else the label itself: the name the
-    node's code asks for, which a launch remapping (``rosreconf.ros.launchfiles.wiring``)
-    points at the provider's live name.
+    FROM is the name the node's code asks for (``spelled_name``: its library remapping, else
+    the label), as a launch remapping (``rosreconf.ros.launchfiles.wiring``) rewrites it; an
+    action takes one rule per name under it (``remap_rules``, for ROS version ``ros``).
     """
-    launch = component.launch
-    return launch.remappings.get(label, label) if launch is not None else label
+    rules = remap_rules(spelled_name(component, label), target, action, ros)
+    return " ".join(f"-r {a}:={b}" for a, b in rules)
 
 
 Providers = Mapping[Interface, tuple[tuple[str, str, str], ...]]

@@ -15,7 +15,7 @@ from collections.abc import Collection
 from typing import Any
 
 from rosreconf.model import Component, Interface, InterfaceKind
-from rosreconf.model.wiring import interface_live_name
+from rosreconf.model.wiring import interface_live_name, node_namespace
 from rosreconf.ros.liveactions import ROS1_SERVER_PUBLISHES
 
 STANDIN_PACKAGE = "rosreconf_standin"
@@ -50,7 +50,9 @@ def _options(component: Component, uses: Collection[Interface] | None) -> list[I
 def standin_spec(component: Component, uses: Collection[Interface] | None = None) -> dict[str, Any]:
     """Return the stand-in JSON spec acting out ``component``'s provisions and requirements.
 
-    ``uses``: the requirement options it is wired to (``_options``).
+    ``uses``: the requirement options it is wired to (``_options``). Names are resolved for
+    the component's node (``interface_live_name``) and written absolute; rospy resolves a
+    launch remapping's ``from`` for the node too, so the stand-in is wired as the real node.
     """
     publish: list[dict[str, str]] = []
     serve: list[dict[str, str]] = []
@@ -100,7 +102,10 @@ def ros2_standin_spec(
 
     As ``standin_spec``, with ROS 2 type names, the namespace, the services the component
     calls (a ROS 2 graph shows clients), and whether it is a managed (lifecycle) node. Its
-    names are its own: it is wired by ``-r`` remappings, as a real executable is.
+    names are the ones the component's executable uses, resolved for its node
+    (``interface_live_name``: namespace, ``~``, the library's remappings), written absolute; it
+    is wired by ``-r`` remappings, as a real executable is: rcl matches a rule's ``from``,
+    resolved for the node, against the resolved name, so the two are wired alike.
     """
     publish, serve, subscribe, call = [], [], [], []
     action_serve, action_call = [], []
@@ -123,7 +128,7 @@ def ros2_standin_spec(
     launch = component.launch
     return {
         "name": component.node_name,
-        "namespace": (launch.namespace if launch is not None else None) or "/",
+        "namespace": node_namespace(component) or "/",
         "publish": publish,
         "subscribe": subscribe,
         "serve": serve,

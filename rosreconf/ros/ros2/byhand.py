@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.conformance import Conformance
-from rosreconf.ros.launchfiles import wiring
+from rosreconf.ros.launchfiles import ros2_rules, wiring
 from rosreconf.ros.livenames import Finding
 from rosreconf.ros.ros2.outside import OutsideNodes
 from rosreconf.ros.ros2.stopproc import Stopped, StopResult
@@ -119,10 +119,7 @@ class ByHand:
         node = self.node_of(component)
         self.nodes[node] = component
         self.restarting.add(component)
-        rules = [
-            f"{a}:={b}"
-            for a, b, _ in wiring(self.library, self.schema, configuration).get(component, [])
-        ]
+        rules = ros2_rules(wiring(self.library, self.schema, configuration).get(component, []))
         self.say(
             "restart-by-hand",
             f"restart this by hand: {node} ({component}, {role}) must be rewired for the new "
