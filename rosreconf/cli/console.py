@@ -23,7 +23,6 @@ SPOOL_IN_MEMORY = 8 * 1024 * 1024
 """Bytes of a streamed document kept in memory; the rest is spooled to a temporary file."""
 
 
-
 class _PersonConsole(Console):
     """A rich console that never passes an escape sequence from a path or a name through.
 

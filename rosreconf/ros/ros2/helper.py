@@ -4,8 +4,11 @@ rosreconf reads DDS without rclpy; what needs rclpy runs in a helper under the R
 (``rosreconf.ros.ros2.runtime.start_helper``: a session of its own, dying with rosreconf).
 Two speak this protocol: the lifecycle agent (``lifecycle``) and the stand-in zygote
 (``zygote``). A helper says ``{"ready": ...}`` first; every request is one line, every
-answer one line, with the request's ``id`` where it has one. A line that is not a JSON
-object is named in the error, never parsed further. Nothing here prints.
+answer one line, with the request's ``id`` where it has one. The helper answers on a
+descriptor of its own (``scripts/helper_channel.py``): what the libraries under rclpy print
+goes to its log, never into the answers. Should a line that is not a JSON object come all
+the same, it is written to the helper's log and passed over, never taken as an answer: one
+stray line must not put every later answer one behind. Nothing here prints.
 """
 
 from __future__ import annotations
@@ -77,12 +80,17 @@ class Helper:
                 said = json.loads(line)
             except ValueError:
                 said = None
-            if not isinstance(said, dict):  # not the protocol: name what it said
-                self._answers.put({"garbage": line.decode(errors="replace").strip()[:120]})
+            if not isinstance(said, dict):  # not the protocol: to the log, never an answer
+                self._stray(line)
             elif not self.heard(said):
                 self._answers.put(said)
         self.ended()
         self._answers.put({"eof": True})
+
+    def _stray(self, line: bytes) -> None:
+        """Write a line that is not the protocol to the helper's log, marked as such."""
+        with contextlib.suppress(OSError), self.log.open("ab") as log:
+            log.write(b"rosreconf: not a protocol line, passed over: " + line.rstrip(b"\n") + b"\n")
 
     def send(self, requests: Sequence[dict[str, Any]]) -> None:
         """Write ``requests``, one line each, at once.
@@ -101,8 +109,7 @@ class Helper:
         """Return the next answer (with ``wanted``: the one with that ``id``).
 
         Raises:
-            ExternalToolError: none within ``timeout`` seconds, the helper has exited, or it
-                said something that is not a line of its protocol.
+            ExternalToolError: none within ``timeout`` seconds, or the helper has exited.
         """
         deadline = time.monotonic() + timeout
         while True:
@@ -114,11 +121,6 @@ class Helper:
                 ) from None
             if answer.get("eof"):
                 raise self.error(f"{self.name} has exited (see {self.log})")
-            if "garbage" in answer:
-                raise self.error(
-                    f"{self.name} said {answer['garbage']!r}, not a line of its JSON protocol "
-                    f"(see {self.log})"
-                )
             if wanted is None or answer.get("id") == wanted:
                 return answer
 
