@@ -14,23 +14,55 @@ it from their own folder.
 
 from __future__ import annotations
 
+import json
 import os
 import sys
-from typing import TextIO
+import threading
+import time
+from typing import Any
 
 
-def take_channel() -> TextIO:
+class Channel:
+    """The helper's own answer channel: whole JSON lines, from any thread, never interleaved."""
+
+    def __init__(self, fd: int) -> None:
+        self.fd = fd
+        self._lock = threading.Lock()
+
+    def say(self, said: dict[str, Any]) -> None:
+        """Write ``said`` as one line, in one write."""
+        data = (json.dumps(said) + "\n").encode()
+        with self._lock:
+            os.write(self.fd, data)
+
+    def beat(self, every: float) -> None:
+        """Say ``{"alive": ...}`` every ``every`` seconds, from a thread, while the helper runs.
+
+        rosreconf takes a helper that has said nothing for a while (no answer, no beat) for
+        hung, as a stopped (SIGSTOP) or deadlocked one is, and starts another: the beat tells
+        a helper that works on a long request from one that no longer runs at all. Not for a
+        helper that forks (the zygote): a child forked beside a thread may inherit its locks.
+        """
+
+        def run() -> None:
+            while True:
+                self.say({"alive": time.monotonic()})
+                time.sleep(every)
+
+        threading.Thread(target=run, name="rosreconf-heartbeat", daemon=True).start()
+
+    def close_in_child(self) -> None:
+        """Close a forked child's copy: only the helper itself answers on the channel."""
+        os.close(self.fd)
+
+
+def take_channel() -> Channel:
     """Return the helper's answer channel; from now on fd 1 (and ``sys.stdout``) is the log.
 
     The duplicate is not inherited by programs the helper runs (Python makes it close on
-    exec); a helper that forks must close it in the child (``close_channel``).
+    exec); a helper that forks closes it in the child (``Channel.close_in_child``).
     """
     sys.stdout.flush()
     answers = os.dup(1)
     os.dup2(2, 1)
-    return os.fdopen(answers, "w", buffering=1, encoding="utf-8")
-
-
-def close_channel(channel: TextIO) -> None:
-    """Close a forked child's copy of the channel: only the helper itself answers on it."""
-    os.close(channel.fileno())
+    return Channel(answers)

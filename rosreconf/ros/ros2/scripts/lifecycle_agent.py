@@ -41,6 +41,9 @@ from helper_channel import take_channel
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState, GetState
 
+HEARTBEAT = 0.25
+"""Seconds between the agent's signs of life (``{"alive": ...}``), which it says while it runs
+even in the middle of a long request: rosreconf replaces an agent silent for 2 s."""
 IDS = {
     "configure": Transition.TRANSITION_CONFIGURE,
     "cleanup": Transition.TRANSITION_CLEANUP,
@@ -199,14 +202,15 @@ def main() -> int:
     answers = take_channel()  # before rclpy.init: Fast DDS prints on fd 1
     rclpy.init(args=sys.argv)
     agent = Agent()
-    print(json.dumps({"ready": agent.node.get_fully_qualified_name()}), file=answers)
+    answers.say({"ready": agent.node.get_fully_qualified_name()})
+    answers.beat(HEARTBEAT)
     try:
         for line in sys.stdin:
             if not line.strip():
                 continue
             request = json.loads(line)
             answer = agent.handle(request)
-            print(json.dumps({"id": request.get("id"), **answer}), file=answers)
+            answers.say({"id": request.get("id"), **answer})
     except KeyboardInterrupt:
         pass
     finally:

@@ -42,9 +42,9 @@ import signal
 import sys
 import traceback
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
-from helper_channel import close_channel, take_channel
+from helper_channel import Channel, take_channel
 
 PR_SET_PDEATHSIG = 1
 ALIVE_ENV = "ROSRECONF_STANDIN_ALIVE_FD"
@@ -118,7 +118,7 @@ def _set_title(argv: list[str]) -> None:
 class Zygote:
     """Fork stand-ins on request and report their exits (see the module docstring)."""
 
-    def __init__(self, standin: Any, answers: TextIO) -> None:
+    def __init__(self, standin: Any, answers: Channel) -> None:
         self.standin = standin
         self.answers = answers
         self.lttng = _lttng()
@@ -134,7 +134,7 @@ class Zygote:
 
     def say(self, answer: dict[str, Any]) -> None:
         """Write one JSON line to rosreconf."""
-        os.write(self.answers.fileno(), (json.dumps(answer) + "\n").encode())
+        self.answers.say(answer)
 
     def fork(self, argv: list[str], log: str) -> int:
         """Fork one stand-in running ``argv``; return its pid (in the parent only)."""
@@ -166,7 +166,7 @@ class Zygote:
             signal.signal(signal.SIGCHLD, signal.SIG_DFL)
             os.close(self.wake)
             os.close(self.wake_write)
-            close_channel(self.answers)  # only the zygote answers rosreconf
+            self.answers.close_in_child()  # only the zygote answers rosreconf
             null = os.open(os.devnull, os.O_RDONLY)
             out = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
             os.dup2(null, 0)  # rosreconf's pipes are the zygote's, not the child's
