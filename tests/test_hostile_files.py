@@ -88,3 +88,25 @@ def test_a_typo_in_a_type_is_that_types_problem_wherever_it_is_written(
             "'r?obot_arm_msgs/VisualPerception' is not valid (a ROS type written package/Type",
             "",
         )
+
+
+ESCAPES = "\x1b[2J\x1b]0;owned\x07\u202e"
+"""Clear the screen, retitle the terminal, ring the bell, reverse the text that follows."""
+
+
+def test_escape_sequences_in_a_path_are_shown_never_sent_to_the_terminal(tmp_path: Path) -> None:
+    bad = tmp_path / f"lib{ESCAPES}.yaml"
+    bad.write_text("components: [\n")
+    shown = f"lib{ESCAPES.encode('unicode_escape').decode()}.yaml"
+    for args, stream in (
+        (["validate", "-l", str(bad)], "stdout"),  # the report's file:line:column line
+        (["enumerate", "-l", str(bad)], "stderr"),  # the same problem, as an error
+        (["validate", "-l", str(tmp_path / f"gone{ESCAPES}.yaml")], "stderr"),
+        (["graph", "-o", str(tmp_path / f"no{ESCAPES}" / "g.dot")], "stderr"),
+    ):
+        done = _run(args, tmp_path)
+        out = getattr(done, stream)
+        assert done.returncode in (1, 2), (args, done.returncode, done.stderr)
+        assert not any(c in done.stdout + done.stderr for c in "\x1b\x07\u202e"), (args, out)
+        assert "\\x1b[2J" in out and "\\x07" in out and "\\u202e" in out, (args, out)
+    assert shown in _run(["validate", "-l", str(bad)], tmp_path).stdout

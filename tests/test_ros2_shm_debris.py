@@ -101,3 +101,79 @@ def test_a_team_executable_stuck_on_a_broken_port_is_named_with_the_file(
         named = [str(p) for p in made if str(p) in said["message"]]
         assert named and all(p.startswith(str(SHM / "fastrtps_port")) for p in named), said
         assert f"rm {named[0]}" in said["message"]
+
+
+PRIVATE_SHM = """
+mount -t tmpfs rosreconf-test-shm /dev/shm || exit 97
+{debris}
+exec "$@"
+"""
+"""Run watch with a /dev/shm of its own (a mount namespace: ``unshare -m``), debris planted.
+
+Private, so the debris touches no other process of the host, and the test plants what a
+crashed participant leaves on purpose: nothing else is in that /dev/shm."""
+
+HOLD_EL_FILES = """
+python3 -c '
+import fcntl, os, time
+fds = [os.open("/dev/shm/%s_port7000_el" % p, os.O_RDWR | os.O_CREAT, 0o666)
+       for p in ("fastrtps", "fastdds")]
+for fd in fds:
+    fcntl.flock(fd, fcntl.LOCK_EX)
+time.sleep(600)' &
+sleep 0.5
+"""
+"""A process holding port 7000's lock files, as one that hung in Fast DDS's SHM setup does:
+every Fast DDS 2.14 participant with the shared-memory transport then prints ``Failed
+init_port fastrtps_port7000: open_and_lock_file failed`` on its stdout."""
+
+ZERO_PORT_FILES = ": > /dev/shm/fastrtps_port7000; : > /dev/shm/fastdds_port7000"
+"""A 0-byte port file with no lock file, as a participant killed while it made one leaves."""
+
+
+def _private_shm(debris: str) -> list[str]:
+    """Return the command that runs the rest of its argv in a private /dev/shm with ``debris``."""
+    return ["unshare", "-m", "--propagation", "private", "sh", "-c",
+            PRIVATE_SHM.format(debris=debris), "private-shm"]  # fmt: skip
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])
+@pytest.mark.parametrize("debris", ["held-lock", "zero-port"])
+def test_managed_stand_ins_conform_beside_shared_memory_debris_in_a_private_dev_shm(
+    ros2_domain: int, tmp_path: Path, distro: str, debris: str
+) -> None:
+    """What any local user can leave in /dev/shm stops no stand-in and no transition.
+
+    ``held-lock`` runs with Fast DDS's default transports (``FASTDDS_BUILTIN_TRANSPORTS``
+    set by the user to ``DEFAULT``, which rosreconf keeps): the lifecycle agent's participant
+    then meets the held lock and Fast DDS prints its error on the agent's stdout, which was
+    once read as the agent's answer (every ``configure`` failed, the watch never conformed).
+    ``zero-port`` runs with rosreconf's own setting: its participants use UDP only, with the
+    short-lease profile too, and never wait on the 0-byte file.
+    """
+    from test_watch_ros2 import _managed_library
+    from test_watch_wiring import _python
+
+    held = debris == "held-lock"
+    env = {"FASTDDS_BUILTIN_TRANSPORTS": "DEFAULT"} if held else {}
+    wrap = _private_shm(HOLD_EL_FILES if held else ZERO_PORT_FILES)
+    library = _managed_library(tmp_path)
+    python = _python(distro)
+    schema = Path(__file__).resolve().parent.parent / "schemas" / "object_repositioning.yaml"
+    watch = Watch(tmp_path, ros2_domain, "-l", str(library), "-s", str(schema),
+                  python=python, env=env, wrap=wrap)  # fmt: skip
+    try:
+        done = watch.wait("conformant")
+        failed = [e["message"] for e in watch.events() if e.get("transition") and not e["ok"]]
+        assert not failed, failed  # no answer of the agent was a line Fast DDS printed
+        assert len(watch.configured()) == len(NOMINAL)
+        running = {f"/{c}" for c in done["configuration"].values() if c}
+        assert len(running) == len(NOMINAL)
+        if held and distro == "jazzy":  # the fault happened: Fast DDS complained, to the log
+            logs = "".join(p.read_text(errors="replace") for p in tmp_path.rglob("*agent*.log"))
+            assert "RTPS_TRANSPORT_SHM" in logs, sorted(map(str, tmp_path.rglob("*.log")))
+    finally:
+        code = watch.stop()
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(watch.process.pid, signal.SIGKILL)  # the lock holder, in watch's group
+    assert code == 128 + signal.SIGTERM, watch.err.read_text()[-2000:]

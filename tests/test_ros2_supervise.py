@@ -24,7 +24,6 @@ import ros2_real
 
 from rosreconf.ros.ros2 import fastdds_ids, hostprocs
 from rosreconf.ros.ros2.discovery import Ros2Discovery
-from rosreconf.ros.ros2.domainclaim import Claim, Owner, claim_domain
 from rosreconf.ros.ros2.hostprocs import Found, HostProcesses, ProcId, locate_participants
 from rosreconf.ros.ros2.pidwatch import ProcessWatch, WatchEvents
 from rosreconf.ros.ros2.stopproc import Stopped, stop_node_process
@@ -212,40 +211,6 @@ def test_stop_refuses_a_shared_process_and_stops_a_single_node_one(robot: Robot)
     assert robot.popen[solo.pid].wait(5) is not None
     again = stop_node_process(solo, "/solo3", processes[solo])
     assert again.outcome is Stopped.GONE
-
-
-def test_a_second_claim_on_a_domain_names_the_owner(tmp_path: Path) -> None:
-    first = claim_domain(7, directory=tmp_path)
-    assert isinstance(first, Claim)
-    second = claim_domain(7, directory=tmp_path)
-    assert isinstance(second, Owner) and second.pid == os.getpid()
-    assert str(os.getpid()) in second.message
-    assert isinstance(claim_domain(8, directory=tmp_path), Claim)
-    first.release()
-    with claim_domain(7, directory=tmp_path) as third:
-        assert isinstance(third, Claim) and third.held
-    assert not third.held
-
-
-def test_a_claim_is_released_when_its_owner_dies(tmp_path: Path) -> None:
-    script = (
-        "import sys, time\n"
-        "from pathlib import Path\n"
-        "from rosreconf.ros.ros2.domainclaim import claim_domain\n"
-        "claim = claim_domain(9, directory=Path(sys.argv[1]))\n"
-        "print(type(claim).__name__, flush=True)\n"
-        "time.sleep(60)\n"
-    )
-    with subprocess.Popen(
-        [sys.executable, "-c", script, str(tmp_path)], stdout=subprocess.PIPE
-    ) as owner:
-        assert owner.stdout is not None
-        assert owner.stdout.readline().strip() == b"Claim"
-        held = claim_domain(9, directory=tmp_path)
-        assert isinstance(held, Owner) and held.pid == owner.pid
-        owner.kill()
-        owner.wait(5)
-    assert isinstance(claim_domain(9, directory=tmp_path), Claim)
 
 
 def _fake_proc(root: Path, pid: int, ports: tuple[int, ...], *, start: int = 100) -> None:

@@ -13,6 +13,7 @@ import json
 import os
 import signal
 import subprocess
+from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
@@ -31,6 +32,7 @@ def _team(
     library_file: Path | None = None,
     hang: str = "",
     python: Path | None = None,
+    alone: Mapping[str, Mapping[str, str]] | None = None,
 ) -> tuple[Team, dict[str, Node]]:
     """Start the nominal configuration's 13 nodes as the team's launch file would.
 
@@ -38,7 +40,8 @@ def _team(
     DDS's default 20 s lease, forked from one warm process (``ros2_team``); each is up (it
     said ``ready``) when this returns. The library is the bundled one unless ``library_file``
     is given; ``hang`` runs under ``HANG``, a process of its own; the nodes run under
-    ``python`` (default: the Jazzy venv's).
+    ``python`` (default: the Jazzy venv's). ``alone``: components run as processes of their
+    own, each with these variables added to its environment.
     """
     from rosreconf.formats.loader import load_bundled, load_paths
     from rosreconf.model import Configuration
@@ -58,10 +61,11 @@ def _team(
         for c in NOMINAL:
             argv = [str(interpreter), str(STANDIN), json.dumps(ros2_standin_spec(library[c]))]
             argv += ros2_node_arguments(library, c, remaps)
-            if c == hang:  # the fault injector wraps the script: a process of its own
-                wrapped = [argv[0], str(HANG), *argv[1:]]
+            if c == hang or c in (alone or {}):  # a process of its own
+                wrapped = [argv[0], str(HANG), *argv[1:]] if c == hang else argv
+                own = {**env, **(alone or {}).get(c, {})}
                 quiet = subprocess.DEVNULL
-                ours[c] = subprocess.Popen(wrapped, env=env, stdout=subprocess.PIPE, stderr=quiet)
+                ours[c] = subprocess.Popen(wrapped, env=own, stdout=subprocess.PIPE, stderr=quiet)
             else:
                 ours[c] = team.start(c, argv)
         for c, p in ours.items():  # all up before watch looks, or it would start its own
@@ -212,3 +216,83 @@ def test_a_managed_outside_node_that_stops_answering_is_hung_failed_and_its_proc
         # rosreconf cannot restart what it did not start, so no conformant is awaited here)
     finally:
         _end(watch, team, ours)
+
+
+def _forged_profile(tmp: Path, pid: int) -> Path:
+    """Write a Fast DDS profile that gives every participant this host's id and ``pid``'s bits.
+
+    The attack of the hostile round: one XML line, and the GUID says another process runs
+    the node (``rosreconf.ros.ros2.fastdds_ids``: bytes 2-3 the host id, 4-5 the pid's low
+    16 bits, both little endian).
+    """
+    from rosreconf.ros.ros2.fastdds_ids import this_host_id
+
+    host = this_host_id()
+    prefix = bytes([0x01, 0x0F, host & 0xFF, host >> 8, pid & 0xFF, (pid >> 8) & 0xFF,
+                    0x5A, 0x5A, 0, 0, 0, 1])  # fmt: skip
+    path = tmp / "forged.xml"
+    path.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?>\n<dds xmlns="http://www.eprosima.com"><profiles>'
+        '<participant profile_name="forged" is_default_profile="true"><rtps><prefix>'
+        + ".".join(f"{b:02x}" for b in prefix)
+        + "</prefix></rtps></participant></profiles></dds>\n"
+    )
+    return path
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # Fast DDS 2.14 and 3.2
+def test_a_forged_guid_never_gets_a_bystander_signalled(
+    ros2_domain: int, tmp_path: Path, distro: str
+) -> None:
+    """NSM3's participant claims, in its GUID, to be another team's node on the domain (the
+    bystander). watch may take the bystander for NSM3's process, but with --stop-outside it
+    must not signal it when the arm is replaced: the kernel says NSM3's datagrams come from
+    another process's sockets, so NSM3 is named for a person. The bystander lives, the real
+    NSM3 runs on, and the genuine nodes replaced beside it are still stopped."""
+    python = _python(distro)
+    env = {**_env(tmp_path), "ROS_DOMAIN_ID": str(ros2_domain)}
+    spec = json.dumps({"name": "other_team_node", "namespace": "/"})
+    bystander = subprocess.Popen([str(python), str(STANDIN), spec], env=env,
+                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)  # fmt: skip
+    team: Team | None = None
+    ours: dict[str, Node] = {}
+    watch: Watch | None = None
+    try:
+        assert bystander.stdout is not None and b'"ready"' in bystander.stdout.readline()
+        profile = str(_forged_profile(tmp_path, bystander.pid))
+        forged = {
+            "FASTRTPS_DEFAULT_PROFILES_FILE": profile,
+            "FASTDDS_DEFAULT_PROFILES_FILE": profile,
+        }
+        team, ours = _team(tmp_path, ros2_domain, python=python, alone={"NSM3": forged})
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside",
+                      python=python)  # fmt: skip
+        watch.wait("running")
+        watched: dict[str, int] = {}
+        while "/NSM3" not in watched or "/NSM1" not in watched:
+            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
+            watched = {n: e["pid"] for e in said for n in e["nodes"]}
+            if "/NSM3" not in watched or "/NSM1" not in watched:
+                watch.wait("watched", after=len(watch.events()))
+        assert watched["/NSM3"] == bystander.pid  # the forgery took: the GUID names it
+        before = len(watch.events())
+        ours["NSM1"].kill()  # the servo arm goes: NSM3 and its neighbours are replaced
+        by_hand = watch.wait("stop-by-hand", after=before)
+        while by_hand["component"] != "NSM3":
+            by_hand = watch.wait("stop-by-hand", after=watch.events().index(by_hand) + 1)
+        said = watch.events()[before:]
+        assert "not proven" in by_hand["message"], by_hand["message"]
+        assert str(bystander.pid) in by_hand["message"]
+        assert f"process(es) [{ours['NSM3'].pid}] do" in by_hand["message"]  # the real sender
+        assert not [e for e in said if e["event"] == "stop" and e.get("pid") == bystander.pid]
+        stopped = {e["component"] for e in said if e["event"] == "stop" and e["how"] == "signal"}
+        assert "NSM2" in stopped, [e["message"] for e in said]  # genuine ones: proven, stopped
+        assert bystander.poll() is None  # alive: never signalled
+        assert ours["NSM3"].poll() is None  # the real NSM3 runs on, for a person to stop
+    finally:
+        if team is not None:
+            _end(watch, team, ours)
+        elif watch is not None:
+            watch.stop(signal.SIGKILL)
+        bystander.kill()
+        bystander.wait()

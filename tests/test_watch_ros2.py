@@ -17,7 +17,7 @@ import subprocess
 import sys
 import time
 import warnings
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -70,14 +70,16 @@ class Watch:
         python: Path | None = None,
         stand_ins: bool = True,
         env: dict[str, str] | None = None,
+        wrap: Sequence[str] = (),
     ) -> None:
+        """``wrap``: a command that runs watch's (``unshare ...``), ending with its argv."""
         self.log = tmp / "watch.jsonl"
         self.err = tmp / "watch.err"
         self.env = {**_env(tmp, python), **(env or {})}
         self.domain = domain
-        argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(domain),
-                "--apply", *(["--stand-ins"] if stand_ins else []), "--interval", "0.5",
-                "--json-log", str(self.log), *args]  # fmt: skip
+        argv = [*wrap, sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain",
+                str(domain), "--apply", *(["--stand-ins"] if stand_ins else []),
+                "--interval", "0.5", "--json-log", str(self.log), *args]  # fmt: skip
         self.process = subprocess.Popen(
             argv, env=self.env, stdout=subprocess.DEVNULL,
             stderr=self.err.open("wb"), start_new_session=True,

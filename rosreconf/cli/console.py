@@ -11,19 +11,34 @@ import shutil
 import sys
 import tempfile
 from collections.abc import Iterable
+from typing import Any
 
 from rich.console import Console
 
 from rosreconf.errors import OutOfResourcesError
 from rosreconf.outfiles import OutputTarget, write_atomic
+from rosreconf.printable import terminal_text
 
 SPOOL_IN_MEMORY = 8 * 1024 * 1024
 """Bytes of a streamed document kept in memory; the rest is spooled to a temporary file."""
 
+
+class _PersonConsole(Console):
+    """A rich console that never passes an escape sequence from a path or a name through.
+
+    Messages quote paths (any bytes but ``/`` and NUL) and names from files and from the
+    wire; ``\x1b[2J`` in a file name must show as those characters, not clear the screen.
+    """
+
+    def print(self, *objects: Any, **kwargs: Any) -> None:
+        """Print as rich does, each plain string first made fit for a terminal."""
+        super().print(*(terminal_text(o) if isinstance(o, str) else o for o in objects), **kwargs)
+
+
 # emoji=False: names come from users' files, and ``:warning:`` in a component name must print
 # as written, not as a picture (it also spares every command importing rich's emoji table).
-stdout = Console(highlight=False, soft_wrap=True, emoji=False)
-stderr = Console(stderr=True, highlight=False, soft_wrap=True, emoji=False)
+stdout = _PersonConsole(highlight=False, soft_wrap=True, emoji=False)
+stderr = _PersonConsole(stderr=True, highlight=False, soft_wrap=True, emoji=False)
 
 
 def write_stdout(text: str) -> None:

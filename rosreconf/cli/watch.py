@@ -296,7 +296,7 @@ def _claim(domain: int, force: bool) -> Claim | None:
     """Take ``domain`` for this watch; refuse when another watch holds it (see domainclaim).
 
     Two supervisors of one domain each start and stop nodes against the other. ``--force``
-    goes on without the claim, said on stderr; so does a lock file that cannot be opened.
+    goes on without the claim, said on stderr; so does a claim that cannot be made at all.
 
     Raises:
         UsageError: another watch supervises the domain, and no ``--force`` (exit 2).
@@ -305,8 +305,8 @@ def _claim(domain: int, force: bool) -> Claim | None:
         got = claim_domain(domain)
     except OSError as exc:
         stderr.print(
-            f"note: cannot take the lock of ROS domain {domain} ({exc.filename}: {exc.strerror}):"
-            " another watch on it would not be seen",
+            f"note: cannot claim ROS domain {domain} ({exc.strerror}): another watch on it"
+            " would not be seen",
             markup=False,
         )
         return None

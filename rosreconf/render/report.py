@@ -13,6 +13,7 @@ from typing import Protocol
 
 from rosreconf import jsonout
 from rosreconf.errors import Problem, Severity
+from rosreconf.printable import terminal_text
 
 
 class OutputFormat(enum.StrEnum):
@@ -54,7 +55,7 @@ class TextReporter:
 
     def render(self, files: Sequence[str], problems: Sequence[Problem], note: str) -> str:
         """Return the problems and a one-line summary."""
-        lines = [str(p) for p in problems]
+        lines = [terminal_text(str(p)) for p in problems]  # a path may hold any byte
         errors, warnings = _counts(problems)
         if errors:  # name how many files hold the errors, not how many were read
             bad = {p.span.file for p in problems if p.severity is Severity.ERROR}

@@ -22,11 +22,11 @@ from pathlib import Path
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
+from rosreconf.printable import printable
 from rosreconf.procs import Background, stop_all
 from rosreconf.ros.actuator import Acting, Actuator, Say
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.printable import printable
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.sources import LiveSource
 

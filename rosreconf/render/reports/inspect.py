@@ -6,9 +6,9 @@ from typing import Protocol
 
 from rosreconf import jsonout
 from rosreconf.model import InteroperabilitySchema
+from rosreconf.printable import printable
 from rosreconf.render.reports import Output
 from rosreconf.ros.conformance import Conformance
-from rosreconf.ros.printable import printable
 
 
 class InspectReporter(Protocol):

@@ -24,8 +24,8 @@ from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
+from rosreconf.printable import printable
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
-from rosreconf.ros.printable import printable
 from rosreconf.ros.ros1 import rpc
 from rosreconf.ros.ros1.rpc import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 

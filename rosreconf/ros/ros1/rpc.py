@@ -19,7 +19,7 @@ from urllib.parse import urlsplit
 from xml.parsers.expat import ExpatError
 
 from rosreconf.errors import ExternalToolError, UsageError
-from rosreconf.ros.printable import printable
+from rosreconf.printable import printable
 
 DEFAULT_TIMEOUT = 3.0
 """Seconds one XML-RPC call may take in all: connecting, sending, and the whole answer."""

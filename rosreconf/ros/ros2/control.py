@@ -92,7 +92,7 @@ class Ros2Control:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
         domain = self.env.get("ROS_DOMAIN_ID", "0")  # the nodes' domain: their ports prove pids
         if domain.isdigit():
-            self.outside = OutsideNodes(int(domain), self.say)
+            self.outside = OutsideNodes(int(domain), self.say, prove=self.stop_outside)
         self.lifecycle = Transitions(self.env, self.directory, self.say, self._node, self.timeout)
         self.by_hand = ByHand(
             self.library, self.schema, self.say, self._node, self.outside, self.stop_outside

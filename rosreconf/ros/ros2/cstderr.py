@@ -23,7 +23,7 @@ import threading
 from collections import Counter
 from dataclasses import dataclass, field
 
-from rosreconf.ros.printable import printable
+from rosreconf.printable import printable
 
 _CYCLONE_LINE = re.compile(rb"^\d+\.\d+ +\[-?\d+\] +[^:]{1,40}: (.*)$")
 """Cyclone's log line: a timestamp, the domain id in brackets, the thread name, the text."""

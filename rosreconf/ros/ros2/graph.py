@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from datetime import datetime
 
 from rosreconf.model.qos import QosProfile
+from rosreconf.printable import printable
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.printable import printable
 from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
 
 _NAME_CHARS = 2048

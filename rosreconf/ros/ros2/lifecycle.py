@@ -29,6 +29,9 @@ TIMEOUT = 5.0
 APPEAR = 30.0
 """Seconds a node just started may take until its lifecycle services appear."""
 OUT_OF_SERVICE = ("deactivate", "cleanup")
+HUNG_SECONDS = 2.0
+"""Seconds without a word from the agent (it beats every 0.25 s, even during a long request)
+after which it is hung and replaced, as a hung node is within 2 s."""
 
 
 class LifecycleError(ExternalToolError):
@@ -51,6 +54,7 @@ class LifecycleAgent(Helper):
     """Own the helper process that calls lifecycle services (see the module docstring)."""
 
     error = LifecycleError
+    hung_after = HUNG_SECONDS
 
     def __init__(self, env: Mapping[str, str], log: Path, timeout: float = TIMEOUT) -> None:
         self.timeout = timeout

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 
 from rosreconf.ros.ros2.hostprocs import HostProcesses, ProcId, boot_seconds
 from rosreconf.ros.ros2.pidwatch import ProcessWatch
+from rosreconf.ros.ros2.provenance import SourcePorts
 from rosreconf.ros.ros2.stopproc import Stopped, StopResult, stop_node_process
 
 HUNG_SECONDS = 1.0
@@ -52,6 +53,10 @@ class OutsideNodes:
         hung: the processes found stopped for ``HUNG_SECONDS`` -> their nodes (no longer
             watched, but still there to be stopped).
         participant_of: watched process -> the participant it was confirmed to run.
+        prove: listen for the evidence that lets a process be signalled (``--stop-outside``;
+            ``provenance``): without it, nothing is ever signalled.
+        guid_of: each confirmed process -> its participant, for the proof (kept while the
+            process is known, hung ones too).
         ended: the participants of processes found exited or hung, until ``take_ended``:
             what the graph must leave out (DDS announces them until their lease ends). The
             participant, never the node name: a team may have restarted the node already,
@@ -70,7 +75,14 @@ class OutsideNodes:
     hung: dict[ProcId, tuple[str, ...]] = field(default_factory=dict)
     participant_of: dict[ProcId, bytes] = field(default_factory=dict)
     ended: set[bytes] = field(default_factory=set)
+    prove: bool = False
+    guid_of: dict[ProcId, bytes] = field(default_factory=dict)
     _watch: ProcessWatch = field(default_factory=ProcessWatch)
+    _sources: SourcePorts | None = None
+
+    def __post_init__(self) -> None:
+        if self.prove:  # only processes the kernel ties to their datagrams are signalled
+            self._sources = SourcePorts(self.domain).start()
 
     @property
     def watched(self) -> set[str]:
@@ -102,6 +114,7 @@ class OutsideNodes:
                 self._watch.add(found.proc)
                 self.nodes[found.proc] = names
                 self.participant_of[found.proc] = guid
+                self.guid_of[found.proc] = guid
                 self.say(
                     "watched",
                     f"{', '.join(mine)}: watched by its process (pid {found.proc.pid}; "
@@ -168,6 +181,7 @@ class OutsideNodes:
             if set(names) & set(nodes):
                 del self.nodes[proc]
                 self.participant_of.pop(proc, None)
+                self.guid_of.pop(proc, None)
                 self._watch.remove(proc)
         for n in nodes:
             self.lease_only.pop(n, None)
@@ -193,7 +207,7 @@ class OutsideNodes:
             return results
         with ThreadPoolExecutor(max_workers=len(known)) as pool:
             futures = {
-                n: pool.submit(stop_node_process, proc, n, names)
+                n: pool.submit(self._stop_proven, proc, n, names)
                 for n, (proc, names) in known.items()
             }
         for node, future in futures.items():
@@ -201,11 +215,25 @@ class OutsideNodes:
             if result.outcome in (Stopped.STOPPED, Stopped.GONE):
                 self.nodes.pop(proc, None)
                 self.hung.pop(proc, None)
+                self.guid_of.pop(proc, None)
                 self.stopped_since.pop(proc, None)
                 self._watch.remove(proc)
             results[node] = result
         return results
 
+    def _stop_proven(self, proc: ProcId, node: str, names: tuple[str, ...]) -> StopResult:
+        """Stop ``proc`` for ``node`` only once the kernel proved it sends its datagrams."""
+        guid = self.guid_of.get(proc)
+        if self._sources is None or guid is None:
+            why = "no evidence was gathered"
+        elif (unproven := self._sources.unproven(guid, proc)) is not None:
+            why = unproven
+        else:
+            return stop_node_process(proc, node, names)
+        return StopResult(Stopped.UNPROVEN, node, proc, why=why)
+
     def close(self) -> None:
-        """Release the pidfds."""
+        """Release the pidfds and stop listening for evidence."""
         self._watch.close()
+        if self._sources is not None:
+            self._sources.close()

@@ -2,8 +2,10 @@
 
 ROS 2 has no remote "kill node" (ros2/ros2cli#535): stopping a node rosreconf did not start
 means signalling its process, which takes down every node of that process. So a process is
-signalled only when /proc confirmed it runs the node (``hostprocs``) and it runs no other
-node; otherwise the refusal names the nodes it would take down.
+signalled only when /proc confirmed it runs the node (``hostprocs``), the kernel proved that
+it sends the node's participant's datagrams (``provenance``: a GUID is wire data anyone can
+forge), and it runs no other node; otherwise the refusal says why, naming the nodes it would
+take down.
 
 SIGINT first, as Ctrl-C and ``ros2 launch`` do: rclpy and rclcpp shut down cleanly and the
 participant says goodbye, so other readers see it go at once (0.03 s) instead of after its
@@ -38,6 +40,7 @@ class Stopped(StrEnum):
     STOPPED = "stopped"  # the process exited after ``signal_used``
     GONE = "gone"  # it had exited already: nothing was signalled
     REFUSED = "refused"  # it runs other nodes too: nothing was signalled
+    UNPROVEN = "unproven"  # not proven to run the node (``provenance``): nothing was signalled
     FAILED = "failed"  # it outlived SIGKILL's grace (uninterruptible sleep): said as such
 
 
@@ -52,6 +55,7 @@ class StopResult:
         signal_used: the last signal sent (None: none was).
         seconds: from the first signal to the exit seen.
         others: the other nodes the process runs (why it was refused).
+        why: why the process is not proven to run the node (``UNPROVEN``).
     """
 
     outcome: Stopped
@@ -60,6 +64,7 @@ class StopResult:
     signal_used: signal.Signals | None = None
     seconds: float = 0.0
     others: tuple[str, ...] = ()
+    why: str = ""
 
     @property
     def message(self) -> str:
@@ -68,6 +73,11 @@ class StopResult:
             return (
                 f"process {self.proc.pid} runs {self.node} and also "
                 f"{', '.join(self.others)}: not stopped (it would take them down)"
+            )
+        if self.outcome is Stopped.UNPROVEN:
+            return (
+                f"process {self.proc.pid} is not proven to run {self.node} ({self.why}): "
+                "not signalled"
             )
         if self.outcome is Stopped.STOPPED and self.signal_used is not None:
             return (

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.ros.ros2.lifecycle import TIMEOUT, LifecycleAgent, Outcome
+from rosreconf.ros.ros2.lifecycle import HUNG_SECONDS, TIMEOUT, LifecycleAgent, Outcome
 
 
 @dataclass
@@ -46,16 +46,27 @@ class Transitions:
     _agent_error: str | None = None
 
     def _agent_died(self) -> bool:
-        """Note an agent that ended on its own (killed, crashed); True if it did."""
+        """Note an agent that ended on its own (killed, crashed) or hung; True if so.
+
+        A hung agent (stopped, deadlocked: silent for ``HUNG_SECONDS``) is killed, and from
+        then on it is a dead one: started anew, its request asked again of the new one.
+        """
         agent = self._agent
-        if agent is None or agent.died() is None:
+        if agent is None:
+            return False
+        hung = agent.died() is None and agent.hung()
+        if agent.died() is None and not hung:
             return False
         self._agent = None
-        code = agent.process.returncode
         agent.close()
+        how = (
+            f"was hung (said nothing for {HUNG_SECONDS:g} s): killed"
+            if hung
+            else f"exited ({agent.process.returncode})"
+        )
         self.helpers.append(
-            f"{agent.name} (pid {agent.process.pid}) exited ({code}): started anew (a "
-            "helper's death is no component's failure)"
+            f"{agent.name} (pid {agent.process.pid}) {how}, and started anew (a helper's "
+            "death is no component's failure)"
         )
         return True
 

@@ -3,7 +3,9 @@
 
 It ships inside rosreconf, run by ``rosreconf.ros.ros2.lifecycle`` under a Python with rclpy;
 it is never imported by rosreconf. Each request is one JSON line on stdin, each answer one on
-stdout (same ``id``)::
+the pipe rosreconf gave it as stdout (same ``id``), which the agent keeps for its answers
+alone: fd 1 itself goes to its log before rclpy starts, with whatever Fast DDS prints
+(``helper_channel``)::
 
     {"id": 1, "op": "watch", "nodes": ["/NDC1"]}        clients made now, so later calls are
                                                          not slowed by discovery -> {"ok": true}
@@ -35,9 +37,13 @@ import time
 from typing import Any
 
 import rclpy
+from helper_channel import take_channel
 from lifecycle_msgs.msg import Transition
 from lifecycle_msgs.srv import ChangeState, GetState
 
+HEARTBEAT = 0.25
+"""Seconds between the agent's signs of life (``{"alive": ...}``), which it says while it runs
+even in the middle of a long request: rosreconf replaces an agent silent for 2 s."""
 IDS = {
     "configure": Transition.TRANSITION_CONFIGURE,
     "cleanup": Transition.TRANSITION_CLEANUP,
@@ -193,16 +199,18 @@ class Agent:
 def main() -> int:
     """Answer requests until stdin closes (rosreconf ended) or a signal stops it."""
     faulthandler.enable()  # a crash in rclpy or DDS leaves every thread's stack on stderr
+    answers = take_channel()  # before rclpy.init: Fast DDS prints on fd 1
     rclpy.init(args=sys.argv)
     agent = Agent()
-    print(json.dumps({"ready": agent.node.get_fully_qualified_name()}), flush=True)
+    answers.say({"ready": agent.node.get_fully_qualified_name()})
+    answers.beat(HEARTBEAT)
     try:
         for line in sys.stdin:
             if not line.strip():
                 continue
             request = json.loads(line)
             answer = agent.handle(request)
-            print(json.dumps({"id": request.get("id"), **answer}), flush=True)
+            answers.say({"id": request.get("id"), **answer})
     except KeyboardInterrupt:
         pass
     finally:

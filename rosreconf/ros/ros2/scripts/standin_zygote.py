@@ -22,8 +22,10 @@ kills the group when that pipe closes, that is when rosreconf has died (the same
 before.
 
 Protocol, JSON lines: rosreconf writes ``{"id": 1, "argv": [...], "log": "/path"}`` on
-stdin; the answer on stdout is ``{"id": 1, "pid": 4711}`` (or ``"error"``); whenever a child
-ends, ``{"exited": 4711, "code": 0}`` (a negative code: killed by that signal), as
+stdin; the answer, on the pipe rosreconf gave as stdout and kept for answers alone
+(``helper_channel``: fd 1 itself goes to the log), is ``{"id": 1, "pid": 4711}`` (or
+``"error"``); whenever a child ends, ``{"exited": 4711, "code": 0}`` (a negative code:
+killed by that signal), as
 ``subprocess`` says it. This process reaps every child. When stdin closes it kills what is
 left and exits. The first line it writes is ``{"ready": <pid>}``.
 """
@@ -41,6 +43,8 @@ import sys
 import traceback
 from pathlib import Path
 from typing import Any
+
+from helper_channel import Channel, take_channel
 
 PR_SET_PDEATHSIG = 1
 ALIVE_ENV = "ROSRECONF_STANDIN_ALIVE_FD"
@@ -114,8 +118,9 @@ def _set_title(argv: list[str]) -> None:
 class Zygote:
     """Fork stand-ins on request and report their exits (see the module docstring)."""
 
-    def __init__(self, standin: Any) -> None:
+    def __init__(self, standin: Any, answers: Channel) -> None:
         self.standin = standin
+        self.answers = answers
         self.lttng = _lttng()
         self.children: set[int] = set()
         self.me = os.getpid()
@@ -129,7 +134,7 @@ class Zygote:
 
     def say(self, answer: dict[str, Any]) -> None:
         """Write one JSON line to rosreconf."""
-        os.write(1, (json.dumps(answer) + "\n").encode())
+        self.answers.say(answer)
 
     def fork(self, argv: list[str], log: str) -> int:
         """Fork one stand-in running ``argv``; return its pid (in the parent only)."""
@@ -161,6 +166,7 @@ class Zygote:
             signal.signal(signal.SIGCHLD, signal.SIG_DFL)
             os.close(self.wake)
             os.close(self.wake_write)
+            self.answers.close_in_child()  # only the zygote answers rosreconf
             null = os.open(os.devnull, os.O_RDONLY)
             out = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
             os.dup2(null, 0)  # rosreconf's pipes are the zygote's, not the child's
@@ -237,7 +243,8 @@ class Zygote:
 
 def main() -> int:
     """Import rclpy once, then fork stand-ins until rosreconf closes stdin."""
-    Zygote(_load_standin()).serve()
+    answers = take_channel()  # before rclpy loads: what its libraries print goes to the log
+    Zygote(_load_standin(), answers).serve()
     return 0
 
 
