@@ -24,7 +24,9 @@ live graph; its own name for L counts only when it is that name. Findings (``Fin
     missing-node              1, 2  a node of the configuration is not running
     dead-node                 1     registered but its API does not answer (SIGKILLed nodes
                                     linger in a ROS 1 master)
-    extra-node                1, 2  alive, not plumbing, not in the configuration
+    extra-node                1, 2  alive, not plumbing, not in the configuration (a managed
+                                    node of the library parked inactive or unconfigured is a
+                                    standby instead, listed: ``rosreconf.ros.parked``)
     duplicate-node            2     two nodes announce one name (calls reach either; judged
                                     together)
     missing-service /         1, 2  a provider does not serve / publish / subscribe what its
@@ -70,6 +72,7 @@ from rosreconf.ros.dangling import dangling_findings
 from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 from rosreconf.ros.livenames import Finding, library_providers, same_type
+from rosreconf.ros.parked import Standby, standbys
 
 if TYPE_CHECKING:  # networkx is imported only when a ROS-graph is built
     from rosreconf.model.schema import RosGraph
@@ -126,6 +129,8 @@ class Conformance:
         expected_nodes: component -> its live node name.
         findings: every difference, in a stable order.
         checked: what was judged (nodes, edges, calls, subscriptions, actions, states).
+        standby: the library's managed nodes held out of service (``rosreconf.ros.parked``):
+            not in the configuration, and not extra nodes either.
     """
 
     schema: str
@@ -134,6 +139,7 @@ class Conformance:
     expected_nodes: dict[str, str]
     findings: tuple[Finding, ...]
     checked: Checked = Checked()
+    standby: tuple[Standby, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -165,6 +171,7 @@ class Conformance:
                 for f in self.findings
             ],
             "checked": self.checked.to_dict(),
+            "standby": [s.to_dict() for s in self.standby],
         }
 
 
@@ -182,7 +189,13 @@ def compare(
             answering[n.name] = _merge(answering[n.name], n) if n.name in answering else n
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
-    found = _node_findings(configuration, graph, answering, names)
+    parked = standbys(library, set(names.values()), answering)
+    out_of_service = {s.node for s in parked}
+    found = [
+        f
+        for f in _node_findings(configuration, graph, answering, names)
+        if f.code != "extra-node" or f.live_name not in out_of_service
+    ]
     found += _lifecycle_findings(live, answering, comps, names)
     expected = ros_graph(configuration, library, schema)
     found += _clash_findings(expected, live, answering, comps, names)
@@ -202,7 +215,7 @@ def compare(
             if (state := _state(comps[c], answering.get(name))) is not None
         ),
     )
-    return Conformance(schema.name, configuration, live, names, tuple(found), checked)
+    return Conformance(schema.name, configuration, live, names, tuple(found), checked, parked)
 
 
 def _node_findings(
