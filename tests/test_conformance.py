@@ -315,3 +315,19 @@ def test_parked_managed_alternatives_are_standbys_not_extra_nodes(
     assert "standby (managed nodes of the library, out of service):" in shown
     assert "  /NCA2 (NCA2): inactive\n" in shown and "  /NCO2 (NCO2): unconfigured\n" in shown
     assert "extra-node: /NCA2" not in shown and "extra-node: /NVP2" in shown
+
+
+def test_a_node_read_with_a_lifecycle_state_is_managed_whatever_its_listing_shows() -> None:
+    """The reader gives a state to a node it knows is managed (seen serving get_state on the
+    participant that still runs it) even when a read's listing misses its state services:
+    ``unknown`` or hung per the state rules, never ``not-managed``."""
+    managed = LIB["NSM3"].launch
+    assert managed is not None
+    lib = replace(LIB, components=tuple(
+        replace(c, launch=replace(managed, lifecycle=True)) if c.name == "NSM3" else c
+        for c in LIB.components))  # fmt: skip
+    nodes = _ros2_nodes(NOMINAL, NOMINAL)
+    for state, code in (("active", None), ("unknown", "not-active"), (None, "not-managed")):
+        nodes["NSM3"] = replace(nodes["NSM3"], lifecycle_state=state)
+        found = compare(NOMINAL, lib, SCHEMA, _ros2(nodes.values())).findings
+        assert [f.code for f in found] == ([code] if code else []), state

@@ -260,12 +260,18 @@ def _lifecycle_findings(
     """Report managed nodes out of the active state, and plain nodes the library calls managed.
 
     Lifecycle is ROS 2's: a ROS 1 graph has none. A node is managed when it serves
-    ``<node>/get_state`` (read from ``live``: the plumbing-free graph has no lifecycle services).
+    ``<node>/get_state`` (read from ``live``: the plumbing-free graph has no lifecycle services)
+    or when the reader gave it a lifecycle state (a node seen managed stays so while it runs:
+    a read that missed its state services says ``unknown`` or hung, never plain).
     """
     if live.ros_version != 2:
         return []
     found: list[Finding] = []
-    managed = {n.name for n in live.nodes if f"{n.name}/get_state" in n.serves}
+    managed = {
+        n.name
+        for n in live.nodes
+        if f"{n.name}/get_state" in n.serves or n.lifecycle_state is not None
+    }
     for c, name in names.items():
         launch, node = comps[c].launch, answering.get(name)
         if launch is None or not launch.lifecycle or node is None:
