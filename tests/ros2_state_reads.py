@@ -7,7 +7,9 @@ with LD_PRELOAD) loses datagrams only here::
 
 One ``rosreconf.ros.ros2.source.Ros2Source`` (its ``StateReader`` kept, as watch keeps it)
 reads the domain READS times, INTERVAL s apart; each read prints one JSON line, the state
-of NODE (``null`` when not seen) or the read's error.
+of NODE (``null`` when not seen or not managed), whether the graph lists NODE serving
+``NODE/get_state`` (``listed``), and when (``at``: seconds since the first read began), or
+the read's error.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from rosreconf.ros.ros2.source import Ros2Source
 def main(argv: list[str]) -> int:
     domain, node, reads, interval = int(argv[0]), argv[1], int(argv[2]), float(argv[3])
     source = Ros2Source(domain, empty_ok=True)
+    start = time.monotonic()
     try:
         for _ in range(reads):
             try:
@@ -31,7 +34,10 @@ def main(argv: list[str]) -> int:
                 print(json.dumps({"error": str(exc)}), flush=True)
             else:
                 states = {n.name: n.lifecycle_state for n in graph.nodes}
-                print(json.dumps({"state": states.get(node)}), flush=True)
+                listed = any(f"{node}/get_state" in n.serves for n in graph.nodes if n.name == node)
+                at = round(time.monotonic() - start, 3)
+                said = {"state": states.get(node), "listed": listed, "at": at}
+                print(json.dumps(said), flush=True)
             time.sleep(interval)
     finally:
         source.close()

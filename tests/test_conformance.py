@@ -272,3 +272,62 @@ def test_a_node_with_a_components_name_but_none_of_its_endpoints_is_a_name_clash
         check = compare(NOMINAL, LIB, SCHEMA, _live(other))
         assert any(f.code == "name-clash" for f in check.findings) is clash, serves
         assert any(f.code == "missing-service" and f.component == "NSM3" for f in check.findings)
+
+
+def test_parked_managed_alternatives_are_standbys_not_extra_nodes(
+    tmp_path: Path, runner: Any
+) -> None:
+    """``inspect`` judges a parked standby as ``watch --standby`` does: not an extra node.
+
+    Every component managed; beside the nominal configuration (active) run NCA2 (inactive: a
+    ready standby), NCO2 (unconfigured: parked), NVP2 (active: doing work, extra) and a
+    managed node the library does not know (inactive, extra)."""
+    root = Path(__file__).resolve().parent.parent
+    text = (root / "libraries" / "robot_arms.yaml").read_text()
+    library = tmp_path / "managed.yaml"
+    library.write_text(text.replace("\n    ros:\n", "\n    ros:\n      lifecycle: true\n"))
+    alternatives = Configuration.of(SCHEMA.name, {**SCHEMA.nominal, "camera": "NCA2",
+                                    "gripper_sensor": "NCO2", "perception": "NVP2"},
+                                    SCHEMA.graph.roles)  # fmt: skip
+    nodes = [*_ros2_nodes(NOMINAL, NOMINAL).values()]
+    states = {"/NCA2": "inactive", "/NCO2": "unconfigured", "/NVP2": "active"}
+    nodes += [n for n in _ros2_nodes(alternatives, None).values() if n.name in states]
+    nodes.append(LiveNode("/stranger", alive=True))
+    nodes = [
+        replace(n, serves=(*n.serves, f"{n.name}/get_state"),
+                lifecycle_state=states.get(n.name, "inactive" if n.name == "/stranger" else
+                                           "active"))
+        for n in nodes
+    ]  # fmt: skip
+    snapshot = tmp_path / "graph.json"
+    snapshot.write_text(to_json(_ros2(nodes)))
+    files = ["--library", str(library), "--schema", str(root / "schemas/object_repositioning.yaml")]
+    out = runner.invoke(app, ["inspect", "--snapshot", str(snapshot), *files, "--json"])
+    doc = json.loads(out.stdout)
+    assert out.exit_code == 1, out.stdout
+    assert sorted((f["code"], f["live_name"]) for f in doc["findings"]) == [
+        ("extra-node", "/NVP2"), ("extra-node", "/stranger")]  # fmt: skip
+    assert doc["standby"] == [
+        {"node": "/NCA2", "components": ["NCA2"], "state": "inactive"},
+        {"node": "/NCO2", "components": ["NCO2"], "state": "unconfigured"},
+    ]
+    shown = runner.invoke(app, ["inspect", "--snapshot", str(snapshot), *files]).stdout
+    assert "standby (managed nodes of the library, out of service):" in shown
+    assert "  /NCA2 (NCA2): inactive\n" in shown and "  /NCO2 (NCO2): unconfigured\n" in shown
+    assert "extra-node: /NCA2" not in shown and "extra-node: /NVP2" in shown
+
+
+def test_a_node_read_with_a_lifecycle_state_is_managed_whatever_its_listing_shows() -> None:
+    """The reader gives a state to a node it knows is managed (seen serving get_state on the
+    participant that still runs it) even when a read's listing misses its state services:
+    ``unknown`` or hung per the state rules, never ``not-managed``."""
+    managed = LIB["NSM3"].launch
+    assert managed is not None
+    lib = replace(LIB, components=tuple(
+        replace(c, launch=replace(managed, lifecycle=True)) if c.name == "NSM3" else c
+        for c in LIB.components))  # fmt: skip
+    nodes = _ros2_nodes(NOMINAL, NOMINAL)
+    for state, code in (("active", None), ("unknown", "not-active"), (None, "not-managed")):
+        nodes["NSM3"] = replace(nodes["NSM3"], lifecycle_state=state)
+        found = compare(NOMINAL, lib, SCHEMA, _ros2(nodes.values())).findings
+        assert [f.code for f in found] == ([code] if code else []), state

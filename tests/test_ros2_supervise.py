@@ -126,6 +126,34 @@ def test_a_process_not_readable_is_not_guessed(robot: Robot) -> None:
     assert all(v == ["not-readable", True] for v in found.values()), found
 
 
+def test_live_nodes_out_of_sight_are_never_taken_for_gone(robot: Robot) -> None:
+    """From a pid namespace of its own (a container of a pod that shares the host's network),
+    the nodes' processes cannot be seen: no candidate, but never gone, since the domain's
+    sockets in this network namespace belong to processes out of its sight."""
+    if os.geteuid() != 0:
+        pytest.fail("needs root (as make test runs here) for unshare --pid", pytrace=False)
+    script = (
+        "import json, sys\n"
+        "from rosreconf.ros.ros2.hostprocs import locate_participants\n"
+        "parts = {bytes.fromhex(k): v for k, v in json.loads(sys.argv[1]).items()}\n"
+        "found = locate_participants(parts, int(sys.argv[2]))\n"
+        "print(json.dumps({k.hex(): [w.found.value, w.proc is None] for k, w in found.items()}))\n"
+    )
+    parts = {k.hex(): list(v) for k, v in robot.session.participant_nodes.items()}
+    contained = ["unshare", "--pid", "--fork", "--mount-proc", "--kill-child"]
+    out = subprocess.run(
+        [*contained, sys.executable, "-c", script, json.dumps(parts), str(robot.system.domain)],
+        capture_output=True,
+        check=True,
+        cwd="/",
+        env={"PATH": os.environ["PATH"], "PYTHONPATH": str(ROOT)},
+        timeout=60,
+    )
+    found = json.loads(out.stdout)
+    assert len(found) == 4
+    assert all(v == ["no-candidate", True] for v in found.values()), found
+
+
 def test_candidates_that_cannot_be_confirmed_are_said_as_such(robot: Robot) -> None:
     some = next(iter(robot.session.participant_nodes))
     host = HostProcesses()
@@ -142,9 +170,10 @@ def test_candidates_that_cannot_be_confirmed_are_said_as_such(robot: Robot) -> N
     assert host.locate(other_host, robot.system.domain).found is Found.OTHER_HOST
     cyclone = b"\x01\x10" + some[2:]
     assert host.locate(cyclone, robot.system.domain).found is Found.OTHER_VENDOR
-    # Seen before any of these processes started: a pid's later owner is not the node's.
+    # Seen before any of these processes started: a pid's later owner is not the node's, and
+    # with every socket of the domain here a process's seen here, no other could hold it
     before = host.locate(some, robot.system.domain, seen_at=1.0)
-    assert before.found is Found.NO_CANDIDATE and before.proc is None
+    assert before.found is Found.GONE and before.proc is None
 
 
 def _poll_until(watch: ProcessWatch, want: str, proc: ProcId, seconds: float = 5.0) -> WatchEvents:
@@ -187,9 +216,12 @@ def test_kill_and_stop_of_outside_nodes_are_seen(robot: Robot) -> None:
         os.kill(solo2.pid, signal.SIGKILL)
         events = _poll_until(watch, "exited", solo2)
         assert events.exited == (solo2,) and solo1 in watch.watched
-    # The lease keeps the killed participant in the graph; its process is no candidate.
+    # The lease keeps the killed participant in the graph; its process is proven gone: no
+    # process has its pid, and each socket of the domain here is a live process's
     still = {n: w for n, w in robot.by_node().items() if n == "/solo2"}
-    assert all(w.found is Found.NO_CANDIDATE and w.proc is None for w in still.values())
+    assert still, "the killed node's participant is announced until its lease ends"
+    assert all(w.found is Found.GONE and w.proc is None for w in still.values())
+    assert all("its process has ended" in w.detail for w in still.values())
     robot.popen[solo2.pid].wait(5)
 
 

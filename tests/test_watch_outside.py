@@ -13,12 +13,13 @@ import json
 import os
 import signal
 import subprocess
+import time
 from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
 from ros2_team import STANDIN, Member, Team, wait_ready
-from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python
+from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python, probe
 from test_watch_wiring import _python
 
 Node = subprocess.Popen[bytes] | Member
@@ -296,3 +297,39 @@ def test_a_forged_guid_never_gets_a_bystander_signalled(
             watch.stop(signal.SIGKILL)
         bystander.kill()
         bystander.wait()
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])  # Fast DDS 2.14 and 3.2: GUID layouts
+def test_an_outside_node_killed_before_its_process_is_found_is_failed_at_once(
+    ros2_domain: int, tmp_path: Path, distro: str
+) -> None:
+    """kill -9 of a team's node right after watch first sees it, before its process is looked
+    for (the next poll looks: ``--interval 5``). Its participant is announced until its 20 s
+    lease ends, but its GUID names this host and a pid no process here has, while every socket
+    of the domain here is a process's watch can see: it is failed at that poll."""
+    python = _python(distro)
+    team, ours = _team(tmp_path, ros2_domain, python=python)
+    watch: Watch | None = None
+    try:
+        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--interval", "5",
+                      python=python)  # fmt: skip
+        running = watch.wait("running")
+        ours["NCA1"].kill()
+        killed = time.monotonic()
+        looked = [e for e in watch.events() if e["event"] == "watched"]
+        assert not looked, f"the test was too slow: its process was looked for already {looked}"
+        failed = watch.wait("failed", after=watch.events().index(running) + 1, timeout=30.0)
+        seen = time.monotonic() - killed
+        assert (failed["component"], failed["how"]) == ("NCA1", "process-exited"), failed
+        assert seen < 15.0, seen  # one poll, well inside the lease (18.9-20.8 s measured)
+        gone = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "gone"]
+        assert [e["nodes"] for e in gone] == [["/NCA1"]], gone
+        assert "no process here has the pid" in gone[0]["why"]
+        replanned = watch.wait("replanned", after=watch.events().index(failed))
+        assert replanned["failed"] == ["NCA1"] and replanned["configuration"]["camera"] == "NCA2"
+        watch.wait("launch", after=watch.events().index(replanned))
+        seen_graph = probe(watch.env, ros2_domain, wait_for=["/NCA2"], python=python)
+        assert "/NCA2" in seen_graph["nodes"]  # the replacement runs, as rclpy's graph shows
+        assert ours["NCA1"].poll() is not None
+    finally:
+        _end(watch, team, ours)

@@ -27,7 +27,9 @@ live graph; its own name for L counts only when it is that name. Findings (``Fin
     missing-node              1, 2  a node of the configuration is not running
     dead-node                 1     registered but its API does not answer (SIGKILLed nodes
                                     linger in a ROS 1 master)
-    extra-node                1, 2  alive, not plumbing, not in the configuration
+    extra-node                1, 2  alive, not plumbing, not in the configuration (a managed
+                                    node of the library parked inactive or unconfigured is a
+                                    standby instead, listed: ``rosreconf.ros.parked``)
     duplicate-node            2     two nodes announce one name (calls reach either; judged
                                     together)
     missing-service /         1, 2  a provider does not serve / publish / subscribe what its
@@ -73,6 +75,7 @@ from rosreconf.ros.dangling import dangling_findings
 from rosreconf.ros.edgechecks import edge_findings
 from rosreconf.ros.livegraph import LiveGraph, LiveNode, without_plumbing
 from rosreconf.ros.livenames import Finding, library_providers, same_type
+from rosreconf.ros.parked import Standby, standbys
 
 if TYPE_CHECKING:  # networkx is imported only when a ROS-graph is built
     from rosreconf.model.schema import RosGraph
@@ -129,6 +132,8 @@ class Conformance:
         expected_nodes: component -> its live node name.
         findings: every difference, in a stable order.
         checked: what was judged (nodes, edges, calls, subscriptions, actions, states).
+        standby: the library's managed nodes held out of service (``rosreconf.ros.parked``):
+            not in the configuration, and not extra nodes either.
     """
 
     schema: str
@@ -137,6 +142,7 @@ class Conformance:
     expected_nodes: dict[str, str]
     findings: tuple[Finding, ...]
     checked: Checked = Checked()
+    standby: tuple[Standby, ...] = ()
 
     @property
     def ok(self) -> bool:
@@ -168,6 +174,7 @@ class Conformance:
                 for f in self.findings
             ],
             "checked": self.checked.to_dict(),
+            "standby": [s.to_dict() for s in self.standby],
         }
 
 
@@ -185,7 +192,13 @@ def compare(
             answering[n.name] = _merge(answering[n.name], n) if n.name in answering else n
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
-    found = _node_findings(configuration, graph, answering, names)
+    parked = standbys(library, set(names.values()), answering)
+    out_of_service = {s.node for s in parked}
+    found = [
+        f
+        for f in _node_findings(configuration, graph, answering, names)
+        if f.code != "extra-node" or f.live_name not in out_of_service
+    ]
     found += _lifecycle_findings(live, answering, comps, names)
     expected = ros_graph(configuration, library, schema)
     found += _clash_findings(expected, live, answering, comps, names)
@@ -205,7 +218,7 @@ def compare(
             if (state := _state(comps[c], answering.get(name))) is not None
         ),
     )
-    return Conformance(schema.name, configuration, live, names, tuple(found), checked)
+    return Conformance(schema.name, configuration, live, names, tuple(found), checked, parked)
 
 
 def _node_findings(
@@ -250,12 +263,18 @@ def _lifecycle_findings(
     """Report managed nodes out of the active state, and plain nodes the library calls managed.
 
     Lifecycle is ROS 2's: a ROS 1 graph has none. A node is managed when it serves
-    ``<node>/get_state`` (read from ``live``: the plumbing-free graph has no lifecycle services).
+    ``<node>/get_state`` (read from ``live``: the plumbing-free graph has no lifecycle services)
+    or when the reader gave it a lifecycle state (a node seen managed stays so while it runs:
+    a read that missed its state services says ``unknown`` or hung, never plain).
     """
     if live.ros_version != 2:
         return []
     found: list[Finding] = []
-    managed = {n.name for n in live.nodes if f"{n.name}/get_state" in n.serves}
+    managed = {
+        n.name
+        for n in live.nodes
+        if f"{n.name}/get_state" in n.serves or n.lifecycle_state is not None
+    }
     for c, name in names.items():
         launch, node = comps[c].launch, answering.get(name)
         if launch is None or not launch.lifecycle or node is None:

@@ -20,7 +20,7 @@ class InspectReporter(Protocol):
 
 
 class TextReporter:
-    """A verdict line naming the master and the schema, then one line per finding."""
+    """A verdict line naming the master and the schema, one line per finding, the standbys."""
 
     def render(self, result: Conformance, schema: InteroperabilitySchema) -> str:
         """Return the verdict and the findings."""
@@ -29,6 +29,12 @@ class TextReporter:
         lines = [f"{where}: the live system {head} the {schema.display_name} configuration\n"]
         # Names come from the network: nothing in them may drive the terminal.
         lines += [f"  {f.code}: {printable(f.message, 10_000)}\n" for f in result.findings]
+        if result.standby:  # not findings: the library's managed nodes held out of service
+            lines.append("standby (managed nodes of the library, out of service):\n")
+            lines += [
+                f"  {printable(s.node)} ({', '.join(s.components)}): {s.state}\n"
+                for s in result.standby
+            ]
         return "".join(lines)
 
 

@@ -23,6 +23,7 @@ from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.nodes import OwnNode
+from rosreconf.ros.ros2.retrying import Retries
 from rosreconf.ros.ros2.shmdebris import diagnose
 
 
@@ -45,6 +46,7 @@ class Ros2Actuator(Actuator):
     hide: Callable[[Collection[bytes]], None] = lambda _: None
     control: Ros2Control = field(init=False)
     launched: set[str] = field(default_factory=set)
+    retries: Retries = field(init=False)
 
     def __post_init__(self) -> None:
         a = self.acting
@@ -59,6 +61,7 @@ class Ros2Actuator(Actuator):
             stop_outside=a.stop_outside,
         )
         self.control.nodes.stopping = self._hide_stopping
+        self.retries = Retries(a.library, self.control.lifecycle, a.say)
 
     def _hide_stopping(self, stopping: list[OwnNode]) -> None:
         """Leave out of later reads the participants of processes rosreconf is stopping.
@@ -68,8 +71,13 @@ class Ros2Actuator(Actuator):
         dead one's state query, unanswered, read as the new one's "hung" (fresh clone fc177).
         Taken from the last read, before any restart: each participant naming a stopped node
         whose Fast DDS GUID carries that process's pid (another vendor's carries none, and
-        its node name is then what tells).
+        its node name is then what tells). The lifecycle state read back from a stopped
+        process is forgotten too: a process started anew for the component is unconfigured,
+        and must be configured and activated (a replaced managed node released after its
+        hold was started and left unconfigured until the lifecycle check after ``--settle``).
         """
+        for own in stopping:
+            self.control.states.pop(own.component, None)
         pids = {own.node: own.pid for own in stopping}
         self.hide(
             {
@@ -134,7 +142,8 @@ class Ros2Actuator(Actuator):
         """Say which own processes exited; return the components of ``current`` now failed.
 
         With ``tend``, standby nodes that came up are configured. The nodes of ``current``
-        rosreconf did not start are watched by their processes from the last read on.
+        rosreconf did not start are watched by their processes from the last read on. A
+        transition that timed out is tried again (``retrying``), while confirming too.
         """
         participants = self.participants()
         self.control.track(participants, current)
@@ -143,7 +152,9 @@ class Ros2Actuator(Actuator):
         newly = self.control.dead - dead  # their participants linger until their lease ends
         ended = self.control.ended_participants()  # outside processes: exactly theirs
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
-        if tend and not now:  # a failure's repair first: standby upkeep never delays it
+        if not now:  # a failure's repair first: neither retries nor standby upkeep delay it
+            self.retries.tend(current, self.control.parked)
+        if tend and not now:
             self.control.tend()
         return now
 
@@ -153,7 +164,9 @@ class Ros2Actuator(Actuator):
 
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes whose process rosreconf saw exit."""
-        return self.control.visible(graph)
+        shown = self.control.visible(graph)
+        self.retries.saw(self.control.read_states)  # what a timed-out transition is judged on
+        return shown
 
     def filtered(self, check: Conformance) -> Conformance:
         """Return ``check`` without the nodes parked out of service on purpose."""

@@ -20,6 +20,19 @@ only a DDS participant of that domain binds. Exactly one such process, with no c
 left unreadable, is a confirmed pid; anything else is said as such and never guessed.
 ``__node:=`` arguments on the command line are reported as extra evidence only: most
 launched processes (``ros2 run``, component containers) carry none.
+
+A participant of this host whose process is **gone** is proven so, not guessed, before its
+lease ends (Fast DDS: 20 s): no process here whose own pid (its innermost namespace's, as
+``getpid`` gave Fast DDS) has the GUID's 16 low bits started before the participant was
+seen, and every UDP socket of this network namespace on the domain's RTPS ports belongs to
+a process read here. The second half is what makes the first a proof: a participant that
+writes this host's id hashed this network namespace's addresses (``fastdds_ids``), so while
+it lives it holds sockets of the domain here; a process out of sight (another pid
+namespace, as a sibling container of a pod sharing the network; another user's process,
+whose file descriptors are closed to us) would leave such a socket unaccounted for, and the
+participant is then only "no candidate", watched by its lease. What is left is a 16-bit host
+id: another machine whose addresses hash to this host's (about 1 in 65,536) is taken for
+this host, by locating as well.
 """
 
 from __future__ import annotations
@@ -43,6 +56,7 @@ class Found(StrEnum):
     OTHER_VENDOR = "other-vendor"  # not Fast DDS: the GUID carries no pid (watch by lease)
     OTHER_HOST = "other-host"  # Fast DDS on another host id (watch by lease)
     NO_CANDIDATE = "no-candidate"  # no process here has those pid bits and started before
+    GONE = "gone"  # no candidate, and no process out of sight could hold it: it has ended
     NOT_READABLE = "not-readable"  # a candidate's /proc/<pid>/fd is not ours to read
     UNCONFIRMED = "unconfirmed"  # candidates, but none holds the domain's sockets
     AMBIGUOUS = "ambiguous"  # more than one candidate holds the domain's sockets
@@ -130,8 +144,10 @@ def _processes(proc_root: Path) -> list[_Proc]:
     return found
 
 
-def _udp_ports(proc_root: Path, pid: int) -> dict[int, int]:
-    """Return socket inode -> local UDP port in the process's own network namespace."""
+def _udp_ports(proc_root: Path, pid: int | str) -> dict[int, int]:
+    """Return socket inode -> local UDP port in the process's own network namespace.
+
+    ``pid`` may be ``"self"``: this process's network namespace."""
     ports: dict[int, int] = {}
     for name in ("udp", "udp6"):
         try:
@@ -145,8 +161,8 @@ def _udp_ports(proc_root: Path, pid: int) -> dict[int, int]:
     return ports
 
 
-def socket_ports(pid: int, proc_root: Path = PROC) -> frozenset[int]:
-    """Return the UDP ports a process holds open (PermissionError: not ours to read)."""
+def _socket_inodes(proc_root: Path, pid: int) -> set[int]:
+    """Return the inodes of the sockets a process holds (PermissionError: not ours to read)."""
     fd_dir = proc_root / str(pid) / "fd"
     inodes: set[int] = set()
     for fd in os.listdir(fd_dir):  # PermissionError for another user's process
@@ -156,8 +172,26 @@ def socket_ports(pid: int, proc_root: Path = PROC) -> frozenset[int]:
             continue
         if target.startswith("socket:["):
             inodes.add(int(target[8:-1]))
+    return inodes
+
+
+def socket_ports(pid: int, proc_root: Path = PROC) -> frozenset[int]:
+    """Return the UDP ports a process holds open (PermissionError: not ours to read)."""
+    inodes = _socket_inodes(proc_root, pid)
     by_inode = _udp_ports(proc_root, pid)
     return frozenset(by_inode[i] for i in inodes if i in by_inode)
+
+
+def domain_sockets(domain: int, proc_root: Path = PROC) -> set[int] | None:
+    """Return the inodes of this network namespace's UDP sockets on ``domain``'s RTPS ports.
+
+    None when the table cannot be read (nothing can then be proven from it).
+    """
+    if not (proc_root / "self" / "net" / "udp").exists():
+        return None
+    multicast, pairs = domain_ports(domain)
+    ports = {*multicast, *(p for pair in pairs for p in pair)}
+    return {inode for inode, port in _udp_ports(proc_root, "self").items() if port in ports}
 
 
 def holds_domain(ports: Iterable[int], domain: int) -> bool:
@@ -200,8 +234,28 @@ class HostProcesses:
         self.host_ids = frozenset(host_ids) if host_ids is not None else {this_host_id()}
         self._ticks = os.sysconf("SC_CLK_TCK")
         self._by_low: dict[int, list[_Proc]] = {}
+        self._in_sight: dict[int, bool] = {}
         for p in _processes(proc_root):
             self._by_low.setdefault(low_pid(p.inner_pid), []).append(p)
+
+    def domain_in_sight(self, domain: int) -> bool:
+        """Tell whether every socket of ``domain`` in this network namespace is a process's
+        seen here: then no participant of this host's id runs out of sight (module docstring).
+
+        Read once per scan; it reads every process's file descriptors, so only when a
+        participant has no candidate at all (its process is likely gone).
+        """
+        if domain not in self._in_sight:
+            left = domain_sockets(domain, self.proc_root)
+            for p in (p for procs in self._by_low.values() for p in procs):
+                if not left:
+                    break
+                try:
+                    left -= _socket_inodes(self.proc_root, p.proc.pid)
+                except OSError:  # not ours to read, or gone: its sockets stay unexplained
+                    continue
+            self._in_sight[domain] = left is not None and not left
+        return self._in_sight[domain]
 
     def locate(
         self,
@@ -236,6 +290,12 @@ class HostProcesses:
             if p.proc.start_ticks / self._ticks <= seen + 1.0 / self._ticks
         ]
         pids = [c.pid for c in cands]
+        if not cands and self.domain_in_sight(domain):
+            return said(
+                Found.GONE,
+                f"no process here has the pid its GUID ends in ({low:#06x}), and every "
+                f"socket of domain {domain} here is a process's seen here: its process has ended",
+            )
         if not cands:
             return said(
                 Found.NO_CANDIDATE,

@@ -40,7 +40,12 @@ class LifecycleError(ExternalToolError):
 
 @dataclass(frozen=True)
 class Outcome:
-    """One transition performed: the node, the transition, the state read back, how long."""
+    """One transition performed: the node, the transition, the state read back, how long.
+
+    ``timed_out``: it failed for want of an answer in time (a service that did not appear, a
+    call unanswered, the agent itself silent), so the node may yet get there: it is asked
+    again later (``rosreconf.ros.ros2.retrying``), where a refusal is final.
+    """
 
     node: str
     transition: str
@@ -48,6 +53,7 @@ class Outcome:
     state: str | None
     seconds: float
     error: str | None = None
+    timed_out: bool = False
 
 
 class LifecycleAgent(Helper):
@@ -113,7 +119,7 @@ class LifecycleAgent(Helper):
             answer = self._ask(request, 2 * each + wait * len(items))
         except LifecycleError as exc:
             took = time.monotonic() - start
-            return [Outcome(n, t, False, None, took, str(exc)) for n, t in items]
+            return [Outcome(n, t, False, None, took, str(exc), timed_out=True) for n, t in items]
         return [
             Outcome(
                 r["node"],
@@ -122,6 +128,7 @@ class LifecycleAgent(Helper):
                 r.get("state"),
                 float(r["seconds"]),
                 r.get("error"),
+                bool(r.get("timed_out", False)),
             )
             for r in answer.get("results", [])
         ]

@@ -55,6 +55,10 @@ UNANSWERED_AFTER = 1.5
 """Seconds a node that answered before may leave a ``get_state`` unanswered before it is
 ``UNANSWERED``. A healthy rclpy node answers in about 10 ms; the margin is for a loaded
 2-core machine running 25 nodes, where a false "hung" would fail a working component."""
+UNSEEN_AFTER = 5.0
+"""Seconds a node seen managed keeps being managed while discovery shows no ``get_state``
+server of its, on the participant that still runs it: more than Fast DDS's 3 s heartbeat,
+after which an endpoint announcement lost on the way is sent again."""
 
 
 def _types(dds: Any) -> tuple[Any, Any]:
@@ -88,7 +92,36 @@ class StateReader:
     _known: dict[str, tuple[bytes, str]] = field(default_factory=dict)
     _waiting: dict[str, float] = field(default_factory=dict)
     """node -> when its oldest request still unanswered was written (answered nodes only)."""
+    _managed: dict[str, tuple[bytes, float | None]] = field(default_factory=dict)
+    """node -> the participant it was seen serving ``get_state`` on, and since when that
+    server is unseen (None: seen in the last read)."""
     _types: tuple[Any, Any] | None = None
+
+    def servers(self, session: Ros2Discovery, graph: LiveGraph) -> dict[str, bytes]:
+        """Return node -> participant of each managed node of ``graph``, as ``read`` takes them.
+
+        The nodes serving ``<node>/get_state`` now (``managed_servers``), and each node seen
+        so before that still runs on the same participant, until its ``get_state`` server
+        has been gone from discovery for ``UNSEEN_AFTER`` s. A process cannot make its
+        managed node plain (rclpy and rclcpp make the state services with the node and drop
+        them with it), but a loaded host can leave an endpoint's announcement out of a read,
+        or a read out of the node's endpoints: one such read must not call the node plain.
+        Its state is then what ``read`` says of a node that did not answer (the state last
+        answered there, ``unknown``, or ``unanswered``: hung), never "not managed". A node
+        started anew (another participant) is judged afresh.
+        """
+        now, serving = time.monotonic(), managed_servers(session, graph)
+        found, runs, names = dict(serving), session.participant_nodes, set(graph.names)
+        for node, (participant, unseen) in list(self._managed.items()):
+            if node in serving or node not in names or node not in runs.get(participant, ()):
+                del self._managed[node]  # seen again (below), or no longer run there
+            elif unseen is not None and now - unseen >= UNSEEN_AFTER:
+                del self._managed[node]  # its get_state server is gone: plain now
+            else:
+                self._managed[node] = (participant, now if unseen is None else unseen)
+                found[node] = participant
+        self._managed.update((node, (p, None)) for node, p in serving.items())
+        return found
 
     def read(
         self, session: Ros2Discovery, nodes: dict[str, bytes], *, timeout: float
@@ -136,11 +169,16 @@ class StateReader:
                     del pending[node]
                     continue
                 _, writer, reader = self._pairs[node]
-                if now - sent < RESEND or not (
+                if not (
                     writer.get_publication_matched_status().current_count
                     and reader.get_subscription_matched_status().current_count
                 ):
-                    continue  # asked just now, or the server's endpoints are not matched yet
+                    # not matched (yet, or its server left discovery): it cannot hear an ask
+                    # or answer one, so an ask it left unanswered is no sign of a hang
+                    self._waiting.pop(node, None)
+                    continue
+                if now - sent < RESEND:
+                    continue  # asked just now
                 # Ask (again): the server may not have matched our reply reader yet when we
                 # matched its endpoints, and then its answer reaches no one.
                 writer.write(request(structure_needs_at_least_one_member=0))
@@ -223,11 +261,11 @@ def with_states(
 ) -> LiveGraph:
     """Return ``graph`` with every managed node's lifecycle state read (others: None).
 
-    A managed node is one serving ``<node>/get_state``. ``reader`` keeps what it asked with
-    from one read to the next (a fresh one: every pair made anew).
+    A managed node is one serving ``<node>/get_state``, or one seen so that still runs on
+    the same participant (``StateReader.servers``). ``reader`` keeps what it asked with and
+    what it saw from one read to the next (a fresh one: every pair made anew).
     """
-    states = (reader or StateReader()).read(
-        session, managed_servers(session, graph), timeout=timeout
-    )
+    reader = reader or StateReader()
+    states = reader.read(session, reader.servers(session, graph), timeout=timeout)
     nodes = tuple(replace(n, lifecycle_state=states.get(n.name)) for n in graph.nodes)
     return replace(graph, nodes=nodes)

@@ -13,6 +13,9 @@ guessed), and ``pidwatch`` sees that process exit in milliseconds (a pidfd) or s
                                                   ``HUNG_SECONDS``: hung, failed
     outside, not confirmed (another host, another the DDS lease only; said once per node,
     middleware, /proc not readable, ambiguous)     with why
+    outside, its process proven gone when looked   at once (``hostprocs``' ``GONE``: killed
+    for (this host's GUID, no process could hold   before it was located), unless another
+    it)                                            participant runs the node too
 
 A process that runs several nodes (a component container, an executor with many nodes)
 fails them all at once. Nothing here signals a process: stopping outside nodes is not this
@@ -26,7 +29,7 @@ from collections.abc import Callable, Collection, Mapping
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
-from rosreconf.ros.ros2.hostprocs import HostProcesses, ProcId, boot_seconds
+from rosreconf.ros.ros2.hostprocs import Found, HostProcesses, ProcId, boot_seconds
 from rosreconf.ros.ros2.pidwatch import ProcessWatch
 from rosreconf.ros.ros2.provenance import SourcePorts
 from rosreconf.ros.ros2.stopproc import Stopped, StopResult, stop_node_process
@@ -106,10 +109,20 @@ class OutsideNodes:
         if not new:
             return
         host = HostProcesses()
+        found_all = {
+            g: host.locate(g, self.domain, ns, seen_at=self.seen_at[g]) for g, ns in new.items()
+        }
+        dead = {g for g, f in found_all.items() if f.found is Found.GONE}
+        # a node another participant runs too (restarted, its predecessor's participant still
+        # announced until its lease ends) is not gone: only the dead participant is
+        running = {n for g, ns in participants.items() if g not in dead for n in ns}
         for guid, names in sorted(new.items()):
             self.located.add(guid)
-            found = host.locate(guid, self.domain, names, seen_at=self.seen_at[guid])
+            found = found_all[guid]
             mine = [n for n in names if n in wanted]
+            if guid in dead:
+                self._gone_at_once(guid, [n for n in names if n not in running], found.detail)
+                continue
             if found.proc is not None:  # one that exited already: the next poll says so
                 self._watch.add(found.proc)
                 self.nodes[found.proc] = names
@@ -132,6 +145,21 @@ class OutsideNodes:
                 nodes=mine,
                 how="lease",
                 why=found.detail,
+            )
+
+    def _gone_at_once(self, guid: bytes, names: list[str], detail: str) -> None:
+        """Take a participant whose process is proven gone as one that exited just now."""
+        self.ended.add(guid)
+        for n in names:
+            self.gone[n] = "exited"
+        if names:
+            self.say(
+                "watched",
+                f"{', '.join(names)}: its process is gone already ({detail}): failed now, "
+                "not after the DDS lease",
+                nodes=names,
+                how="gone",
+                why=detail,
             )
 
     def poll(self) -> bool:

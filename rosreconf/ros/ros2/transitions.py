@@ -10,6 +10,7 @@ outcome. Nothing here raises for a failed transition: a failure is said and retu
 from __future__ import annotations
 
 import contextlib
+import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -33,6 +34,9 @@ class Transitions:
         helpers: agent deaths seen, each once, for the caller to say. A helper's death is no
             component's failure: a dead agent is started anew, and a request it died in is
             asked again of the new one, once.
+        timeouts: component -> when its last transition timed out (``Outcome.timed_out``,
+            or the agent could not be asked), until one of its transitions is answered:
+            what ``rosreconf.ros.ros2.retrying`` tries again.
     """
 
     env: Mapping[str, str]
@@ -42,6 +46,7 @@ class Transitions:
     timeout: float = TIMEOUT
     states: dict[str, str] = field(default_factory=dict)
     helpers: list[str] = field(default_factory=list)
+    timeouts: dict[str, float] = field(default_factory=dict)
     _agent: LifecycleAgent | None = None
     _agent_error: str | None = None
 
@@ -135,6 +140,7 @@ class Transitions:
         return {nodes[o.node]: self._said(nodes[o.node], o) for o in outcomes}
 
     def _failed(self, component: str, transition: str, error: str) -> bool:
+        self.timeouts[component] = time.monotonic()  # the agent was not asked: nothing known
         node = self.node_of(component)
         self.say(
             "lifecycle",
@@ -151,6 +157,10 @@ class Transitions:
         """Say how one transition went (event ``lifecycle``); return whether it held."""
         if outcome.state is not None:
             self.states[component] = outcome.state
+        if outcome.timed_out:
+            self.timeouts[component] = time.monotonic()
+        else:
+            self.timeouts.pop(component, None)  # answered: done, or refused for good
         result = (
             f"now {outcome.state} ({outcome.seconds * 1000:.0f} ms)"
             if outcome.ok

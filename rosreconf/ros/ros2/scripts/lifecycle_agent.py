@@ -13,7 +13,8 @@ alone: fd 1 itself goes to its log before rclpy starts, with whatever Fast DDS p
                                                          (whose services are matched now)
     {"id": 3, "op": "batch", "items": [{"node": "/NDC1", "transition": "activate"}, ...],
      "timeout": 5}
-        -> {"ok": true, "results": [{"node", "transition", "ok", "state", "seconds", "error"}]}
+        -> {"ok": true, "results": [{"node", "transition", "ok", "state", "seconds", "error",
+                                     "timed_out"}]}
            (every state read, the transitions asked for at once, every state read back)
 
 ``appear`` (seconds, default ``timeout``) bounds the wait for a service to appear, separately
@@ -22,7 +23,9 @@ from ``timeout``, which bounds each call: a node just started needs seconds to c
 Each result fails ("ok": false, "error": "...") when a service did not appear, a call timed
 out, the node is in a state the transition does not leave, the node refused, the state read
 back is not the one the transition leads to, or the node was already asked in this batch (only
-its first item is sent: rclpy ends a node asked for a transition it has just left). The node
+its first item is sent: rclpy ends a node asked for a transition it has just left). The first
+two also say ``"timed_out": true``: the node may yet get there (a slow ``on_configure``, a
+request lost while the service was being matched), so rosreconf asks again later. The node
 is not left half-way by the agent: it either did the transition or not. A node already in the
 state the transition leads to counts as done: a retried ``configure`` whose first answer was
 lost on a busy machine must not fail.
@@ -122,11 +125,13 @@ class Agent:
         """
         start = time.monotonic()
         errors: dict[int, str] = {}
+        late: set[int] = set()  # timed out: the node may yet answer, or get there
         for i, item in enumerate(items):
             change, get = self._clients(item["node"])
             for client in (change, get):
                 if i not in errors and not client.wait_for_service(timeout_sec=appear):
                     errors[i] = f"{client.srv_name} did not appear within {appear:g} s"
+                    late.add(i)
         asking = [i for i in range(len(items)) if i not in errors]
         before = self._states(items, asking, timeout)
         calls: dict[int, Any] = {}
@@ -138,6 +143,7 @@ class Agent:
                 errors[i] = f"{node} was asked for {asked} in this batch already: {name} not sent"
             elif before[i] is None:
                 errors[i] = f"{node}/get_state did not answer within {timeout:g} s ({name})"
+                late.add(i)
             elif before[i] != GOAL[name] and before[i] not in FROM[name]:
                 errors[i] = f"{node} is {before[i]}: {name} is not a transition from it"
             elif before[i] != GOAL[name]:
@@ -152,6 +158,7 @@ class Agent:
             state, future, error = after.get(i, before.get(i)), calls.get(i), errors.get(i)
             if error is None and future is not None and not future.done():
                 error = f"{node}/change_state did not answer within {timeout:g} s ({name})"
+                late.add(i)
             elif error is None and future is not None and not future.result().success:
                 error = f"{node} refused {name} (it is {state})"
             elif error is None and state != GOAL[name]:
@@ -165,6 +172,7 @@ class Agent:
                     "state": state,
                     "seconds": took,
                     "error": error,
+                    "timed_out": i in late and error is not None,
                 }
             )
         return results
