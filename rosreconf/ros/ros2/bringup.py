@@ -16,8 +16,8 @@ So the started nodes are watched together, every ``POLL`` seconds:
 - only a node that neither comes up nor exits is waited for, up to ``APPEAR`` seconds.
 
 The same event says every exit of a node process rosreconf started (``exit_news``): before it
-was ready (seen in the graph or its services matched), or later (``process-exit``: a crash);
-its data carries the end of that run's log either way. Nothing here prints.
+was ready (seen in the graph, or it answered a lifecycle call), or later (``process-exit``: a
+crash); its data carries the end of that run's log either way. Nothing here prints.
 """
 
 from __future__ import annotations
@@ -130,11 +130,12 @@ class Bringup:
             ready = self._ready(pending)
             if ready is None:  # no agent to ask: the transitions say why, one by one
                 return self.into_service(pending, max(0.0, deadline - time.monotonic())) and ok
-            for comp in ready:
-                self.nodes.nodes[comp].ready = True
             if ready:
                 ok = self.into_service(ready) and ok
                 pending = [c for c in pending if c not in ready]
+                for comp in ready:  # it answered: an exit from now on is a crash
+                    if comp in self.nodes.nodes and comp in self.lifecycle.states:
+                        self.nodes.nodes[comp].ready = True
             elif pending and time.monotonic() >= deadline:
                 for comp in pending:
                     self.lifecycle.failed(

@@ -65,8 +65,8 @@ class Ros2Control:
         stop_outside: stop a replaced outside node's process (``byhand``).
         parked: live names of managed nodes rosreconf holds out of service.
         dead: live names of nodes whose process rosreconf saw exit.
-        newly_dead: those of ``dead`` not yet taken (``take_newly_dead``): their processes'
-            participants are to be left out of later reads.
+        newly_dead: those of ``dead`` not yet taken by the actuator's ``exits``: their
+            processes' participants are to be left out of later reads.
         states: component -> the lifecycle state last read back.
         by_hand: the outside nodes to stop or restart, or named for a person (``byhand``).
         standbys: the standby nodes (``rosreconf.ros.ros2.standby``).

@@ -98,7 +98,7 @@ class OwnNode:
         argv: the command line, for the log.
         log: where its output goes (``<component>.log``, appended to by every run).
         log_from: the log's size when this run started: where its own output begins.
-        ready: its node has been seen (in the graph, or its lifecycle services matched); a
+        ready: its node has been seen in the graph, or answered a lifecycle call; a
             process that exits before is said with the end of its log (``bringup``).
     """
 
