@@ -32,8 +32,8 @@ ACTING = ["PLANNER", "CONTROLLER", "NAVIGATOR"]
 """The components whose stand-ins act out nav2_msgs actions (posed with test_msgs')."""
 ROLES = {"PLANNER": "planner", "CONTROLLER": "controller", "NAVIGATOR": "navigator"}
 NODES = {"MAP_SERVER": "/map_server", "AMCL": "/amcl", "PLANNER": "/planner_server",
-         "CONTROLLER": "/controller_server", "NAVIGATOR": "/bt_navigator"}  # fmt: skip
-"""The managed components' nodes."""
+         "NAVIGATOR": "/bt_navigator"}  # fmt: skip
+"""The managed components' nodes (the controller and the odometry are plain ones)."""
 WITHOUT = ("test_msgs", "example_interfaces")
 """What the stand-ins pose actions with: a ROS 2 Python without them cannot act one out."""
 
@@ -83,8 +83,9 @@ def _at(event: dict[str, Any]) -> float:
 def test_stand_ins_that_cannot_start_are_said_at_once_and_the_rest_comes_up(
     distro: str, ros2_domain: int, tmp_path: Path
 ) -> None:
-    """Three stand-ins exit 3 at once: each is ``failed`` with its exit status and why, from
-    its log, within seconds of ``launch``; the other managed nodes are made active meanwhile;
+    """Three stand-ins exit 3 at once (two managed, one plain): each is ``failed`` with its
+    exit status and why, from its log, within seconds of ``launch``; the managed nodes that
+    did start are made active meanwhile;
     and the three, with no configuration left without them, are restarted in place with a
     backoff that doubles (a crash loop, never a hot one)."""
     python = _python_without_test_msgs(distro, tmp_path)
