@@ -50,24 +50,28 @@ def test_a_failed_component_restarts_in_place_until_its_limit_then_is_held_and_r
         watch.stop()
 
 
-def test_with_no_configuration_left_watch_tries_again_once_the_hold_is_over(
+def test_with_no_configuration_left_the_failed_component_restarts_in_place_at_once(
     ros2_domain: int, tmp_path: Path
 ) -> None:
-    """NREA is the only reasoner: killed, nothing can replace it. Before, watch stayed at
-    "no configuration" for good; now NREA is a candidate again after its hold, and started."""
-    watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--hold", "3")
+    """NREA is the only reasoner: killed, nothing can replace it. It was held failed for
+    ``--hold`` (a minute by default) before it was tried again; now, with the defaults (no
+    ``--restarts``), it restarts in place at once and the configuration is whole again."""
+    watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning")
     try:
         watch.wait("conformant")
         before = len(watch.events())
         os.kill(watch.pids()["NREA"], signal.SIGKILL)
         watch.wait("no-configuration", after=before)
-        hold = watch.wait("hold", after=before)
-        assert hold["component"] == "NREA" and "--restarts 0" in hold["message"]
-        watch.wait("release", after=before)
+        restart = watch.wait("restart", after=before)
+        assert (restart["component"], restart["seconds"], restart["attempt"]) == ("NREA", 0, 1)
+        assert restart["last_resort"] and "no configuration is left" in restart["message"]
         done = watch.wait("conformant", after=before)
         assert done["configuration"]["reasoner"] == "NREA"
-        launches = [e for e in watch.events()[before:] if e["event"] == "launch"]
-        assert [e["components"] for e in launches] == [["NREA"]]
+        after = watch.events()[before:]
+        assert [e["components"] for e in after if e["event"] == "launch"] == [["NREA"]]
+        assert not [e for e in after if e["event"] in ("hold", "release")]
+        seen = probe(watch.env, ros2_domain, wait_for=[f"/{c}" for c in NOMINAL], until_wired=True)
+        assert seen["dangling"] == {"calls": [], "subscriptions": []}, seen["dangling"]
     finally:
         watch.stop()
 

@@ -83,7 +83,8 @@ def watch_command(
             min=0,
             max=1000,
             help="Restart a failed component in place (1 change) up to N times per "
-            "--restart-window; then hold it failed and move away from it. 0: never.",
+            "--restart-window while another configuration is left; then hold it failed and "
+            "move away from it. 0: never. With none left, it is restarted anyway, backing off.",
         ),
     ] = 0,
     restart_window: Annotated[
@@ -96,7 +97,8 @@ def watch_command(
             min=0.0,
             max=86400,
             callback=finite,
-            help="Seconds a failed component is held before it is a candidate again.",
+            help="Seconds a failed component is held before it is a candidate again; the "
+            "longest wait between restarts of one no configuration can do without.",
         ),
     ] = HOLD_SECONDS,
     prefer_after: Annotated[
@@ -164,6 +166,10 @@ def watch_command(
     restarted in place up to --restarts times per --restart-window, else held failed for
     --hold seconds (twice as long each time it is held again), then a candidate again; with
     --prefer-after, watch returns to the configuration it left once that one is whole again.
+    With --apply, a failed component without which no configuration is left is restarted in
+    place at once whatever --restarts says (a hold would leave the robot down), then after
+    1, 2, 4 ... s up to --hold while it keeps failing. A node process that exits before it
+    is ready is logged as failed with its exit status and the last lines of its log (ROS 2).
     """
 
     sel = select(library, schema, None, [only] if only else None)

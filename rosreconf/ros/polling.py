@@ -2,11 +2,12 @@
 
 The watcher decides what one look at the system means (``Watcher.step``); this loop decides
 when to look. Between steps it sleeps ``interval`` seconds, but wakes at once when a watched
-node process exits or hangs, when a failure seen while confirming waits for its replan, or
-when a stop is asked (``stop_requested``, polled every 20 ms). A read that fails before any
-has succeeded is an error (a wrong master URI or domain fails fast); after one, a failed
-read (a restarting master, a ROS 2 graph caught half-announced) is retried, with one event
-when the master goes (``master-lost``) and one when it is back (``master-back``).
+node process exits or hangs, when a failure seen while confirming waits for its replan, when
+a restart's backoff is over, or when a stop is asked (``stop_requested``, polled every
+20 ms). A read that fails before any has succeeded is an error (a wrong master URI or domain
+fails fast); after one, a failed read (a restarting master, a ROS 2 graph caught
+half-announced) is retried, with one event when the master goes (``master-lost``) and one
+when it is back (``master-back``).
 """
 
 from __future__ import annotations
@@ -63,7 +64,7 @@ def _wait(watcher: Watcher, seconds: float) -> None:
     """Sleep between polls; end early when a node process exits or a stop is asked."""
     if watcher.replan_due():
         return  # a failure seen while confirming: replan now
-    deadline = time.monotonic() + seconds
+    deadline = min(time.monotonic() + seconds, watcher.due_at() or float("inf"))
     while not watcher.stop_requested() and (left := deadline - time.monotonic()) > 0:
         if watcher.exited():
             return

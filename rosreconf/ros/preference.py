@@ -20,7 +20,8 @@ import time
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
-from rosreconf.model import Configuration
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.ros.replanning import Change, changes_between, changes_data, changes_text
 
 Say = Callable[..., None]
 
@@ -30,12 +31,14 @@ class Preference:
     """Remember the configuration left after a failure; say when to go back to it.
 
     Attributes:
+        say: how the return is said.
         after: seconds every component of the preferred configuration must have been a
             candidate before the return (``--prefer-after``; 0: never return).
         preferred: the configuration left at the first failure (None: none left, or back).
         since: when the preferred configuration's components last became all candidates.
     """
 
+    say: Say
     after: float = 0.0
     preferred: Configuration | None = None
     since: float | None = None
@@ -68,3 +71,26 @@ class Preference:
             return None
         self.preferred = self.since = None
         return preferred
+
+    def returning(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        current: Configuration,
+        unavailable: Collection[str],
+    ) -> tuple[Configuration, list[Change]] | None:
+        """Return the preferred configuration and the changes back to it, when it is time
+        (``due``; said, event ``return``), else None."""
+        back = self.due(current, unavailable)
+        if back is None:
+            return None
+        changes = changes_between(library, schema, current, back)
+        self.say(
+            "return",
+            f"returning to the configuration left after a failure (its components have been "
+            f"candidates for {self.after:g} s): {len(changes)} change(s): "
+            f"{changes_text(changes)}",
+            configuration=back.shown,
+            changes=changes_data(changes),
+        )
+        return back, changes

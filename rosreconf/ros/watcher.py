@@ -51,7 +51,7 @@ from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.preference import Preference
-from rosreconf.ros.replanning import Change, changes_between, changes_data, changes_text, replan
+from rosreconf.ros.replanning import Change, replan
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
@@ -140,7 +140,7 @@ class Watcher:
         self._restarts = Restarts(
             self._say, self._role, self.restart_limit, self.restart_window, self.hold
         )
-        self._prefer = Preference(self.prefer_after if self.apply else 0.0)
+        self._prefer = Preference(self._say, self.prefer_after if self.apply else 0.0)
 
     def _read(self) -> LiveGraph:
         self._graph = self._actuator.visible(self.source.read())
@@ -236,20 +236,12 @@ class Watcher:
 
     def _return(self) -> bool:
         """Go back to the configuration a failure left, when ``preference`` says it is time."""
-        back = self._prefer.due(self.current, self.failed | set(self._restarts.held))
-        if back is None:
+        unavailable = self.failed | set(self._restarts.held)
+        found = self._prefer.returning(self.library, self.schema, self.current, unavailable)
+        if found is None:
             return False
-        changes = changes_between(self.library, self.schema, self.current, back)
-        self._say(
-            "return",
-            f"returning to the configuration left after a failure (its components have been "
-            f"candidates for {self.prefer_after:g} s): {len(changes)} change(s): "
-            f"{changes_text(changes)}",
-            configuration=back.shown,
-            changes=changes_data(changes),
-        )
         self._pending = time.monotonic()
-        return self._switch(back, changes)
+        return self._switch(*found)
 
     def _follow(self, check: Conformance) -> None:
         """Confirm a repair made since the last replan, by rosreconf or by a person."""
@@ -292,38 +284,47 @@ class Watcher:
         self.log(Event(kind, message, data))
 
     def _release(self) -> bool:
-        """Make held components whose hold is over candidates again; start those in service.
-
-        True if something was started (a configuration with none left, tried again).
-        """
+        """Restart the components whose backoff is over (``Restarts.last_resort``); make held
+        components whose hold is over candidates again, and start those in service when no
+        configuration was left without them. True if something was started."""
+        inside = set(self.current.components)
+        due = self._restarts.due() & self.failed & inside
         back = self._restarts.released() & self.failed
         self.failed -= back
-        again = sorted(back & set(self.current.components))
-        if not again or not self.apply or self.failed & set(self.current.components):
+        if self.apply and not (self.failed - due) & inside:
+            due |= back & inside  # no configuration was left without them: tried again
+        return self._restart(due, "restarted in place after its backoff or hold")
+
+    def _restart(self, components: Collection[str], why: str) -> bool:
+        """Start failed ``components`` of the configuration again, in place."""
+        if not components:
             return False
-        self._seen -= set(again)
+        self.failed -= set(components)
+        self._seen -= set(components)
         self._pending = self._pending or time.monotonic()
-        return self._start(again, "a candidate again after its hold")
+        return self._start(sorted(components), why)
 
     def _replan(self) -> bool:
         """Restart failed components in place where allowed (``restarts``); else find the
-        minimal-change configuration without the failed components, and apply it."""
+        minimal-change configuration without the failed components, and apply it. With none
+        left, restart them in place all the same, backing off (``Restarts.last_resort``)."""
         failing = self.failed & set(self.current.components)
         again = self._restarts.restartable(failing, self.apply)
-        if again:
-            self.failed -= again
-            self._seen -= again
-            self._pending = self._pending or time.monotonic()
-            started = self._start(sorted(again), "restarted in place")
-            if not self.failed & set(self.current.components):
-                return started
+        started = self._restart(again, "restarted in place")
+        if not failing - again:
+            return started
         failed = frozenset(self.failed)
-        if failed == self._hopeless:
-            return False
-        found = replan(self.library, self.schema, self.current, failed, self._say, self.budget)
+        found = None
+        if failed != self._hopeless:  # the same failures: the same answer, said already
+            found = replan(self.library, self.schema, self.current, failed, self._say, self.budget)
         if found is None:
             self._hopeless = failed
-            return False
+            now = self._restarts.last_resort(failing - again, self.apply)
+            return (
+                self._restart(now, "restarted in place: no configuration is left without it")
+                or started
+            )
+        self._restarts.hold_failed(failing - again, self.apply)
         new, changes = found
         self._prefer.leaving(self.current)
         if self._pending is None:
@@ -383,11 +384,16 @@ class Watcher:
         return self._graph is not None
 
     def replan_due(self) -> bool:
-        """Tell whether a failure seen (while confirming) waits for a replan: poll now."""
-        return bool(self.failed & set(self.current.components)) and (
-            frozenset(self.failed) != self._hopeless
-        )
+        """Tell whether a failure seen (while confirming) waits for a replan: poll now.
+
+        Not one held, or waiting out a restart's backoff: its time is ``due_at``."""
+        waiting = {*self._restarts.held, *self._restarts.backoff}
+        return bool((self.failed & set(self.current.components)) - waiting)
 
     def exited(self) -> bool:
         """Tell whether a watched node process ended or hung since the last step."""
         return self._actuator.exited()
+
+    def due_at(self) -> float | None:
+        """Return when a restart waiting out its backoff is due (monotonic seconds), if any."""
+        return self._restarts.next_due()

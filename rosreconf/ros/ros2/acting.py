@@ -147,9 +147,9 @@ class Ros2Actuator(Actuator):
         """
         participants = self.participants()
         self.control.track(participants, current)
-        dead = set(self.control.dead)
         now = self.control.exits(current, failed)
-        newly = self.control.dead - dead  # their participants linger until their lease ends
+        # their participants linger until their lease ends (those that died in a start too)
+        newly, self.control.newly_dead = self.control.newly_dead, set()
         ended = self.control.ended_participants()  # outside processes: exactly theirs
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
         if not now:  # a failure's repair first: neither retries nor standby upkeep delay it

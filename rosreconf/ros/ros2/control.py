@@ -38,9 +38,10 @@ from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySch
 from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.ros2.bringup import Bringup, exit_news
 from rosreconf.ros.ros2.byhand import ByHand
-from rosreconf.ros.ros2.lifecycle import APPEAR, OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
-from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.lifecycle import OUT_OF_SERVICE, TIMEOUT, LifecycleAgent
+from rosreconf.ros.ros2.nodes import NodeProcesses, OwnNode
 from rosreconf.ros.ros2.outside import OutsideNodes
 from rosreconf.ros.ros2.standby import Standbys
 from rosreconf.ros.ros2.transitions import Transitions
@@ -64,9 +65,12 @@ class Ros2Control:
         stop_outside: stop a replaced outside node's process (``byhand``).
         parked: live names of managed nodes rosreconf holds out of service.
         dead: live names of nodes whose process rosreconf saw exit.
+        newly_dead: those of ``dead`` not yet taken by the actuator's ``exits``: their
+            processes' participants are to be left out of later reads.
         states: component -> the lifecycle state last read back.
         by_hand: the outside nodes to stop or restart, or named for a person (``byhand``).
         standbys: the standby nodes (``rosreconf.ros.ros2.standby``).
+        bringup: takes managed nodes into service, the started ones as each comes up.
     """
 
     library: ComponentLibrary
@@ -80,6 +84,7 @@ class Ros2Control:
     timeout: float = TIMEOUT
     parked: set[str] = field(default_factory=set)
     dead: set[str] = field(default_factory=set)
+    newly_dead: set[str] = field(default_factory=set)
     outside: OutsideNodes | None = field(init=False, default=None)
     states: dict[str, str] = field(init=False)
     read_states: dict[str, str | None] = field(init=False, default_factory=dict)
@@ -87,6 +92,7 @@ class Ros2Control:
     standbys: Standbys = field(init=False)
     nodes: NodeProcesses = field(init=False)
     lifecycle: Transitions = field(init=False)
+    bringup: Bringup = field(init=False)
 
     def __post_init__(self) -> None:
         self.nodes = NodeProcesses(self.env, self.directory, stand_ins=self.stand_ins)
@@ -101,6 +107,7 @@ class Ros2Control:
         self.standbys = Standbys(
             self.library, self.schema, self.nodes, self.lifecycle, self.parked, self.say
         )
+        self.bringup = Bringup(self.nodes, self.lifecycle, self.exited, self.say)
 
     def _managed(self, component: str) -> bool:
         launch = self.library[component].launch
@@ -120,15 +127,15 @@ class Ros2Control:
     def _transition(self, component: str, transition: str) -> bool:
         return self.lifecycle.perform([(component, transition)]).get(component, False)
 
-    def exited(self) -> list[tuple[str, str, int]]:
-        """Return (component, node, exit status) of each own process that ended since last asked."""
-        gone = []
-        for own, code in self.nodes.exited():
+    def exited(self, only: Collection[str] | None = None) -> list[tuple[OwnNode, int]]:
+        """Return each own process (of ``only``'s components) that ended since last asked."""
+        gone = self.nodes.exited(only)
+        for own, _ in gone:
             self.dead.add(own.node)
+            self.newly_dead.add(own.node)
             self.standbys.lost |= own.node in self.parked  # a standby gone: started again
             self.parked.discard(own.node)
             self.states.pop(own.component, None)
-            gone.append((own.component, own.node, code))
         return gone
 
     def track(self, participants: Mapping[bytes, tuple[str, ...]], current: Configuration) -> None:
@@ -183,20 +190,15 @@ class Ros2Control:
 
         The outside nodes whose processes are watched (``track``) count too.
         """
-        now = self._outside_gone(current, failed)
+        now = self._outside_gone(current, failed) | self.bringup.take_failed()
         for news in [*self.nodes.take_helpers(), *self.lifecycle.take_helpers()]:
             self.say("helper", news)
-        for comp, node, code in self.exited():
+        for own, code in self.exited():
+            comp, node = own.component, own.node
             if comp in current.components and comp not in failed:
                 role = next(r for r, c in current.assignment if c == comp)
-                self.say(
-                    "failed",
-                    f"{comp} ({role}) is gone: its process exited ({code}): failed",
-                    component=comp,
-                    node=node,
-                    returncode=code,
-                    how="process-exit",
-                )
+                message, data = exit_news(own, code, role)  # before ready: why, from its log
+                self.say("failed", message, **data)
                 now.add(comp)
             else:
                 self.say(
@@ -217,6 +219,7 @@ class Ros2Control:
         The lifecycle states and names read are kept for ``tend``: parked standbys' too."""
         self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
         self.standbys.saw(self.read_states)
+        self.bringup.saw(self.read_states)
         if not self.dead & set(graph.names):
             return graph
         return dataclasses.replace(
@@ -266,16 +269,10 @@ class Ros2Control:
         managed = [c for c in components if self._managed(c)]
         if managed:
             self._agent_call(lambda agent: agent.watch([self._node(c) for c in managed]))
-        # the ready standbys first (one activate each), then what had to start: a fresh node's
-        # services take a while to appear, and the standbys need not wait for them
-        groups = [c for c in managed if c not in fresh], [c for c in managed if c in fresh]
-        for group, appear in zip(groups, (None, APPEAR), strict=True):
-            todo = [c for c in group if self.states.get(c, "unconfigured") == "unconfigured"]
-            configured = self._transitions([(c, "configure") for c in todo], appear)
-            ready = [c for c in group if c not in todo or configured.get(c)]
-            ok = ok and len(ready) == len(group)
-            steps = [(c, "activate") for c in ready if self.states.get(c) != "active"]
-            ok = all(self._transitions(steps, appear).values()) and ok
+        # the ready standbys first (one activate each), then what had to start, each as its
+        # services appear (``bringup``): a fresh node takes a while, and one may never come
+        ok = self.bringup.into_service([c for c in managed if c not in fresh]) and ok
+        ok = self.bringup.as_they_come(configuration, [c for c in managed if c in fresh]) and ok
         self.parked -= {self._node(c) for c in managed}
         return ok
 

@@ -96,6 +96,10 @@ class OwnNode:
         program: the process (and what it forks).
         managed: a lifecycle node (taken in and out of service by transitions).
         argv: the command line, for the log.
+        log: where its output goes (``<component>.log``, appended to by every run).
+        log_from: the log's size when this run started: where its own output begins.
+        ready: its node has been seen in the graph, or answered a lifecycle call; a
+            process that exits before is said with the end of its log (``bringup``).
     """
 
     component: str
@@ -103,6 +107,9 @@ class OwnNode:
     program: Program
     managed: bool
     argv: tuple[str, ...]
+    log: Path | None = None
+    log_from: int = 0
+    ready: bool = False
 
     @property
     def pid(self) -> int:
@@ -191,11 +198,14 @@ class NodeProcesses:
             (argv, self.directory / f"{name}.log")
             for name, argv in self.commands(library, schema, configuration, components).items()
         ]
+        sizes = [log.stat().st_size if log.exists() else 0 for _, log in runs]
         started = []
-        for name, (argv, _), program in zip(components, runs, self._start(runs, env), strict=True):
+        for name, (argv, log), size, program in zip(
+            components, runs, sizes, self._start(runs, env), strict=True
+        ):
             comp = library[name]
             managed = bool(comp.launch is not None and comp.launch.lifecycle)
-            own = OwnNode(name, node_live_name(comp), program, managed, tuple(argv))
+            own = OwnNode(name, node_live_name(comp), program, managed, tuple(argv), log, size)
             self.nodes[name] = own
             started.append(own)
         return started
@@ -294,9 +304,16 @@ class NodeProcesses:
         helpers, self.helpers = self.helpers, []
         return helpers
 
-    def exited(self) -> list[tuple[OwnNode, int]]:
-        """Return the nodes whose process has ended since the last call, with the exit status."""
-        ended = [(n, n.program.process.poll()) for n in self.nodes.values()]
+    def exited(self, only: Collection[str] | None = None) -> list[tuple[OwnNode, int]]:
+        """Return the nodes whose process has ended since the last call, with the exit status.
+
+        ``only``: look at these components' processes alone (the others are told later).
+        """
+        ended = [
+            (n, n.program.process.poll())
+            for c, n in self.nodes.items()
+            if only is None or c in only
+        ]
         gone = [(n, code) for n, code in ended if code is not None]
         for own, _ in gone:
             del self.nodes[own.component]

@@ -136,10 +136,11 @@ class Transitions:
                     raise
                 outcomes = self.agent().transitions(items, appear, timeout)  # once more
         except ExternalToolError as exc:
-            return {c: self._failed(c, t, str(exc)) for c, t in steps}
+            return {c: self.failed(c, t, str(exc)) for c, t in steps}
         return {nodes[o.node]: self._said(nodes[o.node], o) for o in outcomes}
 
-    def _failed(self, component: str, transition: str, error: str) -> bool:
+    def failed(self, component: str, transition: str, error: str) -> bool:
+        """Say that ``transition`` of ``component`` failed, and why; return False."""
         self.timeouts[component] = time.monotonic()  # the agent was not asked: nothing known
         node = self.node_of(component)
         self.say(
