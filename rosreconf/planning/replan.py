@@ -23,6 +23,7 @@ from rosreconf.planning.narrative import Change, changes, explain_impossible, ex
 from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
+from rosreconf.planning.preferred import pinned, set_aside
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.running import change_objective
 from rosreconf.solve.search import Budget
@@ -141,6 +142,18 @@ def plan(
             )
         return ReplanResult(schema, run.status, current, message=message, planner=run)
     result = _read_back(library, schema, inst.failed, current, task, run, fewest)
+    if result.configuration is not None and result.configuration != best:
+        # the planner may stop at any plan (ff-first ignores costs) or break a tie its own
+        # way: the configuration is the preference's, the one watch applies, always
+        notes.append(set_aside(inst, objective, result.configuration, best))
+        task = render(pinned(inst, best), objective)
+        run = solve(
+            planner, task.domain, task.problem, timeout=timeout, memory_limit_mb=memory_limit_mb
+        )
+        if not run.solved:
+            message = f"planning again for the preferred configuration: {run.message}"
+            return ReplanResult(schema, run.status, current, message=message, planner=run)
+        result = _read_back(library, schema, inst.failed, current, task, run, fewest)
     return replace(result, explanation=(*notes, *result.explanation)) if notes else result
 
 
