@@ -7,7 +7,10 @@ answers first (``solve.solver.optimise``: exact min-plus elimination, clingo onl
 table would be too big; clingo's first model when there is no current configuration)
 whether any configuration exists at all, so that an impossible task gets its why-not text
 instead of a planner's bare "unsolvable", and how few changes are possible, so that the
-report can say whether the planner's plan is a minimal change.
+report can say whether the planner's plan is a minimal change. Its optimum is the
+configuration ``watch`` would apply (``rosreconf.solve.objective.PREFERENCE``): a plan for
+another one is set aside and the planner asked again for that one
+(``rosreconf.planning.preferred``).
 """
 
 from __future__ import annotations
@@ -142,7 +145,7 @@ def plan(
             )
         return ReplanResult(schema, run.status, current, message=message, planner=run)
     result = _read_back(library, schema, inst.failed, current, task, run, fewest)
-    if result.configuration is not None and result.configuration != best:
+    if current and result.configuration is not None and result.configuration != best:
         # the planner may stop at any plan (ff-first ignores costs) or break a tie its own
         # way: the configuration is the preference's, the one watch applies, always
         notes.append(set_aside(inst, objective, result.configuration, best))

@@ -10,12 +10,14 @@ changes; among those, fewest components replaced (a kept node restarted to be re
 disturbs less than another component in its place: the running one keeps its name, its
 parameters and its package); then the weighted metric sum; then, for any tie left, the
 first in enumeration order (roles in schema order, each role's candidates in library order:
-the order ``rosreconf enumerate`` lists them). The last rule makes the optimum one
-configuration, not one of several, so that ``plan`` and ``watch``, whichever engine
-answers, choose the same: elimination by a positional last level (``optimum.minimise``),
-clingo by a second solve for the first configuration as good as its optimum
-(``solver.ClingoEngine``), and ``plan`` by planning again for that configuration when its
-planner's plan differs (``rosreconf.planning.replan``).
+the order ``rosreconf enumerate`` lists them). The last rule makes a reconfiguration's
+optimum one configuration, not one of several, so that ``plan`` and ``watch``, whichever
+engine answers, choose the same: elimination by a positional last level
+(``optimum.minimise``), clingo by one minimize level per role below the others
+(``solver.OPTIMISE``), and ``plan`` by planning again for that configuration when its
+planner's plan differs (``rosreconf.planning.preferred``). A plain optimum, with no running
+configuration (``enumerate --best``), has no changes to count and keeps the elimination's own
+deterministic choice among equals (``Objective.settles_ties``).
 """
 
 from __future__ import annotations
@@ -31,14 +33,14 @@ from rosreconf.solve.instance import Instance
 METRIC_SCALE = 1000
 """Metrics are real numbers; clingo optimises integers, so weights are scaled and rounded."""
 
-PREFERENCE = (  # a reconfiguration's: without a running configuration, the first three
+PREFERENCE = (
     "fewest changes (a role that changes component, or a kept component restarted to be rewired)",
     "then fewest components replaced (a kept node restarted disturbs less than another in its "
     "place)",
     "then the least weighted metric sum",
     "then the first in enumeration order (roles in schema order, candidates in library order)",
 )
-"""The one rule choosing among valid configurations, most important first (``Objective.key``)."""
+"""The one rule choosing a reconfiguration, most important first (``Objective.key``)."""
 
 
 @dataclass(frozen=True)

@@ -2,7 +2,8 @@
 
 ``Ros2Actuator`` (``watch --ros2 --apply``) acts through ``rosreconf.ros.ros2.control``:
 rosreconf starts each node's process, retires managed nodes with lifecycle transitions and
-its own processes with signals, makes before it breaks, and names what a person must stop.
+its own processes with signals, makes before it breaks (but breaks first where a newcomer
+takes a node name still live: ``onename``), and names what a person must stop.
 ``Ros2Launch`` (``--ros2-launch``) runs ``ros2 launch`` on launch files as ROS 1 runs
 roslaunch, and lists the lifecycle transitions a swap needs for a person to run: ROS 2 has
 no remote kill (ros2/ros2cli#535).
@@ -169,6 +170,9 @@ class Ros2Actuator(Actuator):
 
         With ``tend``, standby nodes that came up are configured. The nodes of ``current``
         rosreconf did not start are watched by their processes from the last read on.
+        Without (while a change is confirmed), a newcomer held back for its node name is
+        started once the name is free; on a poll it is started as a missing component is,
+        which the watcher then confirms.
         """
         participants = self.participants()
         self.control.track(participants, current)
@@ -177,7 +181,7 @@ class Ros2Actuator(Actuator):
         newly = self.control.dead - dead  # their participants linger until their lease ends
         ended = self.control.ended_participants()  # outside processes: exactly theirs
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
-        if not now:
+        if not now and not tend:  # while confirming; a poll starts them as missing ones
             self._admit_waiting(current)
         if tend and not now:  # a failure's repair first: standby upkeep never delays it
             self.control.tend()
@@ -258,9 +262,10 @@ class Ros2Launch(LaunchActuator):
         return super().start(current, free, why) if free else not components
 
     def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
-        """Read the launch processes; launch the newcomers whose node name is free now."""
+        """Read the launch processes; while confirming, launch the newcomers whose node name
+        is free now (a poll starts them as missing components, and confirms)."""
         now = super().exits(current, failed, tend=tend)
-        due = self.names.due(current.components)
+        due = [] if tend else self.names.due(current.components)  # a poll: missing ones
         if due:
             self.start(current, due, "its node name is free now")
         return now
