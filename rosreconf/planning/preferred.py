@@ -17,7 +17,7 @@ import dataclasses
 from rosreconf.model import Configuration, shown_text
 from rosreconf.solve.emptyroles import as_candidate
 from rosreconf.solve.instance import Instance
-from rosreconf.solve.objective import PREFERENCE, Objective
+from rosreconf.solve.objective import Objective
 
 
 def pinned(inst: Instance, config: Configuration) -> Instance:
@@ -46,21 +46,29 @@ def pinned(inst: Instance, config: Configuration) -> Instance:
     )
 
 
+WHY = (
+    "it needs more changes",
+    "it replaces more components, where a restart of a kept node would do",
+    "its weighted metric sum is higher",
+    "it ties, and the first in enumeration order is chosen (roles in schema order, "
+    "candidates in library order)",
+)
+"""Why a plan is set aside, by the first level of ``Objective.key`` where it is worse."""
+
+
 def set_aside(
     inst: Instance, objective: Objective, planned: Configuration, best: Configuration
 ) -> str:
     """Say why the planner's own plan was set aside for ``best`` (``objective.PREFERENCE``)."""
     theirs, ours = objective.key(inst, planned), objective.key(inst, best)
     level = next(i for i, (a, b) in enumerate(zip(theirs, ours, strict=True)) if a != b)
-    why = ("it changes more", "it replaces more components", "its metric sum is higher")
-    said = why[level] if level < len(why) else "a tie, settled by enumeration order"
     roles = "; ".join(
         f"{r}: {shown_text(c)} instead of {shown_text(best.mapping[r])}"
         for r, c in planned.assignment
         if c != best.mapping[r]
     )
     return (
-        f"The planner's own plan chose {roles} ({theirs[0]} change(s); {said}). By "
-        f"rosreconf's preference ({'; '.join(PREFERENCE)}) the configuration below is "
-        "chosen, as watch chooses it, and the plan is the planner's for it."
+        f"The planner's own plan chose {roles} ({theirs[0]} change(s)), set aside: "
+        f"{WHY[min(level, len(WHY) - 1)]}. The configuration below is the one watch applies "
+        "(rosreconf's one preference), and the plan shown is the planner's for it."
     )
