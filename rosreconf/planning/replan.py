@@ -7,7 +7,10 @@ answers first (``solve.solver.optimise``: exact min-plus elimination, clingo onl
 table would be too big; clingo's first model when there is no current configuration)
 whether any configuration exists at all, so that an impossible task gets its why-not text
 instead of a planner's bare "unsolvable", and how few changes are possible, so that the
-report can say whether the planner's plan is a minimal change.
+report can say whether the planner's plan is a minimal change. Its optimum is the
+configuration ``watch`` would apply (``rosreconf.solve.objective.PREFERENCE``): a plan for
+another one is set aside and the planner asked again for that one
+(``rosreconf.planning.preferred``).
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from rosreconf.planning.narrative import Change, changes, explain_impossible, ex
 from rosreconf.planning.pddl import PddlTask, render
 from rosreconf.planning.pddl_names import Step
 from rosreconf.planning.planners import Planner, PlanResult, PlanStatus, solve
+from rosreconf.planning.preferred import pinned, set_aside
 from rosreconf.solve.instance import compile_instance
 from rosreconf.solve.running import change_objective
 from rosreconf.solve.search import Budget
@@ -141,6 +145,18 @@ def plan(
             )
         return ReplanResult(schema, run.status, current, message=message, planner=run)
     result = _read_back(library, schema, inst.failed, current, task, run, fewest)
+    if current and result.configuration is not None and result.configuration != best:
+        # the planner may stop at any plan (ff-first ignores costs) or break a tie its own
+        # way: the configuration is the preference's, the one watch applies, always
+        notes.append(set_aside(inst, objective, result.configuration, best))
+        task = render(pinned(inst, best), objective)
+        run = solve(
+            planner, task.domain, task.problem, timeout=timeout, memory_limit_mb=memory_limit_mb
+        )
+        if not run.solved:
+            message = f"planning again for the preferred configuration: {run.message}"
+            return ReplanResult(schema, run.status, current, message=message, planner=run)
+        result = _read_back(library, schema, inst.failed, current, task, run, fewest)
     return replace(result, explanation=(*notes, *result.explanation)) if notes else result
 
 

@@ -45,6 +45,8 @@ def minimise(
     inst: Instance,
     costs: Sequence[Mapping[str, tuple[int, ...]]],
     max_rows: int = MAX_FACTOR_ROWS,
+    *,
+    earliest: bool = False,
 ) -> tuple[Configuration, tuple[int, ...]] | None:
     """Return a valid configuration of least total cost and that cost, or None if none exists.
 
@@ -53,6 +55,13 @@ def minimise(
     lexicographically. Among equal costs, earlier candidates in library order win at every
     elimination step, so the answer is deterministic.
 
+    With ``earliest``, a tie is settled by the last rule of
+    ``rosreconf.solve.objective.PREFERENCE``: the first of the tied configurations in
+    enumeration order, by a last cost level that is each candidate's position weighted as
+    ``first`` weighs it. Every configuration then has a cost of its own, so the optimum is
+    one configuration whichever order the roles are eliminated in (the costs are then too
+    wide for the dense grids: the sparse tables answer).
+
     Raises:
         TooHard: an intermediate table would exceed ``max_rows`` rows.
     """
@@ -60,7 +69,10 @@ def minimise(
         alive, _, _ = prune(inst)
         if any(not a for a in alive):
             return None
-        packed, unpack = _pack(alive, costs)
+        packed, unpacked = _pack(alive, costs)
+        unpack: Callable[[int], tuple[int, ...]] = unpacked
+        if earliest:
+            packed, unpack = _earliest(inst, alive, packed, unpacked)
         costs_of = packed.__getitem__
         # a class's cheapest member; the earliest (least rank: alive keeps library order) on ties
         found = _minimise(
@@ -225,6 +237,26 @@ def _pack(
     ]
     offsets = [sum(low[i] for low in lows) for i in range(levels)]
     return packed, _Unpack(bases, offsets)
+
+
+def _earliest(
+    inst: Instance, alive: list[list[str]], packed: list[dict[str, int]], unpack: _Unpack
+) -> tuple[list[dict[str, int]], Callable[[int], tuple[int, ...]]]:
+    """Add a last level to packed costs: each candidate's position, the earlier role heavier.
+
+    Role ``r``'s candidate at position ``j`` of its domain adds ``j * B ** (R - 1 - r)``
+    (``B`` larger than any domain): the sum over the roles is below ``B ** R`` and tells every
+    configuration apart, the first in enumeration order least (``first``'s weights).
+    """
+    base = max(len(d) for d in inst.domains) + 1 if inst.domains else 1
+    last = len(alive) - 1
+    top = base ** len(alive)
+    out = []
+    for r, costs in enumerate(packed):
+        weight = base ** (last - r)
+        position = {c.name: j for j, c in enumerate(inst.domains[r])}
+        out.append({c: cost * top + position[c] * weight for c, cost in costs.items()})
+    return out, lambda total: unpack(total // top)
 
 
 class _Unpack:

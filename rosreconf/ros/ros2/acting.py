@@ -2,7 +2,8 @@
 
 ``Ros2Actuator`` (``watch --ros2 --apply``) acts through ``rosreconf.ros.ros2.control``:
 rosreconf starts each node's process, retires managed nodes with lifecycle transitions and
-its own processes with signals, makes before it breaks, and names what a person must stop.
+its own processes with signals, makes before it breaks (but breaks first where a newcomer
+takes a node name still live: ``onename``), and names what a person must stop.
 ``Ros2Launch`` (``--ros2-launch``) runs ``ros2 launch`` on launch files as ROS 1 runs
 roslaunch, and lists the lifecycle transitions a swap needs for a person to run: ROS 2 has
 no remote kill (ros2/ros2cli#535).
@@ -23,6 +24,7 @@ from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.nodes import OwnNode
+from rosreconf.ros.ros2.onename import OneName
 from rosreconf.ros.ros2.retrying import Retries
 from rosreconf.ros.ros2.shmdebris import diagnose
 
@@ -30,6 +32,8 @@ from rosreconf.ros.ros2.shmdebris import diagnose
 @dataclass
 class Ros2Actuator(Actuator):
     """Start and retire ROS 2 nodes one process at a time (``Ros2Control``), make before break.
+
+    Break before make where a newcomer takes a replaced node's name (``onename``).
 
     Attributes:
         acting: the watcher's options.
@@ -39,6 +43,7 @@ class Ros2Actuator(Actuator):
             to end, so that a node restarted under its name is only its new process.
         control: what ROS 2 lets rosreconf do to each node.
         launched: the components started (not started again on every poll).
+        names: the newcomers waiting for their node name to be free (``onename``).
     """
 
     acting: Acting
@@ -47,6 +52,7 @@ class Ros2Actuator(Actuator):
     control: Ros2Control = field(init=False)
     launched: set[str] = field(default_factory=set)
     retries: Retries = field(init=False)
+    names: OneName = field(init=False)
 
     def __post_init__(self) -> None:
         a = self.acting
@@ -62,6 +68,9 @@ class Ros2Actuator(Actuator):
         )
         self.control.nodes.stopping = self._hide_stopping
         self.retries = Retries(a.library, self.control.lifecycle, a.say)
+        self.names = OneName(
+            a.library, self.control.nodes, self.participants, lambda: self.control.outside, a.say
+        )
 
     def _hide_stopping(self, stopping: list[OwnNode]) -> None:
         """Leave out of later reads the participants of processes rosreconf is stopping.
@@ -88,10 +97,30 @@ class Ros2Actuator(Actuator):
         )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
-        """Start ``components``' processes (managed ones configured and activated)."""
-        self.launched |= set(components)
-        self.control.start(current, components, why)
-        return True
+        """Start ``components``' processes (managed ones configured and activated).
+
+        One whose node name another process holds waits until it is free (``onename``).
+        """
+        return self._start(current, components, why, ())
+
+    def _start(
+        self,
+        current: Configuration,
+        components: Collection[str],
+        why: str,
+        leaving: Collection[str],
+    ) -> bool:
+        """Start those of ``components`` whose name is free; ``leaving`` are retired next."""
+        free = self.names.admit(components, current.components, leaving)
+        self.launched |= set(free)
+        if free:
+            self.control.start(current, free, why)
+        return bool(free) or not components
+
+    def _admit_waiting(self, current: Configuration) -> bool:
+        """Start the newcomers whose node name has come free since they were held back."""
+        due = self.names.due(current.components)
+        return bool(due) and self._start(current, due, "its node name is free now", ())
 
     def replace(
         self,
@@ -111,7 +140,12 @@ class Ros2Actuator(Actuator):
         restarts = {b: r for r, a, b in changes if a == b}  # kept, to be rewired
         by_hand = {c: r for c, r in restarts.items() if not self.control.owns(c)}
         fresh = [b for _, _, b in changes if b and b not in by_hand]
-        started = self.start(new, fresh, "new in the configuration")
+        leaving = {a for _, a, _ in changes if a and a not in restarts}
+        # a replaced component whose node name a newcomer takes must be gone first, never
+        # parked: its process is stopped (or named for a person), and the newcomer waits
+        taken = {self.names.node_of(b) for b in fresh}
+        going = {a for a in leaving if self.names.node_of(a) in taken}
+        started = self._start(new, fresh, "new in the configuration", leaving)
         library = self.acting.library
         self.control.retire(
             [
@@ -119,11 +153,12 @@ class Ros2Actuator(Actuator):
                 for r, a, b in changes
                 if a and a not in restarts  # empty role: none; failed: its process, if left
             ],
-            failed,
+            {*failed, *going},
         )
         for comp, role in by_hand.items():
             self.control.restart_by_hand(comp, role, new)
-        return started
+        admitted = self._admit_waiting(new)  # their names are free once the replaced are gone
+        return started or admitted or bool(self.names.waiting)
 
     def not_running(self, missing: list[str]) -> tuple[list[str], str]:
         """Return the started ones of ``missing``; point at their output, or at what they wait on.
@@ -144,6 +179,9 @@ class Ros2Actuator(Actuator):
         With ``tend``, standby nodes that came up are configured. The nodes of ``current``
         rosreconf did not start are watched by their processes from the last read on. A
         transition that timed out is tried again (``retrying``), while confirming too.
+        Without ``tend`` (while a change is confirmed), a newcomer held back for its node
+        name is started once the name is free; on a poll it is started as a missing
+        component is, which the watcher then confirms.
         """
         participants = self.participants()
         self.control.track(participants, current)
@@ -154,6 +192,8 @@ class Ros2Actuator(Actuator):
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
         if not now:  # a failure's repair first: neither retries nor standby upkeep delay it
             self.retries.tend(current, self.control.parked)
+        if not now and not tend:  # while confirming; a poll starts them as missing ones
+            self._admit_waiting(current)
         if tend and not now:
             self.control.tend()
         return now
@@ -214,7 +254,34 @@ class Ros2Actuator(Actuator):
 
 @dataclass
 class Ros2Launch(LaunchActuator):
-    """Start ROS 2 nodes with ``ros2 launch``; list each swap's lifecycle transitions."""
+    """Start ROS 2 nodes with ``ros2 launch``; list each swap's lifecycle transitions.
+
+    A newcomer whose node name a live node still has is not launched beside it (``onename``):
+    it waits until a person has ended that node's process, as the transitions listed say.
+    """
+
+    names: OneName = field(init=False)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        participants = getattr(self.source, "participants", dict)
+        self.names = OneName(self.acting.library, None, participants, lambda: None, self.acting.say)
+
+    def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
+        """Launch those of ``components`` whose node name is free; the others wait."""
+        if not self.acting.apply:  # only says what would run
+            return super().start(current, components, why)
+        free = self.names.admit(components, current.components, ())
+        return super().start(current, free, why) if free else not components
+
+    def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
+        """Read the launch processes; while confirming, launch the newcomers whose node name
+        is free now (a poll starts them as missing components, and confirms)."""
+        now = super().exits(current, failed, tend=tend)
+        due = [] if tend else self.names.due(current.components)  # a poll: missing ones
+        if due:
+            self.start(current, due, "its node name is free now")
+        return now
 
     def replace(
         self,

@@ -106,10 +106,16 @@ class ByHand:
         if not alive and known is None:
             return  # gone already, and nothing of it left to stop
         self.nodes[node] = component
+        launch = self.library[component].launch
+        kind = (  # a managed one is here when its replacement takes its node name
+            f"{replacement} starts under its node name once it is gone"
+            if launch is not None and launch.lifecycle
+            else "it is not a managed node"
+        )
         self.say(
             "stop-by-hand",
             f"stop this by hand: {node} ({component}, {role}) is replaced by {replacement}, "
-            f"but rosreconf did not start it and it is not a managed node ({why})",
+            f"but rosreconf did not start it and {kind} ({why})",
             component=component,
             node=node,
         )

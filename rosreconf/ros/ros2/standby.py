@@ -48,6 +48,7 @@ class Standbys:
         last: the configuration and failures the standbys were last prepared for.
         lost: a standby's process exited: the set is prepared again on the next tick.
         seen: node names of the graph last read, less the standbys started since (``tend``).
+        refused: alternative -> the node whose name it shares, said once (``_unshared``).
     """
 
     library: ComponentLibrary
@@ -61,6 +62,7 @@ class Standbys:
     last: tuple[Configuration, frozenset[str]] | None = None
     lost: bool = False
     seen: set[str] = field(default_factory=set)
+    refused: dict[str, str] = field(default_factory=dict)
 
     def node_of(self, component: str) -> str:
         """Return the live node name of ``component``."""
@@ -90,7 +92,9 @@ class Standbys:
         for own in self.nodes.stop(stale):
             self.parked.discard(own.node)
             self.lifecycle.states.pop(own.component, None)
-        wanted = [c for c in joins if c not in self.nodes.nodes and c not in running]
+        wanted = self._unshared(
+            [c for c in joins if c not in self.nodes.nodes and c not in running], running
+        )
         if not wanted:
             return
         pids: dict[str, int] = {}
@@ -121,6 +125,36 @@ class Standbys:
         self.unready += [c for c in wanted if c not in self.unready]
         for c in wanted:
             self.tries.pop(c, None)
+
+    def _unshared(self, wanted: list[str], running: Collection[str]) -> list[str]:
+        """Return those of ``wanted`` whose node name no running node, nor standby, has.
+
+        A standby under a running node's name would be a second node of that name, and two
+        nodes of one name answer each other's lifecycle calls: it is not parked, and said
+        once (event ``no-standby``); a failover to it starts it cold, once the node of its
+        name is gone (``onename``).
+        """
+        taken = {self.node_of(c): c for c in running}
+        for c, own in self.nodes.nodes.items():
+            taken.setdefault(own.node, c)
+        out = []
+        for c in wanted:
+            name = self.node_of(c)
+            holder = taken.setdefault(name, c)
+            if holder == c:
+                out.append(c)
+            elif self.refused.get(c) != holder:
+                self.refused[c] = holder
+                self.say(
+                    "no-standby",
+                    f"{c} cannot wait as a standby: it runs as {name}, the node name of "
+                    f"{holder}, and two nodes of one name would answer each other's lifecycle "
+                    f"calls; a failover to it starts it once {holder}'s process is gone",
+                    component=c,
+                    node=name,
+                    holder=holder,
+                )
+        return out
 
     def hung(self, components: Collection[str], states: Mapping[str, str | None]) -> list[str]:
         """Return those of ``components`` whose own process is stopped or whose node is hung.
