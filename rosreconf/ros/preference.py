@@ -11,7 +11,7 @@ seconds of its components being candidates (a released component that fails agai
 then resets the wait); a component that fails after a return is held again, each hold
 twice as long as the one before (``restarts.Restarts``' backoff); and a return is a planned
 switch, made only while nothing is failing or being confirmed. The return is the event
-``return``, with its changes; nothing here prints or acts.
+``return``, with its changes, handed to ``say``; nothing here prints or acts.
 """
 
 from __future__ import annotations
@@ -20,7 +20,8 @@ import time
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
-from rosreconf.model import Configuration
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.ros.replanning import Change, changes_between, changes_data, changes_text
 
 Say = Callable[..., None]
 
@@ -32,11 +33,13 @@ class Preference:
     Attributes:
         after: seconds every component of the preferred configuration must have been a
             candidate before the return (``--prefer-after``; 0: never return).
+        say: how the ``return`` event is said.
         preferred: the configuration left at the first failure (None: none left, or back).
         since: when the preferred configuration's components last became all candidates.
     """
 
     after: float = 0.0
+    say: Say = lambda *_, **__: None
     preferred: Configuration | None = None
     since: float | None = None
 
@@ -68,3 +71,26 @@ class Preference:
             return None
         self.preferred = self.since = None
         return preferred
+
+    def returning(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        current: Configuration,
+        unavailable: Collection[str],
+    ) -> tuple[Configuration, list[Change]] | None:
+        """Return the preferred configuration and the changes back to it when it is time
+        (said: ``return``), else None. ``unavailable``: the components failed or held now."""
+        back = self.due(current, unavailable)
+        if back is None:
+            return None
+        changes = changes_between(library, schema, current, back)
+        self.say(
+            "return",
+            f"returning to the configuration left after a failure (its components have been "
+            f"candidates for {self.after:g} s): {len(changes)} change(s): "
+            f"{changes_text(changes)}",
+            configuration=back.shown,
+            changes=changes_data(changes),
+        )
+        return back, changes

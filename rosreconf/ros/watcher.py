@@ -51,7 +51,7 @@ from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.preference import Preference
-from rosreconf.ros.replanning import Change, changes_between, changes_data, changes_text, replan
+from rosreconf.ros.replanning import Change, replan
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
 from rosreconf.ros.sources import LiveSource
 from rosreconf.solve.search import Budget
@@ -140,7 +140,7 @@ class Watcher:
         self._restarts = Restarts(
             self._say, self._role, self.restart_limit, self.restart_window, self.hold
         )
-        self._prefer = Preference(self.prefer_after if self.apply else 0.0)
+        self._prefer = Preference(self.prefer_after if self.apply else 0.0, self._say)
 
     def _read(self) -> LiveGraph:
         self._graph = self._actuator.visible(self.source.read())
@@ -236,20 +236,12 @@ class Watcher:
 
     def _return(self) -> bool:
         """Go back to the configuration a failure left, when ``preference`` says it is time."""
-        back = self._prefer.due(self.current, self.failed | set(self._restarts.held))
-        if back is None:
+        unavailable = self.failed | set(self._restarts.held)
+        found = self._prefer.returning(self.library, self.schema, self.current, unavailable)
+        if found is None:
             return False
-        changes = changes_between(self.library, self.schema, self.current, back)
-        self._say(
-            "return",
-            f"returning to the configuration left after a failure (its components have been "
-            f"candidates for {self.prefer_after:g} s): {len(changes)} change(s): "
-            f"{changes_text(changes)}",
-            configuration=back.shown,
-            changes=changes_data(changes),
-        )
         self._pending = time.monotonic()
-        return self._switch(back, changes)
+        return self._switch(*found)
 
     def _follow(self, check: Conformance) -> None:
         """Confirm a repair made since the last replan, by rosreconf or by a person."""
