@@ -50,6 +50,7 @@ from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.outsiders import Outsiders
 from rosreconf.ros.preference import Preference
 from rosreconf.ros.replanning import Change, replan
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
@@ -118,6 +119,7 @@ class Watcher:
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
     _clashes: NameClashes = field(init=False, repr=False)
     _restarts: Restarts = field(init=False, repr=False)
+    _outsiders: Outsiders = field(init=False, repr=False)
     _prefer: Preference = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -136,14 +138,20 @@ class Watcher:
         )
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
-        self._clashes = NameClashes(self._say, self._role)
+        self._clashes = NameClashes(self._say, self._role, self._actuator.squatter)
         self._restarts = Restarts(
             self._say, self._role, self.restart_limit, self.restart_window, self.hold
         )
+        parts = self._actuator, self._clashes, self._restarts
+        self._outsiders = Outsiders(self.library, self.schema, self._say, self._role, *parts)
         self._prefer = Preference(self.prefer_after if self.apply else 0.0, self._say)
 
     def _read(self) -> LiveGraph:
+        """Read the live graph; who announced a newly failed node is noted before and after."""
+        if self._graph is not None:
+            self._outsiders.note(self.failed)
         self._graph = self._actuator.visible(self.source.read())
+        self._outsiders.note(self.failed)
         return self._graph
 
     def _live(self, fresh: bool) -> LiveGraph:
@@ -175,6 +183,11 @@ class Watcher:
         check = self._compare(graph)
         missing, awaited = [], self._actuator.awaited()
         clashing = self._clashes.clashing(check, self._actuator.started())
+        back, news = self._outsiders.check(check, clashing, self.current, self.failed)
+        self._seen -= back  # seen again if it runs; if its name is free, started
+        self._hopeless = None if back else self._hopeless
+        self._pending = time.monotonic() if news and self._pending is None else self._pending
+        awaited = self._actuator.awaited()  # an unwired node a person is asked to restart
         for comp in self.current.components:
             codes = {f.code for f in check.findings if f.component == comp}
             if comp in awaited or comp in clashing:  # a person restarts it; another node
@@ -351,6 +364,7 @@ class Watcher:
             if (
                 self.stop_requested()
                 or self.failed & set(self.current.components)
+                or self._clashes.freed  # a squatter stopped: its component starts next poll
                 or self._actuator.left_running(check)
             ):
                 return check
@@ -375,10 +389,9 @@ class Watcher:
         return self._graph is not None
 
     def replan_due(self) -> bool:
-        """Tell whether a failure seen (while confirming) waits for a replan: poll now."""
-        return bool(self.failed & set(self.current.components)) and (
-            frozenset(self.failed) != self._hopeless
-        )
+        """Tell whether a failure waits for a replan, or a freed component to start: poll now."""
+        failing = self.failed & set(self.current.components)
+        return bool((failing and frozenset(self.failed) != self._hopeless) or self._clashes.freed)
 
     def exited(self) -> bool:
         """Tell whether a watched node process ended or hung since the last step."""

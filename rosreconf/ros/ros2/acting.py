@@ -24,6 +24,7 @@ from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.nodes import OwnNode
 from rosreconf.ros.ros2.shmdebris import diagnose
+from rosreconf.ros.ros2.squatting import Squatting
 
 
 @dataclass
@@ -45,6 +46,7 @@ class Ros2Actuator(Actuator):
     hide: Callable[[Collection[bytes]], None] = lambda _: None
     control: Ros2Control = field(init=False)
     launched: set[str] = field(default_factory=set)
+    squatting: Squatting = field(init=False)
 
     def __post_init__(self) -> None:
         a = self.acting
@@ -59,6 +61,7 @@ class Ros2Actuator(Actuator):
             stop_outside=a.stop_outside,
         )
         self.control.nodes.stopping = self._hide_stopping
+        self.squatting = Squatting(self.control, self.participants, self.hide)
 
     def _hide_stopping(self, stopping: list[OwnNode]) -> None:
         """Leave out of later reads the participants of processes rosreconf is stopping.
@@ -80,10 +83,12 @@ class Ros2Actuator(Actuator):
         )
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
-        """Start ``components``' processes (managed ones configured and activated)."""
-        self.launched |= set(components)
-        self.control.start(current, components, why)
-        return True
+        """Start ``components``' processes (managed ones configured and activated); never one
+        whose node name a node rosreconf did not start holds (``squatting``)."""
+        free = self.squatting.free(components)
+        self.launched |= set(free)
+        self.control.start(current, free, why)
+        return bool(free) or not components
 
     def replace(
         self,
@@ -187,6 +192,19 @@ class Ros2Actuator(Actuator):
     def reactivate(self) -> Callable[[str, str], bool] | None:
         """Return how a managed node is made ``active`` again (lifecycle transitions)."""
         return self.control.reactivate
+
+    def incarnations(self, node: str) -> frozenset[str] | None:
+        """Return the participants announcing ``node`` now: a new one is a new process."""
+        return self.squatting.incarnations(node)
+
+    def squatter(self, component: str, role: str, node: str, beside: bool) -> bool:
+        """Name, or stop (``--stop-outside``), a node squatting on ``component``'s name;
+        True when its process was stopped."""
+        return self.squatting.squatter(component, role, node, beside)
+
+    def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:
+        """Name a node rosreconf did not start to restart by hand, with its ``-r`` rules."""
+        self.control.restart_by_hand(component, role, configuration)
 
     def close(self) -> None:
         """Stop every node process started here, and the lifecycle agent."""

@@ -172,6 +172,14 @@ class OutsideNodes:
         for n in nodes:
             self.lease_only.pop(n, None)
 
+    def drop(self, proc: ProcId) -> None:
+        """Stop watching ``proc``: it runs no component (a squatter on a component's name)."""
+        self.nodes.pop(proc, None)
+        self.hung.pop(proc, None)
+        self.stopped_since.pop(proc, None)
+        self.participant_of.pop(proc, None)
+        self._watch.remove(proc)
+
     def process_of(self, node: str) -> tuple[ProcId, tuple[str, ...]] | None:
         """Return the confirmed process of ``node`` (watched, or hung) and every node it runs."""
         for proc, names in (*self.nodes.items(), *self.hung.items()):
