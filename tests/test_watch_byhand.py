@@ -5,10 +5,10 @@ start is judged by what it offers and how it is wired, never taken on its name a
   component's endpoints but the wrong wiring: ``unwired`` (with the rules that wire it), never
   ``failed`` while it runs, and ``watch`` never starts a second node of its name.
 - A bare rclpy node holding a component's name (no endpoints) is a name clash, there before
-  ``watch`` or after it: the component is failed and replaced, or started once the name is free
-  when there is no alternative; the squatter is named for a person, or stopped with
-  ``--stop-outside`` (its process confirmed through /proc). Beside the running component it is
-  a duplicate name, said when it appears.
+  ``watch`` or after it. The squatter is named for a person, the component failed and replaced
+  (no alternative: started once the name is free); or, with ``--stop-outside``, the squatter's
+  process (confirmed through /proc) is stopped and the component started under its own name.
+  Beside the running component it is a duplicate name, said when it appears.
 
 Real rclpy nodes under the Jazzy and Kilted venvs; ``watch`` as a subprocess (its JSON log);
 the end state read by rclpy's own graph API (``tests/ros2_probe.py``). No timing is asserted.
