@@ -246,6 +246,11 @@ def test_not_managed_is_ros2_only() -> None:
         tuple(replace(n, alive=None, pid=1) for n in nodes.values()),
     )
     assert compare(NOMINAL, lib, SCHEMA, ros1).ok
+    # an unconfigured managed node has no endpoints yet: not-active, never a name clash
+    nodes["NSM3"] = LiveNode("/NSM3", alive=True, serves=("/NSM3/get_state",),
+                             lifecycle_state="unconfigured")  # fmt: skip
+    found = compare(NOMINAL, lib, SCHEMA, _ros2(nodes.values())).findings
+    assert [f.code for f in found if f.component == "NSM3"] == ["not-active", "missing-service"]
 
 
 def test_a_node_with_a_components_name_but_none_of_its_endpoints_is_a_name_clash() -> None:
@@ -255,8 +260,12 @@ def test_a_node_with_a_components_name_but_none_of_its_endpoints_is_a_name_clash
     clean = compare(NOMINAL, LIB, SCHEMA, _live(nodes))
     assert not [f for f in clean.findings if f.code == "name-clash"], clean.findings
     bare = [replace(n, serves=()) if n.name == "/NSM3" else n for n in nodes]
-    check = compare(NOMINAL, LIB, SCHEMA, _live(bare))  # no endpoints at all: proves nothing
-    assert not [f for f in check.findings if f.code == "name-clash"]
+    check = compare(NOMINAL, LIB, SCHEMA, _live(bare))  # no endpoints at all: a squatter
+    (squat,) = [f for f in check.findings if f.code == "name-clash"]
+    assert (squat.component, squat.live_name) == ("NSM3", "/NSM3")
+    assert "no endpoints at all" in squat.message
+    beside = compare(NOMINAL, LIB, SCHEMA, _live([*nodes, LiveNode("/NSM3", "http://h:2/", 2)]))
+    assert [(f.code, f.live_name) for f in beside.findings] == [("duplicate-node", "/NSM3")]
     impostor = [replace(n, serves=("/some/other",)) if n.name == "/NSM3" else n for n in nodes]
     check = compare(NOMINAL, LIB, SCHEMA, _live(impostor))
     clashes = [f for f in check.findings if f.code == "name-clash"]

@@ -159,3 +159,16 @@ class Actuator(Protocol):
     def reactivate(self) -> Callable[[str, str], bool] | None:
         """Return how to make a managed component ``active`` again; None: only say it."""
         return None
+
+    def incarnations(self, node: str) -> frozenset[str] | None:
+        """Return who announces ``node`` now (one id per process); None: cannot be told."""
+        return None
+
+    def squatter(self, component: str, role: str, node: str, beside: bool) -> bool:
+        """Name, or stop, a node holding ``component``'s name that is not it (``clashes``);
+        True when it was stopped (the name is free)."""
+        return False
+
+    def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:
+        """Ask a person to restart a node rosreconf did not start, wired for ``configuration``."""
+        return None

@@ -307,12 +307,13 @@ def _clash_findings(
 
     A component's endpoints in a configuration are the live names of its ROS-graph's
     interfaces: what it provides, under its own names, and what it uses, under its providers'
-    names. A node of that name that has endpoints (plumbing aside), but none of those (actions:
-    none of their ``/_action/`` services) and none under the interface's own label either
-    (that would be the component started unwired: an edge finding), is not that component,
-    whatever its name says; ``watch`` never takes it for the component. A node with no
-    endpoints at all proves nothing either way: its edge findings say what is missing. A
-    managed node that is not active is excused (``not-active`` reports it).
+    names. A node of that name that has none of those (actions: none of their ``/_action/``
+    services) and none under the interface's own label either (that would be the component
+    started unwired: an edge finding), is not that component, whatever its name says; ``watch``
+    never takes it for the component. That holds for a node with no endpoints at all (plumbing
+    aside): a bare node squatting on the name (``watch`` gives a node just started time to
+    show its endpoints, ``clashes``). A managed node that is not active is excused
+    (``not-active`` reports it).
     """
     found: list[Finding] = []
     for c, name in names.items():
@@ -327,8 +328,7 @@ def _clash_findings(
             labels.add(label := str(expected.nodes[v]["label"]))
             wanted |= {interface_live_name(comps[p[1]], label) for p in expected.predecessors(v)}
         has = {*node.publishes, *node.subscribes, *node.serves, *node.clients}
-        if not has:  # nothing to judge by (a node with no endpoints: the edge findings say it)
-            continue
+        bare = not has
         has |= {h.split("/_action/")[0] for h in has if "/_action/" in h}  # ROS 2 actions
         has |= {h.removesuffix("/goal") for h in has if h.endswith("/goal")}  # actionlib
         own = {interface_live_name(comps[c], label) for label in labels} & has
@@ -341,9 +341,10 @@ def _clash_findings(
         shown = ", ".join(sorted(wanted)[:3]) + (
             f" and {len(wanted) - 3} more" if len(wanted) > 3 else ""
         )
+        none = "no endpoints at all" if bare else "none of its endpoints"
         why = (
-            f"{name} runs, but it is not {c}: it has none of {c}'s endpoints ({shown}), so "
-            f"another node has its name (a name clash). Give one of them another name, or stop it"
+            f"{name} runs, but it is not {c}: it has {none} ({c}'s: {shown}), so another node "
+            "has its name (a name clash). Give one of them another name, or stop it"
         )
         found.append(Finding("name-clash", why, c, name))
     return found

@@ -193,6 +193,13 @@ class Restarts:
         self.holds[comp] = (seconds, float("inf"))
         return seconds
 
+    def drop(self, comp: str) -> None:
+        """End ``comp``'s hold now, unsaid: it runs again (restarted by hand, ``outsiders``).
+
+        Counted as a release for the backoff: a failure soon after holds it longer."""
+        if self.held.pop(comp, None) is not None:
+            self.holds[comp] = (self.holds[comp][0], time.monotonic())
+
     def released(self) -> set[str]:
         """Return the held components whose hold is over (said), and forget their hold."""
         now = time.monotonic()

@@ -50,10 +50,12 @@ from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.outsiders import Outsiders
 from rosreconf.ros.preference import Preference
 from rosreconf.ros.replanning import Change, replan
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
 from rosreconf.ros.sources import LiveSource
+from rosreconf.ros.verdicts import Missing, judge
 from rosreconf.solve.search import Budget
 
 __all__ = ["Event", "Watcher"]
@@ -109,8 +111,7 @@ class Watcher:
     budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
-    _missing: tuple[str, ...] = ()
-    """The stuck components last said, and why (said again when either changes)."""
+    _missing: Missing = field(default_factory=Missing)
     _running: bool = False
     _actuator: Actuator = field(init=False, repr=False)
     _pending: float | None = None
@@ -118,6 +119,7 @@ class Watcher:
     _lifecycle: LifecycleFaults = field(init=False, repr=False)
     _clashes: NameClashes = field(init=False, repr=False)
     _restarts: Restarts = field(init=False, repr=False)
+    _outsiders: Outsiders = field(init=False, repr=False)
     _prefer: Preference = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -136,14 +138,20 @@ class Watcher:
         )
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
-        self._clashes = NameClashes(self._say, self._role)
+        self._clashes = NameClashes(self._say, self._role, self._actuator.squatter)
         self._restarts = Restarts(
             self._say, self._role, self.restart_limit, self.restart_window, self.hold
         )
+        parts = self._actuator, self._clashes, self._restarts
+        self._outsiders = Outsiders(self.library, self.schema, self._say, self._role, *parts)
         self._prefer = Preference(self._say, self.prefer_after if self.apply else 0.0)
 
     def _read(self) -> LiveGraph:
+        """Read the live graph; who announced a newly failed node is noted before and after."""
+        if self._graph is not None:
+            self._outsiders.note(self.failed)
         self._graph = self._actuator.visible(self.source.read())
+        self._outsiders.note(self.failed)
         return self._graph
 
     def _live(self, fresh: bool) -> LiveGraph:
@@ -173,26 +181,22 @@ class Watcher:
             return self._confirm()  # no graph to read first: the process exit says it all
         graph = self._read()
         check = self._compare(graph)
-        missing, awaited = [], self._actuator.awaited()
         clashing = self._clashes.clashing(check, self._actuator.started())
-        for comp in self.current.components:
-            codes = {f.code for f in check.findings if f.component == comp}
-            if comp in awaited or comp in clashing:  # a person restarts it; another node
-                continue
-            if "dead-node" in codes or ("missing-node" in codes and comp in self._seen):
-                if comp not in self.failed:
-                    why = "registered but not answering" if "dead-node" in codes else "gone"
-                    self._say(
-                        "failed",
-                        f"{comp} ({self._role(comp)}) is {why}: failed",
-                        component=comp,
-                        how="graph",
-                    )
-                    self.failed.add(comp)
-            elif "missing-node" in codes:
-                missing.append(comp)
-            else:
-                self._seen.add(comp)
+        back, news = self._outsiders.check(check, clashing, self.current, self.failed)
+        self._seen -= back  # seen again if it runs; if its name is free, started
+        self._hopeless = None if back else self._hopeless
+        self._pending = time.monotonic() if news and self._pending is None else self._pending
+        awaited = self._actuator.awaited()  # an unwired node a person is asked to restart
+        verdicts = judge(check, self.current.components, self._seen, {*awaited, *clashing})
+        for comp, why in verdicts.failed.items():
+            if comp not in self.failed:
+                role = self._role(comp)
+                self._say(
+                    "failed", f"{comp} ({role}) is {why}: failed", component=comp, how="graph"
+                )
+                self.failed.add(comp)
+        missing = verdicts.missing
+        self._seen |= verdicts.seen
         if not self._running and self._seen >= set(self.current.components):
             self._running = True
             self._say(
@@ -217,14 +221,7 @@ class Watcher:
             if self._replan():
                 return self._confirm()
         elif missing:
-            # What was launched and never came up is not launched again on every poll.
-            stuck, why = self._actuator.not_running(missing)
-            if not self.apply:
-                stuck, why = missing, "use --apply to start"
-            if stuck and (*stuck, why) != self._missing:
-                self._missing = (*stuck, why)
-                self._say("missing", f"not running: {', '.join(stuck)} ({why})", components=stuck)
-            fresh = [c for c in missing if c not in stuck]
+            fresh = self._missing.report(missing, self._actuator, self.apply, self._say)
             if fresh and self._start(fresh, "not running yet"):
                 return self._confirm()
         if dead:
@@ -274,7 +271,7 @@ class Watcher:
         self._say("master-restarted", said[0], **said[1])
         self._actuator.restart(stop=self.apply)
         self._seen.clear()
-        self._missing = ()
+        self._missing = Missing()
         self._running = False
 
     def _role(self, comp: str) -> str:
@@ -360,6 +357,7 @@ class Watcher:
             if (
                 self.stop_requested()
                 or self.failed & set(self.current.components)
+                or self._clashes.freed  # a squatter stopped: its component starts next poll
                 or self._actuator.left_running(check)
             ):
                 return check
@@ -384,11 +382,12 @@ class Watcher:
         return self._graph is not None
 
     def replan_due(self) -> bool:
-        """Tell whether a failure seen (while confirming) waits for a replan: poll now.
+        """Tell whether a failure waits for a replan, or a freed component to start: poll now.
 
         Not one held, or waiting out a restart's backoff: its time is ``due_at``."""
         waiting = {*self._restarts.held, *self._restarts.backoff}
-        return bool((self.failed & set(self.current.components)) - waiting)
+        failing = (self.failed & set(self.current.components)) - waiting
+        return bool(failing or self._clashes.freed)
 
     def exited(self) -> bool:
         """Tell whether a watched node process ended or hung since the last step."""

@@ -27,6 +27,7 @@ from rosreconf.ros.ros2.nodes import OwnNode
 from rosreconf.ros.ros2.onename import OneName
 from rosreconf.ros.ros2.retrying import Retries
 from rosreconf.ros.ros2.shmdebris import diagnose
+from rosreconf.ros.ros2.squatting import Squatting
 
 
 @dataclass
@@ -53,6 +54,7 @@ class Ros2Actuator(Actuator):
     launched: set[str] = field(default_factory=set)
     retries: Retries = field(init=False)
     names: OneName = field(init=False)
+    squatting: Squatting = field(init=False)
 
     def __post_init__(self) -> None:
         a = self.acting
@@ -71,6 +73,7 @@ class Ros2Actuator(Actuator):
         self.names = OneName(
             a.library, self.control.nodes, self.participants, lambda: self.control.outside, a.say
         )
+        self.squatting = Squatting(self.control, self.participants, self.hide)
 
     def _hide_stopping(self, stopping: list[OwnNode]) -> None:
         """Leave out of later reads the participants of processes rosreconf is stopping.
@@ -240,6 +243,19 @@ class Ros2Actuator(Actuator):
     def reactivate(self) -> Callable[[str, str], bool] | None:
         """Return how a managed node is made ``active`` again (lifecycle transitions)."""
         return self.control.reactivate
+
+    def incarnations(self, node: str) -> frozenset[str] | None:
+        """Return the participants announcing ``node`` now: a new one is a new process."""
+        return self.squatting.incarnations(node)
+
+    def squatter(self, component: str, role: str, node: str, beside: bool) -> bool:
+        """Name, or stop (``--stop-outside``), a node squatting on ``component``'s name;
+        True when its process was stopped."""
+        return self.squatting.squatter(component, role, node, beside)
+
+    def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:
+        """Name a node rosreconf did not start to restart by hand, with its ``-r`` rules."""
+        self.control.restart_by_hand(component, role, configuration)
 
     def close(self) -> None:
         """Stop every node process started here, and the lifecycle agent."""

@@ -214,6 +214,14 @@ class OutsideNodes:
         for n in nodes:
             self.lease_only.pop(n, None)
 
+    def drop(self, proc: ProcId) -> None:
+        """Stop watching ``proc``: it runs no component (a squatter on a component's name)."""
+        self.nodes.pop(proc, None)
+        self.hung.pop(proc, None)
+        self.stopped_since.pop(proc, None)
+        self.participant_of.pop(proc, None)
+        self._watch.remove(proc)
+
     def process_of(self, node: str) -> tuple[ProcId, tuple[str, ...]] | None:
         """Return the confirmed process of ``node`` (watched, or hung) and every node it runs."""
         for proc, names in (*self.nodes.items(), *self.hung.items()):
@@ -251,7 +259,13 @@ class OutsideNodes:
 
     def _stop_proven(self, proc: ProcId, node: str, names: tuple[str, ...]) -> StopResult:
         """Stop ``proc`` for ``node`` only once the kernel proved it sends its datagrams."""
-        guid = self.guid_of.get(proc)
+        return self.stop_proven(proc, self.guid_of.get(proc), node, names)
+
+    def stop_proven(
+        self, proc: ProcId, guid: bytes | None, node: str, names: tuple[str, ...]
+    ) -> StopResult:
+        """Stop ``proc``, said to run participant ``guid`` and ``node`` (and ``names``), only
+        once the kernel proved it sends that participant's datagrams (``provenance``)."""
         if self._sources is None or guid is None:
             why = "no evidence was gathered"
         elif (unproven := self._sources.unproven(guid, proc)) is not None:
