@@ -147,6 +147,11 @@ class Actuator(Protocol):
         """Return the components whose running process rosreconf started (never a clash)."""
         return frozenset()
 
+    def theirs(self) -> frozenset[str]:
+        """Return the components found running in a process rosreconf did not start (what
+        started it restarts it; ``Restarts.last_resort``). Default: none known."""
+        return frozenset()
+
     def awaited(self) -> frozenset[str]:
         """Return the components a person was asked to restart: gone a while, not failed."""
         return frozenset()

@@ -106,14 +106,24 @@ class Restarts:
                 out.add(comp)
         return out
 
-    def hold_failed(self, failed: Collection[str], can_start: bool) -> None:
-        """Hold ``failed`` (counted by ``restartable``): a candidate again after ``hold`` s."""
+    def hold_failed(self, failed: Collection[str], can_start: bool, theirs: bool = False) -> None:
+        """Hold ``failed`` (counted by ``restartable``): a candidate again after ``hold`` s.
+
+        ``theirs``: rosreconf did not start them; what did (a launch file's respawn, a
+        person) is given the hold to start them again (``last_resort``).
+        """
         now = time.monotonic()
         for comp in self._undecided(failed):
             crashes = len(self.crashes.get(comp, [])) or 1
             seconds = self._hold_for(comp, now)
             self.held[comp] = now + seconds
-            if not can_start:
+            if theirs:
+                why = (
+                    "rosreconf did not start it: whatever did (a launch file's respawn, a "
+                    "person) restarts it, and it is taken back when it runs again; rosreconf "
+                    "starts its own only after the hold"
+                )
+            elif not can_start:
                 why = "nothing is started without --apply"
             elif not self.limit:
                 why = "restart in place is off: --restarts 0"
@@ -130,17 +140,24 @@ class Restarts:
                 crashes=crashes,
             )
 
-    def last_resort(self, failed: Collection[str], can_start: bool) -> set[str]:
+    def last_resort(
+        self, failed: Collection[str], can_start: bool, theirs: Collection[str] = ()
+    ) -> set[str]:
         """Restart ``failed``, without which no configuration is left; return those due now.
 
         The first restart in a row is at once; each next one waits twice as long as the one
         before, from ``FIRST_BACKOFF`` up to ``hold`` (at least ``FIRST_BACKOFF``); a
         component that ran ``window`` seconds since its last restart starts a new row.
-        The others are ``due`` later. Without ``can_start``, they are held.
+        The others are ``due`` later. Without ``can_start``, they are held. So are those of
+        ``theirs`` (their process was not rosreconf's): what started it (a launch file's
+        ``respawn``, a person) restarts it, and a start of rosreconf's would race that into
+        two nodes of one name (``hold_failed``, ``theirs``).
         """
         if not can_start:
             self.hold_failed(failed, can_start)
             return set()
+        self.hold_failed(set(failed) & set(theirs), can_start, theirs=True)
+        failed = set(failed) - set(theirs)
         now = time.monotonic()
         out: set[str] = set()
         for comp in self._undecided(failed):

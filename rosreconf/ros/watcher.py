@@ -316,7 +316,7 @@ class Watcher:
             found = replan(self.library, self.schema, self.current, failed, self._say, self.budget)
         if found is None:
             self._hopeless = failed
-            now = self._restarts.last_resort(failing - again, self.apply)
+            now = self._restarts.last_resort(failing - again, self.apply, self._actuator.theirs())
             return (
                 self._restart(now, "restarted in place: no configuration is left without it")
                 or started

@@ -231,6 +231,14 @@ class Ros2Actuator(Actuator):
         """Return the components whose node process rosreconf started and that still runs."""
         return frozenset(self.control.nodes.nodes)
 
+    def theirs(self) -> frozenset[str]:
+        """Return the components whose node was found in a process rosreconf did not start."""
+        outside = self.control.outside
+        if outside is None or not outside.theirs:
+            return frozenset()
+        library = self.acting.library
+        return frozenset(c.name for c in library.components if node_live_name(c) in outside.theirs)
+
     def awaited(self) -> frozenset[str]:
         """Return the components named "restart this by hand", until the system conforms."""
         return frozenset(self.control.by_hand.restarting)

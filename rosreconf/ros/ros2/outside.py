@@ -60,6 +60,8 @@ class OutsideNodes:
             ``provenance``): without it, nothing is ever signalled.
         guid_of: each confirmed process -> its participant, for the proof (kept while the
             process is known, hung ones too).
+        theirs: the wanted nodes found running in a process rosreconf did not start, until
+            rosreconf starts them itself (``forget``): what started them restarts them.
         ended: the participants of processes found exited or hung, until ``take_ended``:
             what the graph must leave out (DDS announces them until their lease ends). The
             participant, never the node name: a team may have restarted the node already,
@@ -80,6 +82,7 @@ class OutsideNodes:
     ended: set[bytes] = field(default_factory=set)
     prove: bool = False
     guid_of: dict[ProcId, bytes] = field(default_factory=dict)
+    theirs: set[str] = field(default_factory=set)
     _watch: ProcessWatch = field(default_factory=ProcessWatch)
     _sources: SourcePorts | None = None
 
@@ -120,6 +123,7 @@ class OutsideNodes:
             self.located.add(guid)
             found = found_all[guid]
             mine = [n for n in names if n in wanted]
+            self.theirs.update(mine)
             if guid in dead:
                 self._gone_at_once(guid, [n for n in names if n not in running], found.detail)
                 continue
@@ -213,6 +217,7 @@ class OutsideNodes:
                 self._watch.remove(proc)
         for n in nodes:
             self.lease_only.pop(n, None)
+            self.theirs.discard(n)
 
     def drop(self, proc: ProcId) -> None:
         """Stop watching ``proc``: it runs no component (a squatter on a component's name)."""
