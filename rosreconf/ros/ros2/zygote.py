@@ -17,6 +17,12 @@ with rosreconf instead, by a watchdog each forks, waiting on a pipe only rosreco
 fork on, so that once the zygote has died its exit is still seen at once (its status is then
 unknown: ``UNKNOWN_EXIT``), and the next stand-in is forked by a new zygote. Nothing here
 prints.
+
+Forking is safe here: the only threads in the zygote at a fork are its libraries' own, each
+stopped or guarded by that library's fork hooks (see ``standin_zygote.py``). Kilted's
+stand-ins that died of SIGSEGV as they started died of a race inside Fast DDS 3's type
+lookup service, in a thread the child starts itself; rosreconf's participants run without
+that service (``rosreconf.ros.ros2.runtime.NO_TYPE_LOOKUP``; docs/live.md has the figures).
 """
 
 from __future__ import annotations
