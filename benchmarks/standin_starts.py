@@ -91,6 +91,8 @@ class Failovers:
         self.nodes = nodes
         self.keep = keep
         self.now = 0
+        self.crashed: set[int] = set()
+        """The pids of the stand-ins said to have crashed as they started (said once)."""
 
     def start(self, names: list[str]) -> tuple[list[Any], float]:
         """Ask for ``names`` of the configuration now, all at once; return them and when."""
@@ -139,6 +141,7 @@ class Failovers:
         crashed.update({name: None for name in unready})  # still not ready: said as a crash
         codes = {o.component: o.program.process.poll() for o in stopped}
         at_stop: dict[str, int | None] = {}
+        stopped = [o for o in stopped if o.pid not in self.crashed]
         for own, where in [*((o, crashed) for o in started), *((o, at_stop) for o in stopped)]:
             text = _since(own.log, own.log_from)
             code = codes.get(own.component) if where is at_stop else early.get(own.component)
@@ -146,6 +149,7 @@ class Failovers:
                 where[own.component] = code
             if own.component in where:
                 (self.keep / f"{own.component}-{own.pid}.log").write_bytes(text)
+        self.crashed.update(o.pid for o in started if o.component in crashed)
         return {
             "walls": walls,
             "cpus": cpus,
