@@ -44,6 +44,7 @@ from rosreconf.ros.ros2.runtime import (
     lease_profile,
     node_env,
     own_participant_env,
+    own_profile,
     ros2_python,
 )
 from rosreconf.ros.ros2.zygote import DISABLE_ENV, Zygote
@@ -149,7 +150,9 @@ class NodeProcesses:
     _zygote_failed: bool = False
 
     def _node_env(self) -> dict[str, str]:
-        if self._profile is None:
+        if self._profile is None and self.stand_ins:  # rosreconf's own participants
+            self._profile = own_profile(self.directory, self.lease)
+        elif self._profile is None:
             self.directory.mkdir(parents=True, exist_ok=True)
             self._profile = self.directory / "fastdds-short-lease.xml"
             self._profile.write_text(lease_profile(self.lease), encoding="utf-8")

@@ -12,7 +12,8 @@ Processes rosreconf starts get a Fast DDS XML profile with a short participant l
 within seconds when they are killed; rosreconf itself sees its own processes exit at once.
 
 rosreconf's own participants (stand-ins, the lifecycle agent) use Fast DDS's UDP transport
-only (``own_participant_env``), never its shared memory: see ``OWN_TRANSPORTS``.
+only (``own_participant_env``), never its shared memory: see ``OWN_TRANSPORTS``; and no
+XTypes type lookup service (``own_profile``): see ``NO_TYPE_LOOKUP``.
 """
 
 from __future__ import annotations
@@ -58,6 +59,33 @@ open-or-create for it to be initialised, for ever (seen here: ten stand-ins stuc
 rosreconf kills its stand-ins when it stops them, at any moment, so they must neither leave
 such a file nor wait on one; on UDP they talk to SHM participants all the same. The team's own
 executables keep whatever transports their environment gives them.
+"""
+
+
+NO_TYPE_LOOKUP = """
+        <propertiesPolicy>
+          <properties>
+            <property>
+              <name>fastdds.type_propagation</name>
+              <value>disabled</value>
+            </property>
+          </properties>
+        </propertiesPolicy>"""
+"""The XML that keeps one of rosreconf's participants from running XTypes type lookup.
+
+Fast DDS 3 (Kilted) runs a type lookup service in every participant by default: each
+endpoint it discovers with a type it has not registered makes it ask the remote participant
+for that type, and two threads of its own (``dds.tls.request``, ``dds.tls.replies``) serve
+and take the answers. In Fast DDS 3.2.3 (and on its main branch of 2026-08-20) the
+reply thread reads the table of pending callbacks (``TypeLookupManager::notify_callbacks``)
+without the lock under which the discovery thread adds to it
+(``check_type_identifier_received``): a stand-in that discovers many endpoints while it
+starts, as during a repair, sometimes dies of SIGSEGV in that thread (its Python stack shows
+whatever the main thread was doing: ``create_node``, ``create_service``). Measured with
+``benchmarks/standin_starts.py`` (see docs/live.md). rosreconf's participants need none of
+it: ROS 2 matches endpoints by type name and type hash, and a Fast DDS 3 endpoint without
+type information is matched by type name. Fast DDS 2 (Jazzy) knows no such property and
+ignores it. The team's own executables keep whatever their environment gives them.
 """
 
 
@@ -181,12 +209,13 @@ def ament_executable(package: str, executable: str, env: Mapping[str, str]) -> P
     )
 
 
-def lease_profile(lease: float = LEASE_SECONDS) -> str:
+def lease_profile(lease: float = LEASE_SECONDS, *, own: bool = False) -> str:
     """Return a Fast DDS XML profile giving every participant a ``lease`` s lease.
 
     The participant announces itself three times per lease. Fast DDS 2 (Jazzy) reads it from
     ``FASTRTPS_DEFAULT_PROFILES_FILE``, Fast DDS 3 (Kilted) from
-    ``FASTDDS_DEFAULT_PROFILES_FILE``.
+    ``FASTDDS_DEFAULT_PROFILES_FILE``. ``own``: the profile of rosreconf's own participants,
+    which also run no type lookup service (``NO_TYPE_LOOKUP``).
     """
     sec, nsec = int(lease), int(lease % 1 * 1e9)
     asec, ansec = int(lease / 3), int(lease / 3 % 1 * 1e9)
@@ -200,12 +229,23 @@ def lease_profile(lease: float = LEASE_SECONDS) -> str:
             <leaseDuration><sec>{sec}</sec><nanosec>{nsec}</nanosec></leaseDuration>
             <leaseAnnouncement><sec>{asec}</sec><nanosec>{ansec}</nanosec></leaseAnnouncement>
           </discovery_config>
-        </builtin>
+        </builtin>{NO_TYPE_LOOKUP if own else ""}
       </rtps>
     </participant>
   </profiles>
 </dds>
 """
+
+
+def own_profile(directory: Path, lease: float = LEASE_SECONDS) -> Path:
+    """Write the Fast DDS profile of rosreconf's own participants in ``directory``; return it.
+
+    The short lease (``lease_profile``) and no type lookup service (``NO_TYPE_LOOKUP``).
+    """
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / "fastdds-own-participants.xml"
+    path.write_text(lease_profile(lease, own=True), encoding="utf-8")
+    return path
 
 
 def node_env(env: Mapping[str, str], profile: Path) -> dict[str, str]:

@@ -18,6 +18,7 @@ from typing import Any
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.ros.ros2.lifecycle import HUNG_SECONDS, TIMEOUT, LifecycleAgent, Outcome
+from rosreconf.ros.ros2.runtime import node_env, own_profile
 
 
 @dataclass
@@ -91,8 +92,9 @@ class Transitions:
                 raise ExternalToolError(self._agent_error)
             self.directory.mkdir(parents=True, exist_ok=True)
             try:
+                env = node_env(self.env, own_profile(self.directory))  # one of rosreconf's own
                 self._agent = LifecycleAgent(
-                    self.env, self.directory / "lifecycle-agent.log", self.timeout
+                    env, self.directory / "lifecycle-agent.log", self.timeout
                 )
             except ExternalToolError as exc:
                 self._agent_error = str(exc)

@@ -17,6 +17,12 @@ with rosreconf instead, by a watchdog each forks, waiting on a pipe only rosreco
 fork on, so that once the zygote has died its exit is still seen at once (its status is then
 unknown: ``UNKNOWN_EXIT``), and the next stand-in is forked by a new zygote. Nothing here
 prints.
+
+Forking is safe here: the only threads in the zygote at a fork are its libraries' own, each
+stopped or guarded by that library's fork hooks (see ``standin_zygote.py``). Kilted's
+stand-ins that died of SIGSEGV as they started died of a race inside Fast DDS 3's type
+lookup service, in a thread the child starts itself; rosreconf's participants run without
+that service (``rosreconf.ros.ros2.runtime.NO_TYPE_LOOKUP``; docs/live.md has the figures).
 """
 
 from __future__ import annotations
@@ -72,6 +78,8 @@ class Forked:
     def __init__(self, pid: int, zygote: Zygote) -> None:
         self.pid = pid
         self.returncode: int | None = None
+        self.said: int | None = None
+        """How it ended as the zygote said it (set by ``Zygote``, under its lock)."""
         self._zygote = zygote
         self._fd = _pidfd(pid)
 
@@ -92,9 +100,9 @@ class Forked:
     def poll(self) -> int | None:
         """Return the exit status, or None while it runs."""
         if self.returncode is None:
-            code = self._zygote.code(self.pid)
+            code = self._zygote.code(self)
             if code is None and self._zygote.gone and self._orphan_ended(0.0):
-                late = self._zygote.code(self.pid)  # said just before the zygote ended
+                late = self._zygote.code(self)  # said just before the zygote ended
                 code = UNKNOWN_EXIT if late is None else late
             self._ended(code)
         return self.returncode
@@ -106,7 +114,7 @@ class Forked:
             subprocess.TimeoutExpired: still running after ``timeout`` seconds.
         """
         if self.returncode is None:
-            code = self._zygote.wait(self.pid, timeout)
+            code = self._zygote.wait(self, timeout)
             if code is None:  # the zygote died before it: its pidfd tells
                 if not self._orphan_ended(timeout):
                     raise subprocess.TimeoutExpired(str(self.pid), timeout or 0.0)
@@ -144,7 +152,10 @@ class Zygote(Helper):
     close_wait = 2.0
 
     def __init__(self, env: Mapping[str, str], log: Path) -> None:
-        self._codes: dict[int, int] = {}
+        self._running: dict[int, Forked] = {}
+        """The children not yet said to have ended, by pid: a pid is one child's at a time."""
+        self._early: dict[int, int] = {}
+        """Exits said before ``spawn`` took their fork's answer (the reader runs ahead)."""
         self._gone = False
         self._changed = threading.Condition()
         self._next = 0
@@ -156,13 +167,33 @@ class Zygote(Helper):
         super().__init__(argv, {**env, ALIVE_ENV: str(alive)}, log, name, keep_fds=(alive,))
 
     def heard(self, said: dict[str, Any]) -> bool:
-        """Take a child's exit, which is news, not an answer."""
+        """Take a child's exit, which is news, not an answer.
+
+        The exit is that of the child holding that pid now: the kernel gives a pid again only
+        once the zygote has reaped its last holder, and the zygote says that exit before it
+        answers a later fork, so one child's exit is never taken for a later child's with
+        the same pid (pids wrap at ``pid_max``: here after about 1,600 stand-in starts).
+        """
         if "exited" not in said:
             return False
+        pid, code = int(said["exited"]), int(said["code"])
         with self._changed:
-            self._codes[int(said["exited"])] = int(said["code"])
+            child = self._running.pop(pid, None)
+            if child is None:
+                self._early[pid] = code
+            else:
+                child.said = code
             self._changed.notify_all()
         return True
+
+    def _adopt(self, child: Forked) -> None:
+        """Hold ``child`` as the one running with its pid (its exit may be said already)."""
+        with self._changed:
+            code = self._early.pop(child.pid, None)
+            if code is None:
+                self._running[child.pid] = child
+            else:
+                child.said = code
 
     def ended(self) -> None:
         """Note that the zygote is gone (its children run on: their pidfds tell their exits)."""
@@ -200,24 +231,26 @@ class Zygote(Helper):
                 failure = failure or str(answer.get("error"))
                 continue
             argv, log = programs[index]
-            forked[index] = ForkedProgram(Forked(int(answer["pid"]), self), tuple(argv), log)
+            child = Forked(int(answer["pid"]), self)
+            self._adopt(child)
+            forked[index] = ForkedProgram(child, tuple(argv), log)
         if failure is not None:
             self.orphans = list(forked.values())
             raise ExternalToolError(f"{self.name} cannot fork: {failure}")
         return [forked[i] for i in range(len(programs))]
 
-    def code(self, pid: int) -> int | None:
-        """Return how child ``pid`` ended as the zygote said it, or None (running, or unsaid)."""
+    def code(self, child: Forked) -> int | None:
+        """Return how ``child`` ended as the zygote said it, or None (running, or unsaid)."""
         with self._changed:
-            return self._codes.get(pid)
+            return child.said
 
-    def wait(self, pid: int, timeout: float | None) -> int | None:
-        """Wait until child ``pid`` has ended; return how, or None if the zygote died first.
+    def wait(self, child: Forked, timeout: float | None) -> int | None:
+        """Wait until ``child`` has ended; return how, or None if the zygote died first.
 
         Raises:
             subprocess.TimeoutExpired: it still runs after ``timeout`` seconds.
         """
         with self._changed:
-            if not self._changed.wait_for(lambda: pid in self._codes or self._gone, timeout):
-                raise subprocess.TimeoutExpired(str(pid), timeout or 0.0)
-            return self._codes.get(pid)
+            if not self._changed.wait_for(lambda: child.said is not None or self._gone, timeout):
+                raise subprocess.TimeoutExpired(str(child.pid), timeout or 0.0)
+            return child.said

@@ -7,9 +7,18 @@ Nine stand-ins started at once on two busy cores wait seconds for that. This pro
 ``rosreconf.ros.ros2.zygote`` under the ROS 2 Python, imports everything once and then
 forks one child per stand-in: each child is one process with its own pid, its own session
 and its own DDS participant, running ``standin_node.main`` as if it had been started on its
-own. It never calls ``rclpy.init`` itself and starts no thread (the only threads here are
-LTTng-UST's listeners, loaded with rclpy's tracepoints; around each fork LTTng's own fork
-hooks run, as its ``liblttng-ust-fork.so`` would run them).
+own. It never calls ``rclpy.init`` itself and starts no thread. The threads its libraries
+start are accounted for at every fork: LTTng-UST's two listeners (loaded with rclpy's
+tracepoints; with no session daemon they wait on a futex for good), around which LTTng's own
+fork hooks run, as its ``liblttng-ust-fork.so`` would run them; and, until the first fork,
+OpenBLAS's worker (numpy, which the message modules import), which OpenBLAS's own
+``pthread_atfork`` handler stops before each fork. A child starts with its one thread.
+
+The SIGSEGV that Kilted's stand-ins sometimes died of as they started (seen in ``create_node``,
+``create_service``) was not the fork's: the faulting thread is Fast DDS 3's type lookup
+reply thread, which the child's own participant starts, racing its discovery thread (cores
+read with gdb); exec'd stand-ins and plain rclpy processes run the same code. rosreconf's own
+participants run without that service (``rosreconf.ros.ros2.runtime.NO_TYPE_LOOKUP``).
 
 Each child: a new session (rosreconf signals its group), stdin from /dev/null, its output
 appended to its log, and its command line rewritten (as ``setproctitle`` does) to the one it
