@@ -59,6 +59,13 @@ def test_a_stopped_lifecycle_agent_is_replaced_and_the_failover_conforms(
         chosen = sorted(f"/{c}" for c in done["configuration"].values() if c)
         seen = probe(watch.env, ros2_domain, *chosen)  # their states read too
         assert all(seen["states"].get(n) == "active" for n in chosen), seen["states"]
+        # rclpy's view of the wiring: the restarted NREA calls the DC arm, and no node of the
+        # configuration calls the dead servo arm's names (its own name for the unchosen
+        # digital alternative is the one call nobody serves)
+        assert "/arm_dc/elbow/servo_command" in seen["services"]
+        dangling = [c for c in seen["dangling"]["calls"] if c[0] in chosen]
+        assert not [c for c in dangling if c[1].startswith("/arm_servo/")], dangling
+        assert all("digital_servo_command" in s for n, s in dangling if n == "/NREA"), dangling
         assert _helper(watch, "lifecycle_agent.py") != agent  # a new one
         assert not os.path.exists(f"/proc/{agent}")  # the stopped one was killed
     finally:

@@ -46,6 +46,15 @@ def _one_of_each(seen: dict[str, Any]) -> None:
     assert not twice, seen["nodes"]
 
 
+def _wired_once_each(watch: Watch, domain: int, done: dict[str, Any], python: Path) -> None:
+    """Assert rclpy's own view: every node of ``done``'s configuration runs once, all wired."""
+    nodes = {f"/{c}" for c in done["configuration"].values() if c}
+    seen = probe(watch.env, domain, wait_for=nodes, python=python, until_wired=True)
+    _one_of_each(seen)
+    assert nodes <= set(seen["nodes"])
+    assert seen["dangling"] == {"calls": [], "subscriptions": []}
+
+
 def _kill(node: subprocess.Popen[bytes] | None) -> None:
     if node is not None and node.poll() is None:
         node.kill()
@@ -79,11 +88,7 @@ def test_a_bare_node_with_a_components_name_before_watch_is_a_squatter_replaced(
         assert [e["event"] for e in said] == ["stop-by-hand"], said  # named once, for a person
         assert "name clash" in said[0]["message"] and str(squatter.pid) in said[0]["message"]
         assert squatter.poll() is None  # not rosreconf's: left running
-        nodes = {f"/{c}" for c in done["configuration"].values() if c}
-        seen = probe(watch.env, ros2_domain, wait_for=nodes, python=python, until_wired=True)
-        _one_of_each(seen)
-        assert nodes <= set(seen["nodes"])
-        assert seen["dangling"] == {"calls": [], "subscriptions": []}
+        _wired_once_each(watch, ros2_domain, done, python)
     finally:
         if watch is not None:
             watch.stop(signal.SIGKILL)
@@ -118,11 +123,7 @@ def test_with_stop_outside_a_squatter_is_stopped_and_the_component_started_in_it
         assert kinds.index("failed") < kinds.index("stop") < kinds.index("release")
         nsm3 = [e for e in events if e["event"] == "launch" and "NSM3" in e["components"]]
         assert len(nsm3) == 1 and events.index(nsm3[0]) > events.index(release)
-        nodes = {f"/{c}" for c in done["configuration"].values() if c}
-        seen = probe(watch.env, ros2_domain, wait_for=nodes, python=python, until_wired=True)
-        _one_of_each(seen)
-        assert nodes <= set(seen["nodes"])
-        assert seen["dangling"] == {"calls": [], "subscriptions": []}
+        _wired_once_each(watch, ros2_domain, done, python)
     finally:
         if watch is not None:
             watch.stop(signal.SIGKILL)
@@ -163,11 +164,7 @@ def test_a_squatter_on_the_only_reasoner_is_named_and_the_reasoner_started_once_
         events = watch.events()
         launched = [e for e in events if e["event"] == "launch" and "NREA" in e["components"]]
         assert len(launched) == 1 and events.index(launched[0]) > events.index(release)
-        nodes = {f"/{c}" for c in done["configuration"].values() if c}
-        seen = probe(watch.env, ros2_domain, wait_for=nodes, python=python, until_wired=True)
-        _one_of_each(seen)
-        assert nodes <= set(seen["nodes"])
-        assert seen["dangling"] == {"calls": [], "subscriptions": []}
+        _wired_once_each(watch, ros2_domain, done, python)
     finally:
         if watch is not None:
             watch.stop(signal.SIGKILL)

@@ -37,9 +37,10 @@ this host, by locating as well.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
@@ -180,6 +181,21 @@ def socket_ports(pid: int, proc_root: Path = PROC) -> frozenset[int]:
     inodes = _socket_inodes(proc_root, pid)
     by_inode = _udp_ports(proc_root, pid)
     return frozenset(by_inode[i] for i in inodes if i in by_inode)
+
+
+def udp_port_holders(ports: Collection[int], proc_root: Path = PROC) -> set[int]:
+    """Return the pids of the processes here that hold one of the UDP ``ports`` open.
+
+    Only processes whose descriptors this one may read are seen (all of them, as root).
+    """
+    found: set[int] = set()
+    wanted = set(ports)
+    for entry in os.scandir(proc_root):
+        if entry.name.isdigit():
+            with contextlib.suppress(OSError):
+                if socket_ports(int(entry.name), proc_root) & wanted:
+                    found.add(int(entry.name))
+    return found
 
 
 def domain_sockets(domain: int, proc_root: Path = PROC) -> set[int] | None:

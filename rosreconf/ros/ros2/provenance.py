@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rosreconf.ros.ros2.fastdds_ids import fastdds_ipv4
-from rosreconf.ros.ros2.hostprocs import PROC, ProcId, socket_ports
+from rosreconf.ros.ros2.hostprocs import PROC, ProcId, socket_ports, udp_port_holders
 
 SPDP_GROUP = "239.255.0.1"
 """The RTPS discovery multicast group (the DDSI-RTPS specification's default)."""
@@ -151,28 +151,16 @@ class SourcePorts:
         except OSError as exc:
             return f"process {proc.pid}'s sockets cannot be read ({exc.strerror})"
         if not ports <= held:
-            senders = _other_holders(ports - held, proc, proc_root)
+            senders = udp_port_holders(ports - held, proc_root) - {proc.pid}
             by = f" (process(es) {sorted(senders)} do)" if senders else ""
             return (
                 f"its participant's datagrams come from port(s) {sorted(ports - held)}, which "
                 f"process {proc.pid} does not hold{by}"
             )
-        others = _other_holders(ports, proc, proc_root)
+        others = udp_port_holders(ports, proc_root) - {proc.pid}
         if others:
             return (
                 f"port(s) {sorted(ports)} of its participant are held by process(es) "
                 f"{sorted(others)} too"
             )
         return None
-
-
-def _other_holders(ports: set[int], proc: ProcId, proc_root: Path) -> set[int]:
-    """Return the pids other than ``proc``'s that hold one of ``ports`` (readable ones)."""
-    found: set[int] = set()
-    for entry in os.scandir(proc_root):
-        if not entry.name.isdigit() or int(entry.name) == proc.pid:
-            continue
-        with contextlib.suppress(OSError):
-            if socket_ports(int(entry.name), proc_root) & ports:
-                found.add(int(entry.name))
-    return found

@@ -23,7 +23,7 @@ from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
 from rosreconf.ros.ros2.control import Ros2Control
-from rosreconf.ros.ros2.fastdds_ids import fastdds_fields, low_pid
+from rosreconf.ros.ros2.fastdds_ids import fastdds_fields, may_be_of
 from rosreconf.ros.ros2.hostprocs import locate_participants, nodes_by_process
 from rosreconf.ros.ros2.stopproc import Stopped
 
@@ -47,10 +47,9 @@ class Squatting:
     def _own(self, guid: bytes, nodes: Collection[str]) -> bool:
         """Tell whether participant ``guid`` (with ``nodes``) is a process rosreconf started."""
         own = self.control.nodes.nodes.values()
-        fields = fastdds_fields(guid)
-        if fields is not None:
-            return any(low_pid(o.pid) == fields[1] for o in own)
-        return set(nodes) <= {o.node for o in own}
+        if fastdds_fields(guid) is None:  # another vendor's GUID carries no pid: names tell
+            return set(nodes) <= {o.node for o in own}
+        return any(may_be_of(guid, o.pid) for o in own)
 
     def holders(self, node: str) -> dict[bytes, tuple[str, ...]]:
         """Return the participants not rosreconf's own that announce ``node``, with their nodes."""
