@@ -192,6 +192,7 @@ class Ros2Actuator(Actuator):
         # their participants linger until their lease ends (those that died in a start too)
         newly, self.control.newly_dead = self.control.newly_dead, set()
         ended = self.control.ended_participants()  # outside processes: exactly theirs
+        ended |= self.control.lifecycle.ghosts(participants)  # a dead agent's
         self.hide({g for g, nodes in participants.items() if newly & set(nodes)} | ended)
         if not now:  # a failure's repair first: neither retries nor standby upkeep delay it
             self.retries.tend(current, self.control.parked)

@@ -56,6 +56,10 @@ class Outcome:
     timed_out: bool = False
 
 
+AGENT_NODE = "/_rosreconf_lifecycle"
+"""The agent's node name (hidden: a leading underscore), given to the script as it starts."""
+
+
 class LifecycleAgent(Helper):
     """Own the helper process that calls lifecycle services (see the module docstring)."""
 
@@ -67,7 +71,7 @@ class LifecycleAgent(Helper):
         self._next = 0
         python = ros2_python(env)
         name = f"the lifecycle agent ({python} {AGENT_SCRIPT.name})"
-        super().__init__([python, str(AGENT_SCRIPT)], env, log, name)
+        super().__init__([python, str(AGENT_SCRIPT), AGENT_NODE], env, log, name)
 
     def _ask(self, request: dict[str, Any], timeout: float) -> dict[str, Any]:
         self._next += 1

@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import contextlib
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError
-from rosreconf.ros.ros2.lifecycle import HUNG_SECONDS, TIMEOUT, LifecycleAgent, Outcome
+from rosreconf.ros.ros2.fastdds_ids import may_be_of
+from rosreconf.ros.ros2.lifecycle import AGENT_NODE, HUNG_SECONDS, TIMEOUT, LifecycleAgent, Outcome
 from rosreconf.ros.ros2.runtime import node_env, own_profile
 
 
@@ -38,6 +39,8 @@ class Transitions:
         timeouts: component -> when its last transition timed out (``Outcome.timed_out``,
             or the agent could not be asked), until one of its transitions is answered:
             what ``rosreconf.ros.ros2.retrying`` tries again.
+        dead_agents: the pids of agents that died, until their participants are seen
+            (``ghosts``).
     """
 
     env: Mapping[str, str]
@@ -48,6 +51,7 @@ class Transitions:
     states: dict[str, str] = field(default_factory=dict)
     helpers: list[str] = field(default_factory=list)
     timeouts: dict[str, float] = field(default_factory=dict)
+    dead_agents: set[int] = field(default_factory=set)
     _agent: LifecycleAgent | None = None
     _agent_error: str | None = None
 
@@ -65,6 +69,7 @@ class Transitions:
             return False
         self._agent = None
         agent.close()
+        self.dead_agents.add(agent.process.pid)
         how = (
             f"was hung (said nothing for {HUNG_SECONDS:g} s): killed"
             if hung
@@ -83,6 +88,22 @@ class Transitions:
                 self.agent()
         helpers, self.helpers = self.helpers, []
         return helpers
+
+    def ghosts(self, participants: Mapping[bytes, Collection[str]]) -> set[bytes]:
+        """Return the participants of the agents that died, among ``participants``.
+
+        A killed agent's participant is announced until its lease ends: its node beside the
+        new agent's would be two nodes of one name, a duplicate that is nobody's doing
+        (fresh clone: said, then "conformant" again, in the middle of a repair). Only a
+        participant naming the agent's node and carrying a dead agent's pid bits is one.
+        """
+        found: set[bytes] = set()
+        for pid in list(self.dead_agents):  # one participant each; kept until it is seen
+            ghost = {g for g, ns in participants.items() if AGENT_NODE in ns and may_be_of(g, pid)}
+            if ghost:
+                found |= ghost
+                self.dead_agents.discard(pid)
+        return found
 
     def agent(self) -> LifecycleAgent:
         """Return the lifecycle agent, started on first use (and again after it died)."""

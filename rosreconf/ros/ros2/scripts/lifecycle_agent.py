@@ -78,8 +78,8 @@ RESEND = 0.5
 class Agent:
     """One node holding a change_state and a get_state client per managed node."""
 
-    def __init__(self) -> None:
-        self.node = rclpy.create_node("_rosreconf_lifecycle")  # hidden: not an extra node
+    def __init__(self, name: str) -> None:
+        self.node = rclpy.create_node(name)  # hidden (a leading _): not an extra node
         self.clients: dict[str, tuple[Any, Any]] = {}
 
     def _clients(self, node: str) -> tuple[Any, Any]:
@@ -209,7 +209,7 @@ def main() -> int:
     faulthandler.enable()  # a crash in rclpy or DDS leaves every thread's stack on stderr
     answers = take_channel()  # before rclpy.init: Fast DDS prints on fd 1
     rclpy.init(args=sys.argv)
-    agent = Agent()
+    agent = Agent(sys.argv[1].lstrip("/"))
     answers.say({"ready": agent.node.get_fully_qualified_name()})
     answers.beat(HEARTBEAT)
     try:
