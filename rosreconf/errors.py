@@ -130,6 +130,15 @@ class ExternalToolError(RosreconfError):
     exit_code = ExitCode.PLANNER
 
 
+class UnsettledGraphError(ExternalToolError):
+    """A read caught the graph half-announced: the source answers, and its nodes are changing.
+
+    ROS 2: a participant announces endpoints its newest node list does not name yet (nodes
+    being started or configured). Not a lost source: ``watch`` reads again on its next poll
+    and says so only when it lasts (``rosreconf.ros.polling``); a one-off read fails with it.
+    """
+
+
 class OutOfResourcesError(RosreconfError):
     """The run needed more memory (or spool disk) than the machine or its limits allow.
 

@@ -225,3 +225,49 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
         assert [e.kind for e in events].count("would-launch") == 1  # said once, not every poll
     finally:
         watcher.close()
+
+
+def test_a_graph_caught_half_announced_is_no_lost_master(
+    announce: Announce, ros2_domain: int, tmp_path: Path
+) -> None:
+    """Fake (as in test_ros2_discovery: an announcer whose node list never names its newest
+    node): every read after it joins is partial. A failover's reads are partial for a moment
+    as its nodes start, and watch said ``master-lost`` then ``master-back`` in the middle of
+    one (issue 44). Partial reads are now said only when they last: ``graph-unsettled`` once,
+    ``graph-settled`` when the graph reads whole again; no master was ever lost."""
+    library, schema = _nominal()
+    chosen = [library[c] for c in schema.nominal.values()]
+    for c in schema.nominal.values():
+        announce([ros2_harness.node_spec(library[c], providers=chosen)])
+    log = tmp_path / "watch.jsonl"
+    argv = [sys.executable, "-m", "rosreconf", "watch", "--ros2", "--domain", str(ros2_domain),
+            "--only", SCHEMA, "--interval", "0.2", "--json-log", str(log)]  # fmt: skip
+    env = {**ros2_harness.dds_env(), "ROS_LOG_DIR": str(tmp_path)}
+    watch = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL, start_new_session=True)  # fmt: skip
+
+    def said(kind: str) -> bool:
+        return kind in [e["event"] for e in _events(log)] or watch.poll() is not None
+
+    try:
+        ros2_harness_wait(lambda: said("running"), DETECT_TIMEOUT)
+        late = {"name": "late", "plumbing": False,
+                "publishers": [{"name": "/late", "type": "std_msgs/msg/String"}]}  # fmt: skip
+        joined = time.monotonic()
+        extra = {
+            "name": "extra",
+            "subscriptions": [{"name": "/chatter", "type": "std_msgs/msg/String"}],
+        }
+        stale = announce([extra, late], stale_newest=True)
+        ros2_harness_wait(lambda: said("graph-unsettled"), DETECT_TIMEOUT)
+        assert time.monotonic() - joined >= 3.0  # not said while it may be a start
+        ros2_harness.stop([stale])  # a clean exit: DDS forgets its participant at once
+        ros2_harness_wait(lambda: said("graph-settled"), DETECT_TIMEOUT)
+        kinds = [e["event"] for e in _events(log)]
+        assert kinds.count("graph-unsettled") == kinds.count("graph-settled") == 1, kinds
+        assert "master-lost" not in kinds and "master-back" not in kinds, kinds
+        (unsettled,) = (e for e in _events(log) if e["event"] == "graph-unsettled")
+        assert "announce endpoints that no node" in unsettled["message"], unsettled
+    finally:
+        watch.send_signal(signal.SIGTERM)
+        watch.wait(15)

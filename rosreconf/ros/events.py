@@ -19,8 +19,9 @@ class Event:
             nodes: one per transition, with its result), ``stop-by-hand`` (ROS 2),
             ``left-running``, ``launch-error``, ``launch-exited``, ``conformant``,
             ``not-conformant``, ``missing``, ``master-lost``, ``master-back``,
-            ``master-restarted``, ``kept``, ``standby-hung`` (ROS 2), ``restart``,
-            ``hold``, ``release``, ``helper``, ``watched``, ``exited``, ``passed-over``.
+            ``master-restarted``, ``graph-unsettled``, ``graph-settled`` (ROS 2), ``kept``,
+            ``standby-hung`` (ROS 2), ``restart``, ``hold``, ``release``, ``helper``,
+            ``watched``, ``exited``, ``passed-over``.
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).

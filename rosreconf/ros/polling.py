@@ -5,22 +5,63 @@ when to look. Between steps it sleeps ``interval`` seconds, but wakes at once wh
 node process exits or hangs, when a failure seen while confirming waits for its replan, when
 a restart's backoff is over, or when a stop is asked (``stop_requested``, polled every
 20 ms). A read that fails before any has succeeded is an error (a wrong master URI or domain
-fails fast); after one, a failed read (a restarting master, a ROS 2 graph caught
-half-announced) is retried, with one event when the master goes (``master-lost``) and one
-when it is back (``master-back``).
+fails fast); after one, a failed read is retried: a restarting master with one event when
+it goes (``master-lost``) and one when it is back (``master-back``); a graph caught
+half-announced (ROS 2 nodes starting: ``UnsettledGraphError``) is no lost source, and is
+said only when it lasts ``UNSETTLED_SAID_AFTER`` s (``graph-unsettled``, then
+``graph-settled``).
 """
 
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
-from rosreconf.errors import ExternalToolError
+from rosreconf.errors import ExternalToolError, UnsettledGraphError
 from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.events import Event
 from rosreconf.ros.watcher import Watcher
 
 SLICE = 0.02
 """Seconds between looks at the watched processes and the stop request while sleeping."""
+
+UNSETTLED_SAID_AFTER = 3.0
+"""Seconds a graph may stay half-announced before it is said: starting a configuration's
+nodes at once makes single reads partial in a normal failover, and that is nobody's fault."""
+
+
+@dataclass
+class _Outage:
+    """The failed reads since the last good one: said once as it begins, once as it ends."""
+
+    began: float | None = None
+    said: str | None = None  # the event that began it: master-lost or graph-unsettled
+
+    def failed(self, watcher: Watcher, exc: ExternalToolError, interval: float) -> None:
+        """Note a failed read; say the outage when it is a lost source, or lasts."""
+        now = time.monotonic()
+        self.began = now if self.began is None else self.began
+        if self.said is not None:
+            return
+        if not isinstance(exc, UnsettledGraphError):
+            self.said = "master-lost"
+            watcher.log(Event(self.said, f"{exc}; retrying every {interval:g} s"))
+        elif now - self.began >= UNSETTLED_SAID_AFTER:
+            self.said = "graph-unsettled"
+            lasted = now - self.began
+            watcher.log(Event(self.said, f"{exc}; for {lasted:.1f} s now, retrying"))
+
+    def ended(self, watcher: Watcher) -> None:
+        """Note a good read; say the end of an outage that was said."""
+        if self.began is not None and self.said is not None:
+            gone = time.monotonic() - self.began
+            if self.said == "master-lost":
+                watcher.log(Event("master-back", f"the master answers again after {gone:.1f} s"))
+            else:
+                watcher.log(
+                    Event("graph-settled", f"the graph reads whole again after {gone:.1f} s")
+                )
+        self.began, self.said = None, None
 
 
 def poll(watcher: Watcher, interval: float, *, once: bool = False) -> Conformance:
@@ -34,25 +75,20 @@ def poll(watcher: Watcher, interval: float, *, once: bool = False) -> Conformanc
     """
     if watcher.schema.simulation is not None:  # numpy and the loops: not at the first failure
         import rosreconf.analysis.simulate  # noqa: F401
-    started, lost_at, check = False, None, None
+    started, outage, check = False, _Outage(), None
     while True:
         try:
             check = watcher.step()
         except ExternalToolError as exc:
             if (not started and not watcher.has_read()) or once:
                 raise
-            if lost_at is None:
-                lost_at = time.monotonic()
-                watcher.log(Event("master-lost", f"{exc}; retrying every {interval:g} s"))
+            outage.failed(watcher, exc, interval)
             _wait(watcher, interval)
             if watcher.stop_requested() and check is not None:
                 return check
             continue
         started = True
-        if lost_at is not None:
-            gone = time.monotonic() - lost_at
-            watcher.log(Event("master-back", f"the master answers again after {gone:.1f} s"))
-            lost_at = None
+        outage.ended(watcher)
         if once or watcher.stop_requested():
             return check
         _wait(watcher, interval)

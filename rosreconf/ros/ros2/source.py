@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from rosreconf.errors import ExternalToolError
+from rosreconf.errors import ExternalToolError, UnsettledGraphError
 from rosreconf.procs import Background, start_program
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion
@@ -71,8 +71,9 @@ class Ros2Source:
 
         Raises:
             ExternalToolError: no ROS 2 participant answered on the domain, or some did but
-                no node name could be read (a wrong ``--distro``, a broken writer), or a
-                participant's newest node list never arrived (``stale``: a partial answer).
+                no node name could be read (a wrong ``--distro``, a broken writer).
+            UnsettledGraphError: a participant's newest node list has not arrived
+                (``stale``: a partial answer).
         """
         first = self._session is None
         if self._session is None:
@@ -86,7 +87,7 @@ class Ros2Source:
             time.sleep(0.02)
             graph = session.read()
         if session.stale:
-            raise ExternalToolError(
+            raise UnsettledGraphError(
                 f"{self._where}: {len(session.stale)} ROS 2 participant(s) announce endpoints "
                 "that no node of their ros_discovery_info names, still after the read's wait: "
                 "their newest ros_discovery_info was not received or did not decode, so their "
