@@ -1,6 +1,6 @@
 """Measure rosreconf: whole processes against references, and the solvers in-process.
 
-Six parts, all written to benchmarks/results.json and printed as tables:
+Seven parts, all written to benchmarks/results.json and printed as tables:
 
 * ``whole_process`` (``whole.py``): the commands a user runs against the references of
   issue 12, in interleaved pairs, CPU seconds of each whole process.
@@ -12,6 +12,7 @@ Six parts, all written to benchmarks/results.json and printed as tables:
   new configuration, against Fast Downward's own time on the same task.
 * ``recovery`` (``recovery.py``): whole process, real nodes: ``kill -9`` to ``conformant``.
 * ``simulate`` (``sweep.py``): the M-solution sweep with 1 and 2 workers.
+* ``soak`` (``soak.py``): whole process, real nodes: watch's RSS over 40 repairs.
 
 ``--quick`` runs a tiny version of each; ``benchmarks/selfcheck.py`` (first in ``make bench``)
 runs it and checks that every table and JSON entry comes out.
@@ -35,6 +36,7 @@ from loading import loading
 from recovery import recovery
 from recovery import table as recovery_table
 from rows import OK, GridRow, GrowthRow, Measured, machine
+from soak import soak
 from sweep import SIMULATE_SIZE, simulate_sweep, update_simulate
 from tables import grid_table, growth_table, markdown, whole_table
 from whole import import_floor, whole_process
@@ -172,6 +174,11 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
             if quick
             else recovery(5)
         )
+        soaked = (
+            {"status": "skipped in --quick (real nodes, minutes: make bench)"}
+            if quick
+            else soak(40, tmp)
+        )
         rows = grid(tmp, quick, timeout, clingo_timeout)
         where, flat = streaming(tmp, quick, timeout)
         r, k = (8, 2) if quick else SIMULATE_SIZE
@@ -189,6 +196,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
         "growth": grown,
         "watch": watched,
         "recovery": recovered,
+        "soak": soaked,
         "grid_scope": "in-process (YAML loading excluded), fresh child per cell",
         "grid": [row.to_json() for row in rows],
         "streaming_rss_kib": flat,
@@ -203,6 +211,8 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
     console.print(f"watch (in-process): {watched}")
     console.print("recovery (whole process, real nodes, median seconds):")
     console.print(recovery_table(recovered), markup=False)
+    shown = {k: v for k, v in soaked.items() if k != "samples_kib"}
+    console.print(f"soak (whole process, real nodes): {shown}", markup=False)
     console.print(grid_table(rows, KINDS))
     console.print(
         f"import rosreconf vs python -c pass (whole-process CPU): {floor.ratio or 0.0:.2f}x; "

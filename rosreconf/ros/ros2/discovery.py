@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Collection
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import Any
@@ -108,6 +109,7 @@ class Ros2Discovery:
     _domain: Any = field(default=None, repr=False)
     _writer_of: dict[int, bytes] = field(default_factory=dict, repr=False)
     _info_writer_since: dict[bytes, float] = field(default_factory=dict, repr=False)
+    _present: frozenset[bytes] = frozenset()
     forged: int = 0
     """How many ``ros_discovery_info`` samples named a participant other than their writer's."""
     undecodable: frozenset[bytes] = frozenset()
@@ -265,6 +267,21 @@ class Ros2Discovery:
                 if old is None or old[0] == size or size in self._layout_hint(key):
                     self._infos[key] = (size, nodes)
 
+    def _forget(self, gone: Collection[bytes]) -> None:
+        """Drop what is kept of participants that left: a watch that repairs for days sees
+        new processes, each a new participant, on every repair.
+
+        Only those seen and then gone: a ``ros_discovery_info`` sample can arrive before its
+        participant is discovered, and it is sent once (transient local); a participant found
+        again after its lease ran out is matched anew and sends it again.
+        """
+        if not gone:
+            return
+        for k in gone:
+            self._infos.pop(k, None)
+            self._info_writer_since.pop(k, None)
+        self._writer_of = {h: p for h, p in self._writer_of.items() if p not in gone}
+
     def _writer(self, reader: Any, handle: int) -> bytes | None:
         """Return the participant GUID of the writer behind ``handle`` (cached; None: gone)."""
         if handle not in self._writer_of:
@@ -300,6 +317,8 @@ class Ros2Discovery:
         while True:
             taken_at = datetime.now(UTC)
             participants = self._participants()
+            self._forget(self._present - participants.keys())
+            self._present = frozenset(participants)
             self._last_endpoints = endpoints = self._endpoints()
             self._take_infos()
             ros = {k for k, ud in participants.items() if b"enclave=" in ud}
