@@ -69,11 +69,12 @@ typecheck: $(STAMP)
 # and ROS master ports (tests/ros2_harness.py, tests/ros_harness.py); the tests on many real
 # ROS 2 nodes run in two lanes (tests/conftest.py, LIVE_ROS2_LANES). TEST_WORKERS=0: one process.
 # Bytecode is written even where PYTHONDONTWRITEBYTECODE is set: otherwise every worker and
-# every `python -m rosreconf` the tests start compiles the same sources again.
+# every `python -m rosreconf` the tests start compiles the same sources again. The 40 slowest
+# tests are listed at the end: where the suite's time goes, in every CI log.
 TEST_WORKERS ?= 4
 pytest: $(STAMP)
 	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 PYTHONDONTWRITEBYTECODE= \
-	  $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup
+	  $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup --durations=40
 
 ## Search for new counterexamples by hand: only the property tests, random seeds, 50 times the
 ## examples. Pin what it finds with @example; failures replay from .hypothesis until fixed.
