@@ -307,7 +307,7 @@ def check_file_sizes(generated: Generated) -> None:
     """Refuse files that ``validate`` would refuse for their size, before either is written.
 
     ``MAX_COMPONENTS`` bounds the components, not the bytes: 100,000 roles of 2 candidates
-    with dynamics made a 79.6 MB library that every other command refuses (issue 32, S16).
+    with dynamics made a 79.6 MB library that every other command refuses.
 
     Raises:
         ValueError: a file is over ``resources.MAX_YAML_BYTES``; says its size and the limit.

@@ -13,7 +13,7 @@ roles, the configurations with the fewest changes among those that perform are t
 one by one and judged.
 
 Memory and time are bounded (``Budget``): peak memory grows with the configurations tried,
-never with how many valid ones exist (issue 22: 24 GB and a kill on 1000 roles x 10
+never with how many valid ones exist (once: 24 GB and a kill on 1000 roles x 10
 candidates with 40 failures). When the budget runs out, ``SearchExhausted`` says what was
 tried and the best found (exit 3).
 """

@@ -9,7 +9,7 @@ importing python-control imports scipy.signal, scipy.stats and matplotlib.pyplot
 of CPU per process, more than simulating a few hundred distinct loops takes, in a command
 whose whole-process time is its benchmark. Only numpy is imported: the matrix exponential
 and the balancing are ``matfuncs``'s, written as scipy.linalg computes them, because
-importing scipy.linalg costs ``plan`` over a quarter of its whole-process CPU (issue 24).
+importing scipy.linalg costs ``plan`` over a quarter of its whole-process CPU.
 """
 
 from __future__ import annotations

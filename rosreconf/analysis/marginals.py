@@ -192,7 +192,7 @@ def _all_but_one(
     A few inputs are joined afresh for each child. Many (a hub's 10,000 consumers, a
     fan-in's 2,000 providers) would make that quadratic, so the joins of the inputs after
     each one are made once, right to left, and combined with a running join of those before
-    it: linear in the inputs (issue 22).
+    it: linear in the inputs.
     """
     tables = [f for f, _ in inputs]
     if len(inputs) <= SMALL_STEP:

@@ -5,7 +5,7 @@ diagonal balancing of its companion matrix and the matrix exponential of the aug
 system. scipy.linalg offers both, but importing it costs about 0.3 s of CPU per process:
 ``plan --fail NSM3`` on the bundled example took 27 % more CPU with it and ``simulate`` 87 %
 more (once per worker), to compute a handful of 5x5 to 30x30 matrices, and it computes the
-same figures (docs/PERFORMANCE.md, "What stayed and why", issue 24). So both are written
+same figures (docs/PERFORMANCE.md, "What stayed and why"). So both are written
 out here on numpy, step for step as scipy 1.17 computes them, and tests/test_lti.py holds
 them to ``scipy.linalg.expm`` and ``scipy.linalg.matrix_balance`` on random,
 ill-conditioned, stiff, triangular, nilpotent and large-norm matrices.

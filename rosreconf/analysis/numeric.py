@@ -4,7 +4,7 @@ The simulation computes on 5x5 to 30x30 matrices, where BLAS threads only add
 synchronisation, so it runs single-threaded (``performance.single_threaded_blas``). Limiting
 after the fact is not free, though: numpy's bundled OpenBLAS starts one thread per core when
 it is loaded, and on a busy two-core machine those threads' start-up cost 30 to 60 ms of CPU
-per process, a twentieth of ``plan``'s whole-process time (issue 12). OpenBLAS reads
+per process, a twentieth of ``plan``'s whole-process time. OpenBLAS reads
 ``OPENBLAS_NUM_THREADS`` once, when it is loaded, so the simulation's modules import numpy
 from here: if numpy is not loaded yet and the user has not chosen a thread count, the
 variable is set to 1 for the import and removed right after. Nothing else sees it: programs

@@ -27,7 +27,7 @@ from rosreconf.solve.solver import ClingoEngine
 EXACT_CELLS = 2_000_000
 """Most (configuration, role) cells the exact analysis lists: 5,000 configurations of 400
 roles, or 3 of 600,000. Past it the configurations are not listed, whatever their number,
-so that their length alone cannot exhaust memory (issue 32, N5)."""
+so that their length alone cannot exhaust memory."""
 
 MC_BLOCK = 1_000
 """Failure states drawn as one array (1,000 x 10,000 components is 10 MB)."""
@@ -74,11 +74,11 @@ def exact_probability(configs: Iterable[frozenset[str]], p: dict[str, float]) ->
     removes x from them; memoised on the (absorbed) set of configurations. A single
     configuration is the product of its components' chances. The expansion runs on an
     explicit stack: it is as deep as a configuration is long, and a chain of 500 roles
-    overflowed Python's recursion limit (issue 22).
+    overflowed Python's recursion limit.
 
     The configurations are first reduced by ``_merge_alike``: without it the memo held one
     state per component of a long configuration, each as long as the configuration, and a
-    hub of 3 candidates with 10,000 consumers ran out of 6 GB (issue 32, N5).
+    hub of 3 candidates with 10,000 consumers ran out of 6 GB.
     """
     memo: dict[State, float] = {}
     splits: dict[State, tuple[str, State, State]] = {}

@@ -120,7 +120,7 @@ def check_metrics(library: ComponentLibrary, names: Iterable[str]) -> tuple[str,
 DEFAULT_LIMIT = 1000
 """Configurations ``rosreconf simulate`` simulates per schema unless ``--limit`` says otherwise.
 
-Without a bound a schema of 10^97 configurations grew to 6.7 GB in two minutes (issue 22);
+Without a bound a schema of 10^97 configurations grew to 6.7 GB in two minutes;
 the output says when the limit stopped the listing, and the ranking is over what was
 simulated."""
 

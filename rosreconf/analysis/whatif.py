@@ -60,7 +60,7 @@ __all__ = [  # the unit of work lives in failsolve; these names are its document
 LISTED = 10_000
 """Most failure sets a report keeps for listing (the JSON's ``failure_sets``), fewest first.
 
-Every set used to be kept: ``-k 2`` on 1000 roles x 10 candidates reached 8.9 GB (issue 22).
+Every set used to be kept: ``-k 2`` on 1000 roles x 10 candidates reached 8.9 GB.
 The summaries (shares, critical components and pairs) are reduced from every set as it is
 decided; only sets smaller than the largest asked for are kept whole, for pruning."""
 
@@ -154,7 +154,7 @@ class SchemaReport:
 SWEEP_TIME = 600.0
 """Default most seconds a ``whatif`` sweep takes before it stops with exit 3 (``--search-time``).
 
-``-k 2`` on 1000 roles x 10 candidates ran past 300 s (issue 22): C(9962, 2) pairs, and a
+``-k 2`` on 1000 roles x 10 candidates ran past 300 s: C(9962, 2) pairs, and a
 solve for every pair of the first configuration's components without a working twin."""
 
 

@@ -3,7 +3,7 @@
 Each verb lives in ``rosreconf/cli/<verb>.py`` as a plain function with typer annotations.
 ``COMMANDS`` names them, with their one-line summaries, and nothing imports a verb's module
 until that verb runs (or shows its own ``--help``): ``rosreconf --help`` and ``validate`` then
-never load clingo, networkx, Jinja, the planners or a ROS client (issue 12; the test
+never load clingo, networkx, Jinja, the planners or a ROS client (whole-process time; the test
 ``tests/test_cli_imports.py`` holds this, and that each summary is its docstring's first line).
 
 Library code raises ``RosreconfError``; ``guard`` turns it into one line on stderr and the
@@ -180,7 +180,7 @@ def _stop_dropped(args: Any) -> None:
 
     A signal's exception raised inside a finalizer or a weakref callback (an import's module
     lock has one; the garbage collector runs them at any allocation) cannot propagate: Python
-    prints it and the run goes on as if no signal came (fresh clone fc166: a capped
+    prints it and the run goes on as if no signal came (once, a capped
     ``enumerate --limit 1000000`` was still running 60 s after SIGINT). Here it ends the run as
     ``guard`` would, at once: one line, 130 or 143, no half document left in a file; the
     children die with rosreconf (parent-death signal) and its temp folders go with a later run.

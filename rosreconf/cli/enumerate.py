@@ -31,7 +31,7 @@ from rosreconf.solve.objective import Objective
 
 if TYPE_CHECKING:
     # Pictures (Graphviz, networkx) are imported only when --graph asks for one: a plain
-    # listing pays for neither (issue 12: whole-process time of every command).
+    # listing pays for neither (whole-process time of every command).
     from rosreconf.render.pictures import RosPicture
 
 

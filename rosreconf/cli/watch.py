@@ -154,7 +154,7 @@ def watch_command(
     """Watch the live system; when a node fails, replan with the fewest changes (and apply).
 
     Logs every decision with a timestamp on stderr. Ctrl-C or SIGTERM stops everything it
-    started (within 5 s; exit 130 or 143). With --apply, launch files and output are kept in a
+    started (within 4 s; exit 130 or 143). With --apply, launch files and output are kept in a
     new directory rosreconf-watch-* under ROS's log directory (said at the start). ROS 2 nodes
     run as ros2 run starts them (<prefix>/lib/<package>/<executable>); stand-ins and
     rosreconf's ROS 2 helpers run under ROSRECONF_ROS2_PYTHON or the first python3 with rclpy

@@ -133,7 +133,7 @@ class _TreeAgain:
 
     Each component held its file's tree before, so every tree of a load lived as long as the
     library: ``validate`` on 10,000 roles x 10 candidates (100,000 components, 28 MB of YAML)
-    peaked at 1.53 GB, against 0.40 GB with the reader before issue 30, which kept no tree.
+    peaked at 1.53 GB, against 0.40 GB with an earlier reader that kept no tree.
     The last tree composed is kept (``_composed``), so the problems of one file compose it
     once; the bytes are the ones read, not the file as it is on disk now.
     """

@@ -207,7 +207,7 @@ RULES: tuple[Rule, ...] = (
     ),
     Rule(
         "optional-edge",
-        "extension (edges only some candidates use; issue 10)",
+        "extension (edges only some candidates use)",
         "an optional edge need not be realised, but requirements may still be met across it",
         (),
         {
@@ -220,8 +220,7 @@ RULES: tuple[Rule, ...] = (
     ),
     Rule(
         "optional-role",
-        "extension (roles a stack may leave empty: an add-on EKF, a map server under SLAM; "
-        "issue 22)",
+        "extension (roles a stack may leave empty: an add-on EKF, a map server under SLAM)",
         "an optional role may be left empty; an edge touching an empty role imposes nothing, "
         "but every requirement of every chosen component is still met along the remaining "
         "edges (so a consumer only that role can serve forces it to be filled)",

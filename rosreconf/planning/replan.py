@@ -175,7 +175,7 @@ def _performing(
     stands and nothing is passed over. Otherwise the planner is pinned to the chosen target:
     its task offers only the target's components (the caller's ``render`` of an instance
     without the others). Forbidding every other valid configuration in the task instead
-    stopped at 2000 of them (issue 22: 1000 roles x 10 candidates have 10^900), and a note
+    stopped at 2000 of them (1000 roles x 10 candidates have 10^900), and a note
     says why the fewest-change configuration was passed over.
     """
     from rosreconf.analysis.choice import choose, shortfall  # imports numpy

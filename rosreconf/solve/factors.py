@@ -269,7 +269,7 @@ def elimination_order(scopes: list[tuple[int, ...]], n: int) -> list[int]:
     order: list[int] = []
     done = [False] * n
     # a heap of (degree, role) with stale entries skipped: scanning every degree and every
-    # role of the least one was quadratic in a hub's 10,000 consumers (issue 22)
+    # role of the least one was quadratic in a hub's 10,000 consumers
     heap = [(len(adjacent[v]), v) for v in range(n)]
     heapq.heapify(heap)
     while heap:

@@ -31,7 +31,7 @@ from rosreconf.solve.unfillable import explain
 
 if TYPE_CHECKING:
     # clingo is imported where it runs: a first configuration or an optimum that elimination
-    # finds never loads it (issue 12: whole-process time)
+    # finds never loads it (whole-process time)
     import clingo
 
 LOG = logging.getLogger(__name__)
@@ -184,7 +184,7 @@ class _Reader:
     and their numbers was five, and made up most of enumerating ten thousand models. Each
     (role, component) pair is made once here and shared by every configuration that holds
     it: a configuration then costs one pointer per role, not a new pair (10,000
-    configurations of 1,000 roles held 640 MB of identical pairs; issue 32, S13).
+    configurations of 1,000 roles held 640 MB of identical pairs).
     """
 
     def __init__(self, inst: Instance) -> None:

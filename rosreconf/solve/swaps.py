@@ -7,7 +7,7 @@ the other is valid too. So when a failure set hits a known valid configuration o
 components that have a working twin, that configuration with the twins swapped in is a
 valid configuration that avoids every failure, found without a solver. It proves survival
 only: when some failed component has no working twin, nothing is concluded and the caller
-asks a solver (issue 22: ``whatif -k 1`` on a hub of 10^4 consumers made one clingo solve
+asks a solver (``whatif -k 1`` on a hub of 10^4 consumers made one clingo solve
 per failure, over 300 s, though every consumer had a twin).
 """
 

@@ -101,7 +101,7 @@ def document(result: Sweep) -> Iterator[str]:
     pieces are yielded one configuration at a time for the caller to write as they come: the
     document as one string (and the list of its configurations before the join) held it
     three times over, 2.1 GB for ``--limit 10000`` of 1,000 roles, and ``--limit 30000`` ran
-    out of memory in the join (issue 32, S13).
+    out of memory in the join.
     """
     failed = _dumps(list(result.failed))
     yield f'{{"failed": {failed}, "schemas": ['

@@ -80,7 +80,7 @@ class Ros2Actuator(Actuator):
 
         A process stopped without a DDS goodbye (SIGKILLed, or its goodbye lost) is announced
         until its lease ends, and a node started anew under its name would then be two: the
-        dead one's state query, unanswered, read as the new one's "hung" (fresh clone fc177).
+        dead one's state query, unanswered, read as the new one's "hung".
         Taken from the last read, before any restart: each participant naming a stopped node
         whose Fast DDS GUID carries that process's pid (another vendor's carries none, and
         its node name is then what tells). The lifecycle state read back from a stopped

@@ -21,8 +21,8 @@ Any reply on the topic tells the state, whoever asked. Nothing here prints.
 This is the fast path, kept beside the rclpy lifecycle agent (``rosreconf.ros.ros2.lifecycle``,
 which performs transitions and whose ``get_state`` calls confirm them): ``watch`` reads every
 managed node's state on every poll, with at most ``STATES_TIMEOUT`` (0.1 s) to wait, and a
-``StateReader`` kept across polls keeps its request/reply pairs matched. Measured on main
-(issue 30): a full graph read with states takes 18 ms median with the kept pairs, 45 ms when
+``StateReader`` kept across polls keeps its request/reply pairs matched. Measured: a full
+graph read with states takes 18 ms median with the kept pairs, 45 ms when
 each read makes new request/reply pairs; an rclpy call goes through the agent's JSON-lines
 pipe on top of that. So states are read here and changed there.
 """
@@ -211,7 +211,7 @@ def _qos(dds: Any, *, reliable: bool) -> Any:
     bursts, while tests start their nodes) holds every later reply of that node behind it
     until the server's writer says what it sent, and Fast DDS says so every 3 s (its default
     heartbeat period). The node then looks silent for up to 3 s, and ``unanswered`` (hung)
-    after 1.5 s: the likely cause of fresh clone fc198, twelve healthy nodes failed at once
+    after 1.5 s: the likely cause of twelve healthy nodes once failed at once
     as hung just after twelve standbys started. Measured with every fifth answer the
     reader's process receives lost (``tests/faults/drop_received.c``, 40 reads 0.3 s apart,
     Jazzy and Kilted alike): 11 of 40 reads said a healthy node ``unanswered`` with a

@@ -1,4 +1,4 @@
-"""Watch the processes of configuration nodes rosreconf did not start (issue 31, detection).
+"""Watch the processes of configuration nodes rosreconf did not start (detection).
 
 A node the team's own launch files started is seen failing by DDS only when its lease runs
 out (Fast DDS: 20 s). On this host its process can be watched instead: ``hostprocs``
@@ -65,8 +65,8 @@ class OutsideNodes:
         ended: the participants of processes found exited or hung, until ``take_ended``:
             what the graph must leave out (DDS announces them until their lease ends). The
             participant, never the node name: a team may have restarted the node already,
-            and its new participant must be seen (fc42, fc66: a restart by hand noticed
-            before its predecessor's exit was hidden for ever).
+            and its new participant must be seen (a restart by hand noticed before its
+            predecessor's exit was hidden for ever, when the name was hidden).
     """
 
     domain: int
