@@ -15,12 +15,48 @@ said only when it lasts ``UNSETTLED_SAID_AFTER`` s (``graph-unsettled``, then
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 from rosreconf.errors import ExternalToolError, UnsettledGraphError
 from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.events import Event
-from rosreconf.ros.watcher import Watcher
+
+
+class Pollable(Protocol):
+    """What the loop asks of a watcher (``rosreconf.ros.watcher.Watcher`` is one).
+
+    The seam between deciding a step and deciding when to step: the loop's own behaviour
+    (retries, what it says of failed reads, waking early) is tested with a stand-in watcher.
+    """
+
+    @property
+    def schema(self) -> Any:
+        """The interoperability schema watched (its simulation part is loaded first)."""
+
+    @property
+    def log(self) -> Callable[[Event], None]:
+        """Where events go."""
+
+    @property
+    def stop_requested(self) -> Callable[[], bool]:
+        """Tell whether a stop was asked."""
+
+    def step(self) -> Conformance:
+        """Look once and act on what is seen; raise ``ExternalToolError`` if it cannot read."""
+
+    def has_read(self) -> bool:
+        """Tell whether a read has succeeded."""
+
+    def replan_due(self) -> bool:
+        """Tell whether a failure waits for its replan."""
+
+    def exited(self) -> bool:
+        """Tell whether a watched process ended or hung since the last step."""
+
+    def due_at(self) -> float | None:
+        """Return when a waiting restart is due (monotonic seconds), if any."""
 
 SLICE = 0.02
 """Seconds between looks at the watched processes and the stop request while sleeping."""
@@ -37,7 +73,7 @@ class _Outage:
     began: float | None = None
     said: str | None = None  # the event that began it: master-lost or graph-unsettled
 
-    def failed(self, watcher: Watcher, exc: ExternalToolError, interval: float) -> None:
+    def failed(self, watcher: Pollable, exc: ExternalToolError, interval: float) -> None:
         """Note a failed read; say the outage when it is a lost source, or lasts."""
         now = time.monotonic()
         self.began = now if self.began is None else self.began
@@ -51,7 +87,7 @@ class _Outage:
             lasted = now - self.began
             watcher.log(Event(self.said, f"{exc}; for {lasted:.1f} s now, retrying"))
 
-    def ended(self, watcher: Watcher) -> None:
+    def ended(self, watcher: Pollable) -> None:
         """Note a good read; say the end of an outage that was said."""
         if self.began is not None and self.said is not None:
             gone = time.monotonic() - self.began
@@ -64,7 +100,7 @@ class _Outage:
         self.began, self.said = None, None
 
 
-def poll(watcher: Watcher, interval: float, *, once: bool = False) -> Conformance:
+def poll(watcher: Pollable, interval: float, *, once: bool = False) -> Conformance:
     """Step ``watcher`` every ``interval`` seconds until stopped; with ``once``, step once.
 
     Returns the last conformance check.
@@ -96,7 +132,7 @@ def poll(watcher: Watcher, interval: float, *, once: bool = False) -> Conformanc
             return check
 
 
-def _wait(watcher: Watcher, seconds: float) -> None:
+def _wait(watcher: Pollable, seconds: float) -> None:
     """Sleep between polls; end early when a node process exits or a stop is asked."""
     if watcher.replan_due():
         return  # a failure seen while confirming: replan now
