@@ -58,6 +58,7 @@ class Pollable(Protocol):
     def due_at(self) -> float | None:
         """Return when a waiting restart is due (monotonic seconds), if any."""
 
+
 SLICE = 0.02
 """Seconds between looks at the watched processes and the stop request while sleeping."""
 
