@@ -117,7 +117,8 @@ def evaluate_chunk(chunk: Chunk) -> list[Outcome]:
 @dataclass
 class _Atoms:
     """A task's ``x(role, component id)`` atoms, both ways (reading a symbol's arguments
-    cost five calls into clingo per atom, 20 s of 52 on 414 models of 1000 roles)."""
+    cost five calls into clingo per atom, 20 s of 52 on 414 models of 1000 roles).
+    """
 
     atom: dict[tuple[int, int], clingo.Symbol]
     pair: dict[clingo.Symbol, tuple[int, int]]

@@ -284,7 +284,8 @@ def ros_graph(
 
 def graph_dict(g: RosGraph) -> dict[str, list[dict[str, str]]]:
     """Return a ROS-graph as the JSON shape of docs/json.md (nodes, topics, services, actions,
-    edges)."""
+    edges).
+    """
     out: dict[str, list[dict[str, str]]] = {
         "nodes": [],
         "topics": [],

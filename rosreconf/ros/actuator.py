@@ -149,7 +149,8 @@ class Actuator(Protocol):
 
     def theirs(self) -> frozenset[str]:
         """Return the components found running in a process rosreconf did not start (what
-        started it restarts it; ``Restarts.last_resort``). Default: none known."""
+        started it restarts it; ``Restarts.last_resort``). Default: none known.
+        """
         return frozenset()
 
     def awaited(self) -> frozenset[str]:
@@ -171,7 +172,8 @@ class Actuator(Protocol):
 
     def squatter(self, component: str, role: str, node: str, beside: bool) -> bool:
         """Name, or stop, a node holding ``component``'s name that is not it (``clashes``);
-        True when it was stopped (the name is free)."""
+        True when it was stopped (the name is free).
+        """
         return False
 
     def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:

@@ -129,7 +129,8 @@ def dangling_findings(
 @dataclass
 class _Offers:
     """Who offers what on the live graph: the answering nodes, the actions they carry, and
-    the graph's ROS version (1 or 2: how a rule moving an action is written)."""
+    the graph's ROS version (1 or 2: how a rule moving an action is written).
+    """
 
     answering: dict[str, LiveNode]
     actions: dict[str, LiveAction]

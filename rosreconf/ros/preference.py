@@ -80,7 +80,8 @@ class Preference:
         unavailable: Collection[str],
     ) -> tuple[Configuration, list[Change]] | None:
         """Return the preferred configuration and the changes back to it, when it is time
-        (``due``; said, event ``return``), else None."""
+        (``due``; said, event ``return``), else None.
+        """
         back = self.due(current, unavailable)
         if back is None:
             return None

@@ -79,7 +79,8 @@ def changes_between(
     new: Configuration,
 ) -> list[Change]:
     """Return the changes from ``old`` to ``new``: each role whose component changes, and
-    each kept component that restarts to be rewired (its providers changed)."""
+    each kept component that restarts to be rewired (its providers changed).
+    """
     before = old.mapping
     rewired = rewiring(library, schema, before, new.mapping)
     return [

@@ -213,7 +213,8 @@ class Restarts:
     def drop(self, comp: str) -> None:
         """End ``comp``'s hold now, unsaid: it runs again (restarted by hand, ``outsiders``).
 
-        Counted as a release for the backoff: a failure soon after holds it longer."""
+        Counted as a release for the backoff: a failure soon after holds it longer.
+        """
         if self.held.pop(comp, None) is not None:
             self.holds[comp] = (self.holds[comp][0], time.monotonic())
 

@@ -81,7 +81,8 @@ class Missing:
         say: Callable[..., None],
     ) -> list[str]:
         """Say what is stuck (launched and never up, or not started without ``apply``);
-        return the others, to start now: what never came up is not launched on every poll."""
+        return the others, to start now: what never came up is not launched on every poll.
+        """
         stuck, why = actuator.not_running(missing)
         if not apply:
             stuck, why = missing, "use --apply to start"

@@ -259,7 +259,8 @@ class Ros2Actuator(Actuator):
 
     def squatter(self, component: str, role: str, node: str, beside: bool) -> bool:
         """Name, or stop (``--stop-outside``), a node squatting on ``component``'s name;
-        True when its process was stopped."""
+        True when its process was stopped.
+        """
         return self.squatting.squatter(component, role, node, beside)
 
     def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:
@@ -301,7 +302,8 @@ class Ros2Launch(LaunchActuator):
 
     def exits(self, current: Configuration, failed: Collection[str], *, tend: bool) -> set[str]:
         """Read the launch processes; while confirming, launch the newcomers whose node name
-        is free now (a poll starts them as missing components, and confirms)."""
+        is free now (a poll starts them as missing components, and confirms).
+        """
         now = super().exits(current, failed, tend=tend)
         due = [] if tend else self.names.due(current.components)  # a poll: missing ones
         if due:

@@ -144,7 +144,8 @@ class ByHand:
 
     def left_running(self, check: Conformance) -> bool:
         """Say what is left when only nodes for a person keep ``check`` from conforming, and
-        again whenever what is wrong changes; True in that case."""
+        again whenever what is wrong changes; True in that case.
+        """
         for node in set(self.nodes) - set(check.live.names):  # stopped by a person
             if self.nodes[node] not in self.restarting:  # one to restart is half done: gone
                 del self.nodes[node]

@@ -154,7 +154,8 @@ class Ros2Control:
 
     def ended_participants(self) -> set[bytes]:
         """Return the participants of outside processes found exited or hung since last asked:
-        DDS announces them until their lease ends, so the graph must leave them out."""
+        DDS announces them until their lease ends, so the graph must leave them out.
+        """
         return self.outside.take_ended() if self.outside is not None else set()
 
     def any_exited(self) -> bool:
@@ -216,7 +217,8 @@ class Ros2Control:
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes whose process rosreconf saw exit.
 
-        The lifecycle states and names read are kept for ``tend``: parked standbys' too."""
+        The lifecycle states and names read are kept for ``tend``: parked standbys' too.
+        """
         self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
         self.standbys.saw(self.read_states)
         self.bringup.saw(self.read_states)

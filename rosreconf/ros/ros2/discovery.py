@@ -26,7 +26,8 @@ samples never decode (another Gid layout) is undecodable after ``UNDECODABLE_AFT
 waited for. When a participant's newest sample fails to decode (once in 7 reads at 40 Jazzy
 nodes), its ROS endpoints are named by no node of the older sample (``stale``): the read then
 makes fresh readers, at most every ``RENEW_EVERY`` s, which are sent the newest sample again.
-KEEP_ALL, newest per participant."""
+KEEP_ALL, newest per participant.
+"""
 
 from __future__ import annotations
 

@@ -39,7 +39,8 @@ def low_pid(pid: int) -> int:
 
 def may_be_of(guid: bytes, pid: int) -> bool:
     """Tell whether participant ``guid`` may be process ``pid``'s: a Fast DDS GUID must carry
-    its low pid bits; another vendor's carries nothing to tell by."""
+    its low pid bits; another vendor's carries nothing to tell by.
+    """
     fields = fastdds_fields(guid)
     return fields is None or fields[1] == low_pid(pid)
 

@@ -270,7 +270,8 @@ class OutsideNodes:
         self, proc: ProcId, guid: bytes | None, node: str, names: tuple[str, ...]
     ) -> StopResult:
         """Stop ``proc``, said to run participant ``guid`` and ``node`` (and ``names``), only
-        once the kernel proved it sends that participant's datagrams (``provenance``)."""
+        once the kernel proved it sends that participant's datagrams (``provenance``).
+        """
         if self._sources is None or guid is None:
             why = "no evidence was gathered"
         elif (unproven := self._sources.unproven(guid, proc)) is not None:

@@ -194,7 +194,8 @@ class Standbys:
 
     def replace_hung(self, states: Mapping[str, str | None]) -> None:
         """Stop each hung standby and start it anew for the configuration it would join;
-        start again any that exited (``lost``)."""
+        start again any that exited (``lost``).
+        """
         standing = [c for c in self.nodes.nodes if self.node_of(c) in self.parked]
         hung = self.hung(standing, states)
         if not hung and not self.lost:
