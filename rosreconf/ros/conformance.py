@@ -1,8 +1,10 @@
-"""Compare what a ROS master says is running with the ROS-graph a configuration should have.
+"""Compare the live graph of a running system with the ROS-graph a configuration should have.
 
-The expected ROS-graph (Def. 1) comes from ``rosreconf.model.validity.ros_graph``; the live one from
-``rosreconf.ros.ros1.rosmaster.read_live_graph``. They speak different names: the model names nodes
-after components and interfaces after labels (Omega), the master uses global ROS names. One
+The expected ROS-graph (Def. 1) comes from ``rosreconf.model.validity.ros_graph``; the live one
+from the middleware: what a ROS 1 master lists (``rosreconf.ros.ros1.rosmaster``) or what ROS 2
+nodes announce over DDS discovery (``rosreconf.ros.ros2.discovery``), both as a ``LiveGraph``.
+They speak different names: the model names nodes after components and interfaces after labels
+(Omega), the live graph uses global ROS names. One
 pair of functions maps model names to live names, and everything here goes through them::
 
     model                                   live (global ROS name)

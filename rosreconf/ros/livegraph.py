@@ -1,9 +1,12 @@
-"""The graph of a running ROS 1 system as its master reports it, and its JSON snapshot.
+"""The graph of a running ROS system at one moment, and its JSON snapshot.
 
-A ``LiveGraph`` is what ``rosreconf.ros.ros1.rosmaster.read_live_graph`` saw at one moment;
-keeping it free of I/O lets a saved snapshot be reviewed, diffed and tested without any master.
+A ``LiveGraph`` is what one read saw: a ROS 1 master's answers
+(``rosreconf.ros.ros1.rosmaster.read_live_graph``) or a ROS 2 domain's DDS discovery
+(``rosreconf.ros.ros2.discovery``: nodes from each participant's ``ros_discovery_info``, their
+endpoints, types and QoS, actions and lifecycle states; ``ros_version`` says which). Keeping
+it free of I/O lets a saved snapshot be reviewed, diffed and tested without any middleware.
 
-How the master's answers map onto this module::
+How a ROS 1 master's answers map onto this module (ROS 2's discovery: docs/ros2.md)::
 
     master / node API                      here
     -------------------------------------  ------------------------------------------

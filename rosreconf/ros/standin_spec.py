@@ -1,4 +1,7 @@
-"""Name and describe a stand-in node: what ``rosreconf.ros.standin_node`` must act out.
+"""Name and describe a stand-in node: what a stand-in must act out, on either middleware.
+
+The ROS 1 stand-in (``ros/ros1/scripts/standin_node.py``, under roslaunch) and the ROS 2 one
+(``ros/ros2/scripts/standin_node.py``, an rclpy node) read the specs written here.
 
 Pure data, apart from the module that starts roslaunch (``rosreconf.ros.ros1.standins``), so that
 writing a launch file (``rosreconf.ros.launchfiles``) needs no process machinery.

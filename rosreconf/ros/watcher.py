@@ -7,14 +7,13 @@ with ``apply`` has its ``Actuator`` retire the components that must go and start
 ones, then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
-does not answer (SIGKILLed nodes linger in the master; they are then purged), or it was seen
-alive by this watcher and is gone now. A component never seen is only *missing*: with
-``apply`` it is started (so a watcher can also bring a configuration up); without, it is
-only reported.
-
-A restarted master (new pid or ``/run_id``; ``LiveSource.restarted``) is said, not counted
-as failures, and checked again (with ``apply``, what the actuator started is stopped and the
-configuration restarted).
+does not answer (ROS 1: SIGKILLed nodes linger in the master; they are then purged), or its
+process was seen to exit or hang (ROS 2: no DDS lease to wait for), or it was seen alive by
+this watcher and is gone now. A component never seen is only *missing*: with ``apply`` it is
+started (so a watcher can also bring a configuration up); without, it is only reported. A
+restarted ROS 1 master (new pid or ``/run_id``; ``LiveSource.restarted``) is said, not
+counted as failures, and checked again (with ``apply``, what the actuator started is stopped
+and the configuration restarted).
 
 The watcher decides; an ``Actuator`` (``rosreconf.ros.actuator``), made by the source, acts:
 roslaunch on ROS 1; on ROS 2 each node's own process (a process of its own that exits is a
