@@ -32,13 +32,14 @@ from typing import Any
 
 # This folder is the script's sys.path[0]: its modules import each other by name.
 from children import FD_TIMEOUT, child_main, measure, run_child, write_in_child
+from docsections import markdown
 from loading import loading
 from recovery import recovery
 from recovery import table as recovery_table
 from rows import OK, GridRow, GrowthRow, Measured, machine
 from soak import soak
 from sweep import SIMULATE_SIZE, simulate_sweep, update_simulate
-from tables import grid_table, growth_table, markdown, whole_table
+from tables import grid_table, growth_table, whole_table
 from whole import import_floor, whole_process
 
 HERE = Path(__file__).resolve().parent

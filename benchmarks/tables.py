@@ -1,68 +1,15 @@
 """The tables ``run.py`` prints, and the Markdown of results.json that docs/PERFORMANCE.md shows.
 
-``markdown`` reads results.json as written (``run.py --markdown``); the rich tables show the
-rows of the run just made.
+The rich tables show the rows of the run just made; the Markdown of results.json, which
+docs/PERFORMANCE.md shows, is ``docsections``'.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from loading import markdown as loading_markdown
-from recovery import table as recovery_table
 from rich.table import Table
 from rows import OK, GridRow, Measured, Pair
-
-
-def markdown(doc: dict[str, Any]) -> str:
-    """Render results.json's whole-process, growth and watch parts as Markdown tables."""
-    out = [
-        "| what (whole process) | ours, CPU s | reference, CPU s | ratio | goal | met | reference"
-        " |",
-        "| --- | --- | --- | --- | --- | --- | --- |",
-    ]
-    for r in [*doc["whole_process"], doc["import_floor"]]:
-        if r["status"] != "ok":
-            out.append(f"| {r['what']} | {r['status']} | | | | | |")
-            continue
-        goals = []
-        if r.get("goal_ratio") is not None:
-            goals.append(f"<= {r['goal_ratio']}x")
-        if r.get("goal_seconds") is not None:
-            goals.append(f"< {r['goal_seconds']} s")
-        out.append(
-            f"| `{r['what']}` | {r['cpu_seconds']:.2f} | {r['reference_cpu_seconds']:.2f} "
-            f"| {r['ratio']:.2f}x | {', '.join(goals) or '-'} "
-            f"| {('yes' if r['met'] else 'no') if goals else '-'} | {r['reference']} |"
-        )
-    grown = doc["growth"]
-    out += ["", "| roles (x 10), in-process | count s | first s | optimal s | peak RSS MiB |"]
-    out.append("| --- | --- | --- | --- | --- |")
-    for r in grown["rows"]:
-        if r["status"] != "ok":
-            out.append(f"| {r['roles']} | {r['status']} | | | |")
-            continue
-        out.append(
-            f"| {r['roles']:,} | {r['count']:.3f} | {r['first']:.3f} | {r['optimal']:.3f} "
-            f"| {r['rss_kib'] / 1024:.0f} |"
-        )
-    fits = grown["exponent"]
-    cells = [
-        f"{fits[k]:.2f}" if fits[k] is not None else "n/a" for k in ("count", "first", "optimal")
-    ]
-    out.append(f"| fitted exponent | {' | '.join(cells)} | |")
-    if "loading" in doc:
-        out += ["", loading_markdown(doc["loading"])]
-    w = doc["watch"]
-    out += [
-        "",
-        f"watch (in-process): replan {w['replan_seconds'] * 1000:.0f} ms, Fast Downward's own "
-        f"time ({w['search']}) {w['fast_downward_seconds']:.2f} s; goal met: {w['met']}",
-    ]
-    if "recovery" in doc:
-        out += ["", "recovery (whole process, real nodes, median seconds):", ""]
-        out.append(recovery_table(doc["recovery"]))
-    return "\n".join(out)
 
 
 def whole_table(rows: list[Pair]) -> Table:
