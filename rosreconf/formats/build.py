@@ -197,18 +197,24 @@ def component_where(tree: Positions, node: Place) -> dict[str, Span]:
     return where
 
 
+_NAMED = frozenset({"needs", "excludes", "schemas", "provides", "qos"})
+"""The ``where`` keys that name a value rather than its path (``component_where``)."""
+
+
 class _Where(Mapping[str, Span]):
     """A component's ``where``, looked up in its file's positions when first read.
 
     So positions cost nothing until a problem is reported; ``""`` is the component itself.
+    A key that is a path (``abstraction``, ``metrics.cost``) is looked up alone: a warning
+    on each of 190,000 components must not keep every position of each.
     ``tree`` gives the file's positions (read again if need be): holding them here would
     keep every file's plain data for the life of the library.
     """
 
-    __slots__ = ("_found", "_index", "_tree")
+    __slots__ = ("_found", "_index", "_table", "_tree")
 
-    def __init__(self, tree: Callable[[], Positions], index: int) -> None:
-        self._tree, self._index = tree, index
+    def __init__(self, tree: Callable[[], Positions], table: Positions | None, index: int) -> None:
+        self._tree, self._table, self._index = tree, table, index
         self._found: dict[str, Span] | None = None
 
     def _spans(self) -> dict[str, Span]:
@@ -218,6 +224,12 @@ class _Where(Mapping[str, Span]):
         return self._found
 
     def __getitem__(self, key: str) -> Span:
+        if self._found is None and key.partition(".")[0] not in _NAMED:
+            steps = [int(s) if s.isdigit() else s for s in key.split(".")] if key else []
+            tree = self._table or self._tree()
+            found = tree.find(["components", self._index, *steps])
+            if found is not None:  # a plain path: no need for every position of the component
+                return tree.span(found)
         return self._spans()[key]
 
     def __iter__(self) -> Iterator[str]:
@@ -228,13 +240,19 @@ class _Where(Mapping[str, Span]):
 
 
 def build_library(
-    plain: Plain, name: str, tree: Callable[[], Positions], seen: Interfaces | None = None
+    plain: Plain,
+    name: str,
+    tree: Callable[[], Positions],
+    seen: Interfaces | None = None,
+    table: Positions | None = None,
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``tree`` gives the file's positions, called only when one is asked for (``_Where``):
-    the loader's reads the file again then, so that no file's plain data outlives its load
-    (holding every file's composed tree took 1.5 GB at 100,000 components). One ``seen`` for all the
+    ``tree`` gives the file's positions with its plain data, called only when a position
+    named by a value is asked for (``_Where``): the loader's reads the file again then, so
+    that no file's plain data outlives its load. ``table``, the file's positions without
+    its plain data (``Positions.without_plain``), places what a path names
+    (``abstraction``, ``metrics.cost``) with no second reading. One ``seen`` for all the
     library files of a load makes every use of an interface the same object: a requirement
     and the provision meeting it then match by identity, without a comparison.
     """
@@ -245,7 +263,9 @@ def build_library(
     items = doc["components"]
     return ComponentLibrary(
         name=doc["name"],
-        components=tuple([_component(c, seen, _Where(tree, i)) for i, c in enumerate(items)]),
+        components=tuple(
+            [_component(c, seen, _Where(tree, table, i)) for i, c in enumerate(items)]
+        ),
         description=doc.get("description", ""),
         source=(name,),
     )

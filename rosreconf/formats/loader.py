@@ -120,7 +120,9 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         loaded.problems.extend(structural)
         loaded.library_complete &= kind is not DocumentKind.LIBRARY
     elif kind is DocumentKind.LIBRARY:
-        loaded.libraries.append(build_library(plain, src.name, _ReadAgain(src), interfaces))
+        loaded.libraries.append(
+            build_library(plain, src.name, _ReadAgain(src), interfaces, tree.without_plain())
+        )
     else:
         loaded.problems.extend(duplicate_edges(tree, plain))
         loaded.schemas.append(build_schema(plain, tree, src.name))
@@ -131,10 +133,11 @@ class _ReadAgain:
     """A library file's positions, read again from the bytes read when a position is first
     asked for (``build._Where``: only a problem asks).
 
-    Positions walk the file's plain data beside their table, so holding them would keep
-    every file's plain data as long as the library. The last file read again is kept
-    (``_read_again``), so the problems of one file read it once; the bytes are the ones read
-    first, not the file as it is on disk now.
+    The library keeps its table without the plain data (``Positions.without_plain``), which
+    places what a path names; a position named by a value (``needs.<name>``,
+    ``provides.<interface>``) needs the values' text, so the file is read again then. The
+    last file read again is kept (``_read_again``), so the problems of one file read it
+    once; the bytes are the ones read first, not the file as it is on disk now.
     """
 
     src: Source

@@ -40,27 +40,36 @@ class Place(NamedTuple):
 class Positions:
     """The positions of one document's values, by event index (see the module docstring).
 
+    Each event's ``tags`` entry is its kind (``PLAIN_SCALAR``...) in the low two bits and,
+    for a mapping key, the key's number in ``names`` above them (0 for no key): keys are
+    found by name without the plain data, so a library's table can outlive it
+    (``without_plain``) and place its components' problems with no second reading.
+
     Attributes:
         file: the file name every span carries.
-        plain: the document's plain data, which ``lookup`` walks beside the table.
+        plain: the document's plain data (None once dropped): the values of places.
     """
 
-    __slots__ = ("_cols", "_ends", "_kids", "_kinds", "_lines", "_texts", "file", "plain")
+    __slots__ = ("_cols", "_ends", "_kids", "_lines", "_names", "_tags", "_texts", "file", "plain")
 
     def __init__(
         self,
         file: str,
         plain: Plain,
-        lines: array[int],
-        cols: array[int],
-        ends: array[int],
-        kinds: bytearray,
+        table: tuple[array[int], array[int], array[int], array[int]],
+        names: list[str],
         texts: dict[int, str],
     ) -> None:
         self.file, self.plain = file, plain
-        self._lines, self._cols, self._ends, self._kinds = lines, cols, ends, kinds
+        self._lines, self._cols, self._ends, self._tags = table
+        self._names = names
         self._texts = texts  # scalars whose text is not their value's own spelling
-        self._kids: dict[int, list[int]] = {}
+        self._kids: dict[int, dict[str | int, int]] = {}
+
+    def without_plain(self) -> Positions:
+        """Return the same table without the plain data (spans only: no ``text``)."""
+        table = (self._lines, self._cols, self._ends, self._tags)
+        return Positions(self.file, None, table, self._names, self._texts)
 
     @property
     def root(self) -> Place:
@@ -74,55 +83,66 @@ class Positions:
 
     def kind(self, place: Place) -> int:
         """Return what the value is: ``PLAIN_SCALAR``, ``TEXT_SCALAR``, ``MAPPING``..."""
-        return self._kinds[place.event]
+        return self._tags[place.event] & 3
 
     def text(self, place: Place) -> str:
         """Return a scalar as the user wrote it ("" for a collection)."""
-        if self._kinds[place.event] >= MAPPING:
+        if self._tags[place.event] & 3 >= MAPPING:
             return ""
         found = self._texts.get(place.event)
         return found if found is not None else spelling(place.value)
 
-    def _children(self, i: int) -> list[int]:
-        """Return the event indices of a collection's items, or of a mapping's keys."""
+    def _children(self, i: int) -> dict[str | int, int]:
+        """Return a collection's items' event indices by index, or its keys' by name."""
         found = self._kids.get(i)
         if found is not None:
             return found
-        ends, out = self._ends, []
-        mapping = self._kinds[i] == MAPPING
+        ends, tags, names = self._ends, self._tags, self._names
+        out: dict[str | int, int] = {}
         k, end = i + 1, ends[i]
-        while k < end:
-            out.append(k)
-            k = ends[ends[k]] if mapping else ends[k]  # past a key's value
+        if tags[i] & 3 == MAPPING:
+            while k < end:
+                out.setdefault(names[tags[k] >> 2], k)
+                k = ends[ends[k]]  # past the key's value
+        else:
+            while k < end:
+                out[len(out)] = k
+                k = ends[k]
         if len(out) > _MANY:
             self._kids[i] = out
         return out
 
     def fields(self, place: Place) -> dict[str, Place]:
         """Return a mapping's values by key (nothing for anything else)."""
-        if self._kinds[place.event] != MAPPING or type(place.value) is not dict:
+        if self._tags[place.event] & 3 != MAPPING:
             return {}
+        value = place.value
+        get = value.get if type(value) is dict else _NOTHING.get
         keys = self._children(place.event)
-        return {k: Place(at + 1, v) for (k, v), at in zip(place.value.items(), keys, strict=True)}
+        return {k: Place(at + 1, get(k)) for k, at in keys.items() if type(k) is str}
 
     def items(self, place: Place | None) -> list[Place]:
         """Return a list's items (nothing for anything else, which the JSON Schema refused)."""
-        if place is None or self._kinds[place.event] != SEQUENCE or type(place.value) is not list:
+        if place is None or self._tags[place.event] & 3 != SEQUENCE:
             return []
-        at = self._children(place.event)
-        return [Place(i, v) for i, v in zip(at, place.value, strict=True)]
+        value = place.value if type(place.value) is list else None
+        at = self._children(place.event).values()
+        return [Place(e, value[i] if value else None) for i, e in enumerate(at)]
 
     def _step(self, place: Place, step: str | int) -> tuple[Place, int] | None:
         """Return the value one ``step`` (key or index) under ``place``, and its key's index."""
         i, value = place
-        kind = self._kinds[i]
-        if kind == MAPPING and type(value) is dict and isinstance(step, str) and step in value:
-            keys = self._children(i)
-            at = keys[0] if len(keys) == 1 else keys[list(value).index(step)]
-            return Place(at + 1, value[step]), at
-        listed = kind == SEQUENCE and type(value) is list
-        if listed and isinstance(step, int) and 0 <= step < len(value):  # type: ignore[arg-type]
-            return Place(self._children(i)[step], value[step]), -1  # type: ignore[index]
+        kind = self._tags[i] & 3
+        if kind == MAPPING and isinstance(step, str):
+            at = self._children(i).get(step)
+            if at is None:
+                return None
+            return Place(at + 1, value.get(step) if type(value) is dict else None), at
+        if kind == SEQUENCE and isinstance(step, int) and step >= 0:
+            at = self._children(i).get(step)
+            if at is None:
+                return None
+            return Place(at, value[step] if type(value) is list else None), -1
         return None
 
     def lookup(self, path: Sequence[str | int]) -> Place:
@@ -135,12 +155,25 @@ class Positions:
             cur = found[0]
         return cur
 
+    def find(self, path: Sequence[str | int]) -> Place | None:
+        """Return the value at ``path``, or None when the document has no value there."""
+        cur = self.root
+        for step in path:
+            found = self._step(cur, step)
+            if found is None:
+                return None
+            cur = found[0]
+        return cur
+
     def key_span(self, path: Sequence[str | int]) -> Span | None:
         """Return where the last key of ``path`` is written, when ``path`` ends in a key."""
         if not path or not isinstance(path[-1], str):
             return None
         found = self._step(self.lookup(path[:-1]), path[-1])
         return self.span(found[1]) if found is not None else None
+
+
+_NOTHING: dict[str, Plain] = {}
 
 
 def spelling(value: Plain) -> str:

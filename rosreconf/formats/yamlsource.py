@@ -124,7 +124,7 @@ def read(data: bytes, file: str) -> tuple[Positions | None, Plain]:
         loader.dispose()
     if reader.shown or reader.keys:  # what the event stream shows first: keys mean little then
         raise InvalidInputError(reader.shown or reader.keys)
-    if not reader.kinds:
+    if not reader.tags:
         return None, None
     return reader.positions(), reader.root
 
@@ -154,14 +154,14 @@ class _Reader:
         self.lines: array[int] = array("I")
         self.cols: array[int] = array("I")
         self.ends: array[int] = array("I")
-        self.kinds = bytearray()
+        self.tags: array[int] = array("I")  # kind | key number << 2 (positions.Positions)
+        self.names: list[str] = [""]  # the keys' texts by number; 0 is no key
         self.texts: dict[int, str] = {}
 
     def positions(self) -> Positions:
         """Return the side table of the document read (``positions.Positions``)."""
-        return Positions(
-            self.file, self.root, self.lines, self.cols, self.ends, self.kinds, self.texts
-        )
+        table = (self.lines, self.cols, self.ends, self.tags)
+        return Positions(self.file, self.root, table, self.names, self.texts)
 
     def run(self, get_event: Callable[[], Any]) -> None:
         """Read every event; stop past ``MAX_DEPTH`` (nothing deeper is read).
@@ -172,7 +172,8 @@ class _Reader:
         Raises:
             yaml.YAMLError: at a syntax error (``read`` says it).
         """
-        kinds, texts, ends = self.kinds, self.texts, self.ends
+        kinds, texts, ends, names = self.tags, self.texts, self.ends, self.names
+        numbers = {"": 0}
         line_of, col_of, end_of, kind_of = (
             self.lines.append,
             self.cols.append,
@@ -201,8 +202,12 @@ class _Reader:
                     self._node_problems(event)
                 text = event.value
                 if frame is not None and frame[2] is _NO_KEY and type(frame[0]) is dict:
-                    kind_of(TEXT_SCALAR)  # a key: always its text
-                    frame[2] = text
+                    number = numbers.get(text)  # a key: always its text, by its number
+                    if number is None:
+                        number = numbers[text] = len(names)
+                        names.append(text)
+                    kind_of(TEXT_SCALAR | number << 2)
+                    frame[2] = names[number]  # one string per key text: 50 bytes a key less
                     frame[3] = index
                     continue
                 if (tag is None or tag == "!") and event.implicit[0]:
@@ -270,8 +275,15 @@ class _Reader:
             if frame is None:
                 if documents == 1:
                     self.root = value
-            elif type(frame[0]) is list:
-                frame[0].append(value)
+                continue
+            held = frame[0]
+            if type(held) is list:
+                held.append(value)
+                continue
+            key = frame[2]
+            if type(key) is str and key not in held and len(frame) == 4:
+                held[key] = value
+                frame[2] = _NO_KEY
             else:
                 self._put(frame, value)
 
