@@ -132,8 +132,6 @@ def read(data: bytes, file: str) -> tuple[Positions | None, Plain]:
 _NO_KEY: Any = object()
 """What an open mapping's frame holds while it waits for its next key."""
 
-_SCALAR_TAGS = frozenset({None, *STR_TAGS})
-
 
 class _Reader:
     """Build a document's plain data and positions from libyaml's events, in one pass.
@@ -172,13 +170,13 @@ class _Reader:
         Raises:
             yaml.YAMLError: at a syntax error (``read`` says it).
         """
-        kinds, texts, ends, names = self.tags, self.texts, self.ends, self.names
+        texts, ends, names = self.texts, self.ends, self.names
         numbers = {"": 0}
         line_of, col_of, end_of, kind_of = (
             self.lines.append,
             self.cols.append,
             ends.append,
-            kinds.append,
+            self.tags.append,
         )
         resolved = _RESOLVED
         # An open collection's frame: [its plain value, its index, the key waiting for its
@@ -186,31 +184,33 @@ class _Reader:
         # a list's frame never waits for a key.
         stack: list[list[Any]] = []
         frame: list[Any] | None = None
-        documents = 0
+        want_key = False  # the next node is a key of the open mapping
+        documents = n = 0  # n: the events recorded (the next one's index)
         value: Plain
         while True:
             event = get_event()
             kind = type(event)
             if kind is ScalarEvent:
-                index = len(kinds)
                 mark = event.start_mark
                 line_of(mark.line)
                 col_of(mark.column)
-                end_of(index + 1)
+                n += 1
+                end_of(n)
                 tag = event.tag
-                if event.anchor is not None or tag not in _SCALAR_TAGS:
+                if event.anchor is not None or (tag is not None and tag not in STR_TAGS):
                     self._node_problems(event)
                 text = event.value
-                if frame is not None and frame[2] is _NO_KEY and type(frame[0]) is dict:
+                if want_key:
                     number = numbers.get(text)  # a key: always its text, by its number
                     if number is None:
                         number = numbers[text] = len(names)
                         names.append(text)
                     kind_of(TEXT_SCALAR | number << 2)
-                    frame[2] = names[number]  # one string per key text: 50 bytes a key less
-                    frame[3] = index
+                    frame[2] = names[number]  # type: ignore[index]  # one string per key text
+                    frame[3] = n - 1  # type: ignore[index]
+                    want_key = False
                     continue
-                if (tag is None or tag == "!") and event.implicit[0]:
+                if event.implicit[0] and (tag is None or tag == "!"):
                     kind_of(PLAIN_SCALAR)
                     found = resolved.get(text)
                     if found is None:
@@ -219,48 +219,50 @@ class _Reader:
                         found = resolved[text] = _resolved(text)
                     value = found[0]
                     if not found[1]:
-                        texts[index] = text
+                        texts[n - 1] = text
                 else:
                     kind_of(TEXT_SCALAR)
                     value = text
             elif kind is MappingStartEvent or kind is SequenceStartEvent:
-                index = len(kinds)
                 mark = event.start_mark
                 line_of(mark.line)
                 col_of(mark.column)
                 end_of(0)  # set at its end
-                mapping = kind is MappingStartEvent
-                kind_of(MAPPING if mapping else SEQUENCE)
+                n += 1
+                want_key = kind is MappingStartEvent
+                kind_of(MAPPING if want_key else SEQUENCE)
                 if event.anchor is not None or event.tag is not None:
                     self._node_problems(event)
                 if len(stack) >= MAX_DEPTH:
                     message = f"nesting is deeper than {MAX_DEPTH} levels"
-                    self.shown.append(Problem(self._span(index), message, _DEEP, "too-deep"))
+                    self.shown.append(Problem(self._span(n - 1), message, _DEEP, "too-deep"))
                     return
-                frame = [{} if mapping else [], index, _NO_KEY, -1]
+                frame = [{} if want_key else [], n - 1, _NO_KEY, -1]
                 stack.append(frame)
                 continue
             elif kind is MappingEndEvent or kind is SequenceEndEvent:
                 done = stack.pop()
-                ends[done[1]] = len(kinds)
+                ends[done[1]] = n
                 frame = stack[-1] if stack else None
                 value = done[0]
                 if frame is not None and frame[2] is _NO_KEY and type(frame[0]) is dict:
                     frame[2] = value  # a complex key, said with its value
                     frame[3] = done[1]
+                    want_key = False
                     continue
             elif kind is AliasEvent:
-                index = len(kinds)
                 line_of(event.start_mark.line)
                 col_of(event.start_mark.column)
-                end_of(index + 1)
+                n += 1
+                end_of(n)
                 kind_of(TEXT_SCALAR)
                 message = f"alias '*{event.anchor}' is not allowed"
-                self.shown.append(Problem(self._span(index), message, _ALIAS, "alias"))
+                self.shown.append(Problem(self._span(n - 1), message, _ALIAS, "alias"))
                 value = None
-                if frame is not None and frame[2] is _NO_KEY and type(frame[0]) is dict:
-                    frame[2] = ""
-                    frame[3] = index
+                if want_key:
+                    frame[2] = ""  # type: ignore[index]
+                    frame[3] = n - 1  # type: ignore[index]
+                    want_key = False
                     continue
             elif kind is DocumentStartEvent:
                 documents += 1
@@ -280,6 +282,7 @@ class _Reader:
             if type(held) is list:
                 held.append(value)
                 continue
+            want_key = True
             key = frame[2]
             if type(key) is str and key not in held and len(frame) == 4:
                 held[key] = value
