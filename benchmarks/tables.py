@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from largest import table as largest_table
 from loading import markdown as loading_markdown
 from recovery import table as recovery_table
 from rich.table import Table
@@ -53,6 +54,8 @@ def markdown(doc: dict[str, Any]) -> str:
     out.append(f"| fitted exponent | {' | '.join(cells)} | |")
     if "loading" in doc:
         out += ["", loading_markdown(doc["loading"])]
+    if "largest" in doc:
+        out += ["", largest_table(doc["largest"])]
     w = doc["watch"]
     out += [
         "",
