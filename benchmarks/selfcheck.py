@@ -44,7 +44,8 @@ def check_quick_run(tmp_path: Path) -> None:
     big = doc["largest"]  # whole process: peak RSS and CPU beside a large library
     assert big["scope"].startswith("whole process") and big["library_bytes"] > 0
     assert big["rows"][0]["command"] == "rosreconf validate", big
-    assert all(r["exit"] == [0] and r["peak_rss_bytes"] > 0 for r in big["rows"]), big
+    # exit 1 is an answer (plan: some schema has no configuration without NSM3)
+    assert all(set(r["exit"]) <= {0, 1} and r["peak_rss_bytes"] > 0 for r in big["rows"]), big
     sim = doc["simulate"]  # the M-solution sweep, whole process
     assert sim["status"] == "ok", sim
     assert 0 < sim["loops_simulated"] == sim["distinct_loops"] <= sim["configurations"]
