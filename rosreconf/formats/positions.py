@@ -1,15 +1,16 @@
 """Where each value of a YAML document is written: a compact side table of its plain data.
 
 ``yamlsource.read`` builds a document's plain data (dicts, lists, scalars) straight from
-libyaml's event stream and records, per event, only numbers: the start line and column of
-every key and value, where its subtree ends, and what it is (plain scalar, other scalar,
-mapping, list). A few bytes per value instead of a Python node object and two marks each:
-reading the largest library rosreconf accepts took 80 times the file's size in memory with
-PyYAML's composed tree.
+libyaml's event stream and records, per event, only numbers in flat arrays: the start line
+and column of every key and value, where its subtree ends, and what it is (plain scalar,
+other scalar, mapping, list; for a key, which key). 16 bytes per value instead of a Python
+node object and two marks each: reading the largest library rosreconf accepts took 80 times
+the file's size in memory with PyYAML's composed tree.
 
-A value is found by walking its path through the plain data and the table side by side
-(``Positions.lookup``): the events are in document order, so a mapping's n-th key is the
-n-th key event under it. The table is read only when a problem is reported.
+A value is found by walking its path through the table (``Positions.lookup``): a mapping's
+keys by name, a list's items by index, each subtree skipped by its end. The plain data,
+when kept, gives the values met on the way (for their text as written). The table is read
+only when a problem is reported.
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ from rosreconf.formats.nodes import Plain
 from rosreconf.model import Span
 
 PLAIN_SCALAR, TEXT_SCALAR, MAPPING, SEQUENCE = 0, 1, 2, 3
-"""What an event is (``Positions.kinds``): a plain scalar (resolved with YAML 1.2), a quoted,
-block or ``!!str`` scalar (a string as written), a mapping, a list."""
+"""What an event is (the low two bits of its tag in ``Positions``): a plain scalar (resolved
+with YAML 1.2), a quoted, block or ``!!str`` scalar (a string as written), a mapping, a list."""
 
 _MANY = 32
 """Collections with more children than this keep their children's indices once looked up
