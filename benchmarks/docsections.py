@@ -26,6 +26,7 @@ from typing import Any
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))  # run as a script or imported by the tests: its siblings
 
+from largest import table as largest_table  # noqa: E402
 from loading import markdown as loading_markdown  # noqa: E402
 from recovery import table as recovery_table  # noqa: E402
 
@@ -38,14 +39,14 @@ BLOCK = re.compile(
 GRID_KINDS = ("count", "first", "optimal", "clingo_optimal", "clingo", "whatif")
 
 
-def whole_process(doc: dict[str, Any]) -> str:
-    """The interleaved whole-process pairs: ours, the reference, ratio, goal, met."""
+def _pairs(rows: list[dict[str, Any]]) -> str:
+    """Interleaved whole-process pairs: ours, the reference, ratio, goal, met."""
     out = [
         "| what (whole process) | ours, CPU s | reference, CPU s | ratio | goal | met "
         "| reference |",
         "| --- | --- | --- | --- | --- | --- | --- |",
     ]
-    for r in [*doc["whole_process"], doc["import_floor"]]:
+    for r in rows:
         if r["status"] != "ok":
             out.append(f"| {r['what']} | {r['status']} | | | | | |")
             continue
@@ -60,6 +61,20 @@ def whole_process(doc: dict[str, Any]) -> str:
             f"| {('yes' if r['met'] else 'no') if goals else '-'} | {r['reference']} |"
         )
     return "\n".join(out)
+
+
+def whole_process(doc: dict[str, Any]) -> str:
+    """The whole-process rows of the last full run, and the import floor."""
+    return _pairs([*doc["whole_process"], doc["import_floor"]])
+
+
+def reading_rows(doc: dict[str, Any]) -> str:
+    """The reading rows measured alone (``run.py --reading-rows``), with their load."""
+    r = doc["reading_rows"]
+    load = r["load_average"]
+    start, end = load["start"][0], load["end"][0]
+    said = f"Load average (1 min) {start:.1f} at the start, {end:.1f} at the end."
+    return _pairs(r["rows"]) + "\n\n" + said
 
 
 def growth(doc: dict[str, Any]) -> str:
@@ -154,8 +169,10 @@ def soak(doc: dict[str, Any]) -> str:
 
 SECTIONS: dict[str, Callable[[dict[str, Any]], str]] = {
     "whole_process": whole_process,
+    "reading_rows": reading_rows,
     "growth": growth,
     "loading": lambda doc: loading_markdown(doc["loading"]),
+    "largest": lambda doc: largest_table(doc["largest"]),
     "watch": watch,
     "recovery": lambda doc: recovery_table(doc["recovery"]),
     "grid": grid,

@@ -3,8 +3,8 @@
 Issue 12's goal is 1000 roles x 10 candidates (2.8 MB of YAML, 11 files) read and checked in
 at most 1 s. Each run is a fresh child (``--child FOLDER``) that times, in CPU seconds of
 that process (``time.process_time``), every stage the loader runs (``loader.load_sources``,
-what every command takes): YAML into the positioned tree and plain data (PyYAML's composer
-over libyaml, rosreconf's one reader, for every file), the JSON Schema check
+what every command takes): YAML into plain data and its positions table (libyaml's event
+stream read once by ``yamlsource``, rosreconf's one reader, for every file), the JSON Schema check
 (jsonschema-rs), the value checks, model building, the semantic checks. Imports are excluded
 (the whole-process rows of ``run.py`` include them).
 
@@ -31,7 +31,7 @@ STAGES = ("read", "parse", "structure", "values", "build", "check")
 def child(folder: str) -> dict[str, float]:
     """Load ``folder``'s libraries and schemas once, timing each stage (this process's CPU).
 
-    As the loader does (``loader._load_one``): every file composed once by ``yamlsource.read``.
+    As the loader does (``loader._load_one``): every file read once by ``yamlsource.read``.
     """
     import gc
 
@@ -125,9 +125,10 @@ def loading(folder: Path, runs: int) -> dict[str, Any]:
         "floor_seconds": {k: statistics.median(r[k] for r in results) for k in FLOORS},
         "floors": ("libyaml: CParser.raw_parse (no Python objects); compose: yaml.compose"),
         "reader": (
-            "every file: PyYAML's composer over libyaml (yaml.CSafeLoader), YAML 1.2 plain data"
+            "every file: libyaml's event stream (yaml.CSafeLoader) into YAML 1.2 plain data "
+            "and a positions table"
             if all(r["libyaml_reader"] for r in results)
-            else "PyYAML's pure-Python composer (no libyaml)"
+            else "PyYAML's pure-Python event parser (no libyaml)"
         ),
         "goal_seconds": 1.0,
         "met": medians["total"] <= 1.0,

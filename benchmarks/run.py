@@ -5,6 +5,8 @@ Seven parts, all written to benchmarks/results.json and printed as tables:
 * ``whole_process`` (``whole.py``): the commands a user runs against the references of
   issue 12, in interleaved pairs, CPU seconds of each whole process.
 * ``loading`` (``loading.py``): where reading and checking a 1000 x 10 library goes.
+* ``largest`` (``largest.py``): whole process, peak RSS and CPU of ``validate``,
+  ``enumerate`` and ``plan`` beside the largest library file rosreconf reads (64 MiB).
 * ``growth`` and ``grid``: in-process solver times (YAML loading excluded), each in a fresh
   child (``children.py``: this script with ``--child KIND WHERE``) reporting seconds and its
   own peak RSS.
@@ -33,6 +35,8 @@ from typing import Any
 # This folder is the script's sys.path[0]: its modules import each other by name.
 from children import FD_TIMEOUT, child_main, measure, run_child, write_in_child
 from docsections import markdown
+from largest import largest
+from largest import table as largest_table
 from loading import loading
 from recovery import recovery
 from recovery import table as recovery_table
@@ -142,6 +146,12 @@ def main() -> None:
         "--markdown", action="store_true", help="print the tables of --json for docs/PERFORMANCE.md"
     )
     ap.add_argument(
+        "--reading-rows",
+        action="store_true",
+        help="measure only issue 44's reading rows (whole process) into the JSON's "
+        "reading_rows (benchmarks/largest.py measures the largest library)",
+    )
+    ap.add_argument(
         "--simulate-only",
         action="store_true",
         help="measure only the simulate sweep and update its entry in the JSON",
@@ -151,10 +161,34 @@ def main() -> None:
         print(markdown(json.loads(args.json.read_text(encoding="utf-8"))))
     elif args.child:
         child_main(*args.child)
+    elif args.reading_rows:
+        reading_rows(args.json)
     elif args.simulate_only:
         update_simulate(args.json, args.timeout)
     else:
         measure_all(args.quick, args.json, args.timeout, args.clingo_timeout)
+
+
+def reading_rows(out: Path) -> None:
+    """Measure the rows issue 44 asks of reading and update their entries in ``out``.
+
+    The pairs of ``whole.py`` (``plan --fail NSM3``, ``validate`` with each mistake, the
+    1000 x 10 solver rows) go to ``reading_rows``, apart from a full run's ``whole_process``
+    (``benchmarks/largest.py`` alone updates ``largest``).
+    """
+    load_start = os.getloadavg()
+    with tempfile.TemporaryDirectory() as temporary:
+        rows = whole_process(Path(temporary), quick=False, reading=True)
+    doc = json.loads(out.read_text(encoding="utf-8")) if out.exists() else {}
+    doc["reading_rows"] = {
+        "scope": "whole-process (CPU seconds of each child, interleaved pairs as whole.py)",
+        "load_average": {"start": load_start, "end": os.getloadavg()},
+        "rows": [r.to_json() for r in rows],
+    }
+    out.write_text(json.dumps(doc, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    from rich.console import Console
+
+    Console(width=200).print(whole_table(rows))
 
 
 def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -> None:
@@ -168,6 +202,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
         size = (12, 3) if quick else (1000, 10)  # whole_process's generated library
         stages = loading(tmp / f"whole{size[0]}x{size[1]}", 1 if quick else 3)
         stages["instance"] = f"{size[0]} x {size[1]}"
+        biggest = largest(1, 1_000_000) if quick else largest(3)
         grown = growth(tmp, quick, 600.0)
         watched = run_child("watch", "1" if quick else "5")
         recovered = (
@@ -193,6 +228,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
     doc = {
         "machine": {**machine(), "load_average": {"start": load_start, "end": os.getloadavg()}},
         "loading": stages,
+        "largest": biggest,
         "whole_process": [w.to_json() for w in wholes],
         "growth": grown,
         "watch": watched,
@@ -209,6 +245,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
     console = Console(width=200)  # a file or pipe gets the whole table, not 80 columns
     console.print(whole_table(wholes))
     console.print(growth_table(grown))
+    console.print(largest_table(biggest), markup=False)
     console.print(f"watch (in-process): {watched}")
     console.print("recovery (whole process, real nodes, median seconds):")
     console.print(recovery_table(recovered), markup=False)

@@ -36,11 +36,16 @@ def check_quick_run(tmp_path: Path) -> None:
     stages = doc["loading"]  # where reading and checking a library goes, stage by stage
     assert stages["scope"] == "in-process" and stages["bytes"] > 0
     assert stages["seconds"]["parse"] > 0
-    assert stages["reader"].startswith("every file: PyYAML's composer"), stages["reader"]
+    assert stages["reader"].startswith("every file: libyaml's event stream"), stages["reader"]
     assert stages["seconds"]["total"] >= max(stages["seconds"].values()) - 1e-9
     floors = stages["floor_seconds"]  # libyaml's parse, PyYAML's composer
     assert set(floors) == {"libyaml", "compose"} and min(floors.values()) > 0
     assert set(stages["load_average"]) == {"start", "end"}
+    big = doc["largest"]  # whole process: peak RSS and CPU beside a large library
+    assert big["scope"].startswith("whole process") and big["library_bytes"] > 0
+    assert big["rows"][0]["command"] == "rosreconf validate", big
+    # exit 1 is an answer (plan: some schema has no configuration without NSM3)
+    assert all(set(r["exit"]) <= {0, 1} and r["peak_rss_bytes"] > 0 for r in big["rows"]), big
     sim = doc["simulate"]  # the M-solution sweep, whole process
     assert sim["status"] == "ok", sim
     assert 0 < sim["loops_simulated"] == sim["distinct_loops"] <= sim["configurations"]

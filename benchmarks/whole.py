@@ -149,12 +149,11 @@ def byte_compiled() -> None:
         compileall.compile_dir(root, quiet=1)
 
 
-def whole_process(tmp: Path, quick: bool) -> list[Pair]:
-    """Measure the user's commands against issue 12's references, in interleaved pairs."""
+def _setup(tmp: Path) -> tuple[list[str], list[str], Path, list[str]]:
+    """Return the CLI, the import floor, the bundled example's folder and Fast Downward alone
+    on the example's ``plan --fail NSM3`` task (rendered under ``tmp``)."""
     from rosreconf.planning.planners import DEFAULT_SEARCH
     from rosreconf.planning.planners.fast_downward import fast_downward_root
-
-    byte_compiled()
 
     script = Path(sys.executable).parent / "rosreconf"
     cli = [str(script)] if script.exists() else [sys.executable, "-m", "rosreconf"]
@@ -185,6 +184,19 @@ def whole_process(tmp: Path, quick: bool) -> list[Pair]:
         str(task / "domain.pddl"),
         str(task / "problem.pddl"),
     ]
+    return cli, floor, example, fd
+
+
+def whole_process(tmp: Path, quick: bool, reading: bool = False) -> list[Pair]:
+    """Measure the user's commands against issue 12's references, in interleaved pairs.
+
+    ``reading``: only the rows issue 44 asks of reading (``run.py --reading-rows``): ``plan
+    --fail NSM3``, the four ``validate`` mistakes and the three 1000 x 10 solver rows.
+    """
+    from rosreconf.planning.planners import DEFAULT_SEARCH
+
+    byte_compiled()
+    cli, floor, example, fd = _setup(tmp)
     n = 1 if quick else 5
     floor_name = f"python -c '{IMPORT_FLOOR}'"
     fd_name = f"the floor + Fast Downward alone ({DEFAULT_SEARCH}) on the same PDDL"
@@ -202,6 +214,8 @@ def whole_process(tmp: Path, quick: bool) -> list[Pair]:
     ]
     if quick:  # CI checks the machinery on two cheap rows
         specs = specs[:1]
+    elif reading:
+        specs = specs[3:]
     rows = [
         pair(what, [*cli, *args], ref, example, n, goal_ratio=goal, reference_name=name)
         for what, args, ref, goal, name in specs
@@ -262,7 +276,7 @@ def whole_process(tmp: Path, quick: bool) -> list[Pair]:
                 reference_name="clingo alone, first model (python -m clingo)",
             )
         )
-    if not quick:  # issue 22: one solve per failure made this over 300 s
+    if not quick and not reading:  # issue 22: one solve per failure made this over 300 s
         sys.path.append(str(HERE.parent / "tests"))
         from shapes import write_hub  # tests/shapes.py: the deep and wide schemas
 

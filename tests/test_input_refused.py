@@ -190,3 +190,37 @@ def test_a_marked_substitution_reaches_the_launch_file(
     result = runner.invoke(app, ["launch", "--only", "indoor_navigation", "--ros1", "-o", "-"])
     assert result.exit_code == 0, result.output
     assert '<param name="frame_id" value="$(env FRAME)"' in result.stdout
+
+
+def test_each_duplicate_key_names_the_line_of_its_first_even_after_another_bad_key(
+    runner: CliRunner, tmp_path: Path
+) -> None:
+    lib = tmp_path / "lib.yaml"
+    lib.write_text(
+        "format: rosreconf/component-library\n"
+        "name: a\n"
+        "format: again\n"
+        "? [complex]\n"
+        ": x\n"
+        "version: 1\n"
+        "version: 2\n"
+    )
+    result = runner.invoke(app, ["validate", str(lib)])
+    assert result.exit_code == 1
+    said = [line.partition(" (")[0] for line in result.stdout.splitlines() if "error:" in line]
+    assert said == [
+        f"{lib}:3:1: error: duplicate key 'format'",
+        f"{lib}:4:3: error: a mapping key must be a plain value, not a list or mapping",
+        f"{lib}:7:1: error: duplicate key 'version'",
+    ], result.stdout
+    assert "'format' (first written at line 1)" in result.stdout
+    assert "'version' (first written at line 6)" in result.stdout
+
+
+def test_a_number_is_quoted_as_written_not_as_read(
+    runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(_lib_with(tmp_path, "failure_probability: 0.02", "failure_probability: 1.50"))
+    result = runner.invoke(app, ["validate"])
+    assert result.exit_code == 1
+    assert "failure_probability' is number '1.50', which is out of range" in result.stdout

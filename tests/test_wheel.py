@@ -100,11 +100,11 @@ def test_installed_wheel_renders_pddl_from_its_templates(installed: Path, tmp_pa
 def test_installed_wheel_reads_yaml_with_positions(installed: Path, tmp_path: Path) -> None:
     code = (
         "import json\n"
-        "from rosreconf.formats import nodes, yamlsource\n"
+        "from rosreconf.formats import yamlsource\n"
         "tree, plain = yamlsource.read(b'a: [1, {b: no}]\\n', 'f.yaml')\n"
-        "inner = nodes.lookup(tree, ['a', 1, 'b'])\n"
+        "inner = tree.lookup(['a', 1, 'b'])\n"
         "print(json.dumps({'file': yamlsource.__file__, 'plain': plain,\n"
-        "                  'at': list(nodes.span(inner))}))\n"
+        "                  'at': list(tree.span(inner))}))\n"
     )
     result = _run(installed, tmp_path, "-c", code)
     assert result.returncode == 0, result.stderr

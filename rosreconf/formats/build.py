@@ -2,9 +2,10 @@
 
 The loader calls these only after a file passed its JSON Schema and value checks, so every
 key the Schema requires is present and every value has its type. Both formats are built
-from their plain data. Where a library's values are written is looked up in its positioned
-tree only when a check asks (``_Where``: a clean library's components never look); a schema,
-a small file, has its positions recorded at once (its roles and edges carry their spans).
+from their plain data. Where a library's values are written is looked up in its positions
+(``positions.Positions``) only when a check asks (``_Where``: a clean library's components
+never look); a schema, a small file, has its positions recorded at once (its roles and edges
+carry their spans).
 """
 
 from __future__ import annotations
@@ -13,10 +14,8 @@ from collections.abc import Callable, Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, TypeAlias
 
-from rosreconf.formats.nodes import NUMBER, Plain, lookup, seq_of, text_of
-from rosreconf.formats.nodes import Node as YNode
-from rosreconf.formats.nodes import fields as map_of
-from rosreconf.formats.nodes import span as span_of
+from rosreconf.formats.nodes import NUMBER, Plain
+from rosreconf.formats.positions import Place, Positions
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -39,10 +38,7 @@ from rosreconf.model import (
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
-__all__ = ["Interfaces", "Node", "build_library", "build_schema", "provision_key"]
-
-Node: TypeAlias = "YNode | None"
-"""What the builder reads: a node of the positioned tree, or None for an absent key."""
+__all__ = ["Interfaces", "build_library", "build_schema", "provision_key"]
 
 Doc: TypeAlias = dict[str, Any]
 """A mapping of plain data that passed its JSON Schema: its keys and value types are known."""
@@ -149,11 +145,11 @@ def _simulation(item: Doc) -> Simulation:
     )
 
 
-def _positions(node: Node, key: str, where: dict[str, Span]) -> None:
+def _positions(tree: Positions, node: Place, key: str, where: dict[str, Span]) -> None:
     """Record where ``node`` and every value under it are written: ``key``, ``key.<key or i>``..."""
-    where[key] = span_of(node)
-    for step, child in [*map_of(node).items(), *enumerate(seq_of(node))]:
-        _positions(child, f"{key}.{step}" if key else str(step), where)
+    where[key] = tree.span(node)
+    for step, child in [*tree.fields(node).items(), *enumerate(tree.items(node))]:
+        _positions(tree, child, f"{key}.{step}" if key else str(step), where)
 
 
 def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
@@ -180,47 +176,60 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
     )
 
 
-def component_where(node: Node) -> dict[str, Span]:
-    """Return where a component's values are written (``Component.where``), from its node."""
+def component_where(tree: Positions, node: Place) -> dict[str, Span]:
+    """Return where a component's values are written (``Component.where``), from its place."""
     where: dict[str, Span] = {}
-    _positions(node, "", where)
-    items = map_of(node)
+    _positions(tree, node, "", where)
+    items = tree.fields(node)
     for key in ("needs", "excludes", "schemas"):
-        where.update((f"{key}.{text_of(n)}", span_of(n)) for n in seq_of(items.get(key)))
-    provides = seq_of(items.get("provides"))
+        where.update((f"{key}.{tree.text(n)}", tree.span(n)) for n in tree.items(items.get(key)))
+    provides = tree.items(items.get("provides"))
     for n in provides:  # the first of an interface provided twice
-        entry = map_of(n)
+        entry = tree.fields(n)
         kind = _kind(entry)
-        written = f"{kind}:{text_of(entry[kind])}:{text_of(entry['type'])}"
-        where.setdefault(f"provides.{written}", span_of(n))
-    for n in (*provides, *seq_of(items.get("requires"))):  # in build order: the last QoS wins
-        for iface in seq_of(map_of(n).get("any_of")) or [n]:
-            entry = map_of(iface)
+        written = f"{kind}:{tree.text(entry[kind])}:{tree.text(entry['type'])}"
+        where.setdefault(f"provides.{written}", tree.span(n))
+    for n in (*provides, *tree.items(items.get("requires"))):  # in build order: last QoS wins
+        for iface in tree.items(tree.fields(n).get("any_of")) or [n]:
+            entry = tree.fields(iface)
             if "qos" in entry:
-                where[f"qos.{text_of(entry[_kind(entry)])}"] = span_of(entry["qos"])
+                where[f"qos.{tree.text(entry[_kind(entry)])}"] = tree.span(entry["qos"])
     return where
 
 
+_NAMED = frozenset({"needs", "excludes", "schemas", "provides", "qos"})
+"""The ``where`` keys that name a value rather than its path (``component_where``)."""
+
+
 class _Where(Mapping[str, Span]):
-    """A component's ``where``, looked up in its file's tree when first read.
+    """A component's ``where``, looked up in its file's positions when first read.
 
     So positions cost nothing until a problem is reported; ``""`` is the component itself.
-    ``tree`` gives the file's tree (composed again if need be): holding the tree itself here
-    kept every file's tree for the life of the library.
+    A key that is a path (``abstraction``, ``metrics.cost``) is looked up alone: a warning
+    on each of 190,000 components must not keep every position of each.
+    ``tree`` gives the file's positions (read again if need be): holding them here would
+    keep every file's plain data for the life of the library.
     """
 
-    __slots__ = ("_found", "_index", "_tree")
+    __slots__ = ("_found", "_index", "_table", "_tree")
 
-    def __init__(self, tree: Callable[[], YNode], index: int) -> None:
-        self._tree, self._index = tree, index
+    def __init__(self, tree: Callable[[], Positions], table: Positions | None, index: int) -> None:
+        self._tree, self._table, self._index = tree, table, index
         self._found: dict[str, Span] | None = None
 
     def _spans(self) -> dict[str, Span]:
         if self._found is None:
-            self._found = component_where(lookup(self._tree(), ["components", self._index]))
+            tree = self._tree()
+            self._found = component_where(tree, tree.lookup(["components", self._index]))
         return self._found
 
     def __getitem__(self, key: str) -> Span:
+        if self._found is None and key.partition(".")[0] not in _NAMED:
+            steps = [int(s) if s.isdigit() else s for s in key.split(".")] if key else []
+            tree = self._table or self._tree()
+            found = tree.find(["components", self._index, *steps])
+            if found is not None:  # a plain path: no need for every position of the component
+                return tree.span(found)
         return self._spans()[key]
 
     def __iter__(self) -> Iterator[str]:
@@ -231,13 +240,19 @@ class _Where(Mapping[str, Span]):
 
 
 def build_library(
-    plain: Plain, name: str, tree: Callable[[], YNode], seen: Interfaces | None = None
+    plain: Plain,
+    name: str,
+    tree: Callable[[], Positions],
+    seen: Interfaces | None = None,
+    table: Positions | None = None,
 ) -> ComponentLibrary:
     """Build a library file's model from its plain data; ``seen`` shares interfaces.
 
-    ``tree`` gives the file's tree, called only when a position is asked for (``_Where``):
-    the loader's composes the file again then, so that no tree outlives its file's load
-    (holding every file's tree took 1.5 GB at 100,000 components). One ``seen`` for all the
+    ``tree`` gives the file's positions with its plain data, called only when a position
+    named by a value is asked for (``_Where``): the loader's reads the file again then, so
+    that no file's plain data outlives its load. ``table``, the file's positions without
+    its plain data (``Positions.without_plain``), places what a path names
+    (``abstraction``, ``metrics.cost``) with no second reading. One ``seen`` for all the
     library files of a load makes every use of an interface the same object: a requirement
     and the provision meeting it then match by identity, without a comparison.
     """
@@ -248,41 +263,45 @@ def build_library(
     items = doc["components"]
     return ComponentLibrary(
         name=doc["name"],
-        components=tuple([_component(c, seen, _Where(tree, i)) for i, c in enumerate(items)]),
+        components=tuple(
+            [_component(c, seen, _Where(tree, table, i)) for i, c in enumerate(items)]
+        ),
         description=doc.get("description", ""),
         source=(name,),
     )
 
 
-def build_schema(plain: Plain, tree: Node, name: str) -> InteroperabilitySchema:
-    """Build a schema file's model from its plain data, with positions from its tree."""
+def build_schema(plain: Plain, tree: Positions, name: str) -> InteroperabilitySchema:
+    """Build a schema file's model from its plain data, with its positions."""
     assert isinstance(plain, dict), "a schema that passed its JSON Schema is a mapping"
     doc: Doc = plain
-    items = map_of(tree)
-    roles_at = seq_of(items["roles"])
+    items = tree.fields(tree.root)
+    roles_at = tree.items(items["roles"])
     roles = tuple(
         Role(
             r["name"],
             r["abstraction"],
             r.get("description", ""),
-            span_of(n),
+            tree.span(n),
             r.get("optional") is True,
         )
         for r, n in zip(doc["roles"], roles_at, strict=True)
     )
     edges = []
-    for e, n in zip(doc.get("edges", ()), seq_of(items.get("edges")), strict=True):
+    for e, n in zip(doc.get("edges", ()), tree.items(items.get("edges")), strict=True):
         interfaces = frozenset(e.get("interfaces", ()))
-        providers = zip(e["providers"], seq_of(map_of(n)["providers"]), strict=True)
+        providers = zip(e["providers"], tree.items(tree.fields(n)["providers"]), strict=True)
         for p, at in providers:
-            edges.append(Edge(e["consumer"], p, interfaces, span_of(at), e.get("optional") is True))
-    nominal = map_of(items.get("nominal"))
-    where = {"name": span_of(items["name"])}
-    where.update({f"nominal.{k}": span_of(v) for k, v in nominal.items()})
+            optional = e.get("optional") is True
+            edges.append(Edge(e["consumer"], p, interfaces, tree.span(at), optional))
+    nominal = items.get("nominal")
+    where = {"name": tree.span(items["name"])}
+    if nominal is not None:
+        where.update({f"nominal.{k}": tree.span(v) for k, v in tree.fields(nominal).items()})
     for r, n in zip(doc["roles"], roles_at, strict=True):
-        where[f"role.{r['name']}.abstraction"] = span_of(map_of(n)["abstraction"])
+        where[f"role.{r['name']}.abstraction"] = tree.span(tree.fields(n)["abstraction"])
     if "simulation" in items:
-        _positions(items["simulation"], "simulation", where)
+        _positions(tree, items["simulation"], "simulation", where)
     return InteroperabilitySchema(
         name=doc["name"],
         title=doc.get("title", ""),
@@ -291,7 +310,7 @@ def build_schema(plain: Plain, tree: Node, name: str) -> InteroperabilitySchema:
         environment=doc["environment"].strip(),
         nominal=MappingProxyType(dict(doc.get("nominal", {}))),
         simulation=_simulation(doc["simulation"]) if "simulation" in doc else None,
-        span=span_of(tree),
+        span=tree.span(tree.root),
         source=name,
         where=MappingProxyType(where),
     )

@@ -26,7 +26,6 @@ from typing import Any
 from rosreconf import jsonout
 from rosreconf.errors import InvalidInputError, Problem, UsageError
 from rosreconf.formats import yamlsource as ys
-from rosreconf.formats.nodes import span
 from rosreconf.model import EMPTY, Span
 
 FORMAT = "rosreconf/configuration"
@@ -44,7 +43,7 @@ def read_configurations(path: Path) -> dict[str, dict[str, str]]:
     except OSError as exc:
         raise UsageError(f"{path}: cannot read: {exc.strerror}") from None
     tree, doc = ys.read(data, str(path))  # JSON is YAML: one parser, positions for errors
-    where = span(tree) if tree is not None else Span(str(path), 1, 1)
+    where = tree.span(tree.root) if tree is not None else Span(str(path), 1, 1)
     if isinstance(doc, dict) and doc.get("format") == FORMAT:
         configs = doc.get("configurations")
         if isinstance(configs, dict) and all(_is_assignment(v) for v in configs.values()):

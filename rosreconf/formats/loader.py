@@ -1,11 +1,11 @@
 """Load component libraries and interoperability schemas from YAML, with positions.
 
-Each file is composed once into PyYAML's positioned tree and its plain data
+Each file is read once into its plain data and a table of where each value is written
 (``yamlsource.read``, which also says what is wrong with its YAML), checked (``structure``,
-``values``) and built (``build``); a problem is placed by looking its path up in the tree.
-The caller gets
-the model of every well-formed file *and* every problem, so ``validate`` reports everything
-in one run while ``enumerate`` can refuse to work on invalid input.
+``values``) and built (``build``); a problem is placed by looking its path up in the table
+(``positions.Positions``). The caller gets the model of every well-formed file *and* every
+problem, so ``validate`` reports everything in one run while ``enumerate`` can refuse to
+work on invalid input.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from rosreconf.errors import InvalidInputError, Problem, Severity
 from rosreconf.formats import yamlsource as ys
 from rosreconf.formats.build import Interfaces, build_library, build_schema
 from rosreconf.formats.checks import check
-from rosreconf.formats.nodes import Node
+from rosreconf.formats.positions import Positions
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
 from rosreconf.formats.structure import DocumentKind, format_problem, kind_of, structure_problems
 from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
@@ -108,8 +108,8 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
     kind = kind_of(plain)
     if kind is None:
         raise InvalidInputError([format_problem(found, plain, src.name)])
-    assert found is not None, "a document that names its format has a tree"
-    tree: Node = found
+    assert found is not None, "a document that names its format has positions"
+    tree: Positions = found
     structural = structure_problems(tree, kind, plain)
     loaded.problems.extend(todo_marks(src))
     if not structural and kind is DocumentKind.LIBRARY:
@@ -120,34 +120,36 @@ def _load_one(src: Source, loaded: Loaded, interfaces: Interfaces) -> None:
         loaded.problems.extend(structural)
         loaded.library_complete &= kind is not DocumentKind.LIBRARY
     elif kind is DocumentKind.LIBRARY:
-        loaded.libraries.append(build_library(plain, src.name, _TreeAgain(src), interfaces))
+        loaded.libraries.append(
+            build_library(plain, src.name, _ReadAgain(src), interfaces, tree.without_plain())
+        )
     else:
         loaded.problems.extend(duplicate_edges(tree, plain))
         loaded.schemas.append(build_schema(plain, tree, src.name))
 
 
 @dataclass(frozen=True, eq=False)
-class _TreeAgain:
-    """A library file's positioned tree, composed again from the bytes read when a position
-    is first asked for (``build._Where``: only a problem asks).
+class _ReadAgain:
+    """A library file's positions, read again from the bytes read when a position is first
+    asked for (``build._Where``: only a problem asks).
 
-    Each component held its file's tree before, so every tree of a load lived as long as the
-    library: ``validate`` on 10,000 roles x 10 candidates (100,000 components, 28 MB of YAML)
-    peaked at 1.53 GB, against 0.40 GB with an earlier reader that kept no tree.
-    The last tree composed is kept (``_composed``), so the problems of one file compose it
-    once; the bytes are the ones read, not the file as it is on disk now.
+    The library keeps its table without the plain data (``Positions.without_plain``), which
+    places what a path names; a position named by a value (``needs.<name>``,
+    ``provides.<interface>``) needs the values' text, so the file is read again then. The
+    last file read again is kept (``_read_again``), so the problems of one file read it
+    once; the bytes are the ones read first, not the file as it is on disk now.
     """
 
     src: Source
 
-    def __call__(self) -> Node:
-        return _composed(self)
+    def __call__(self) -> Positions:
+        return _read_again(self)
 
 
 @functools.lru_cache(maxsize=1)
-def _composed(again: _TreeAgain) -> Node:
+def _read_again(again: _ReadAgain) -> Positions:
     tree, _ = ys.read(again.src.data, again.src.name)
-    assert tree is not None, "it was read with a tree before"
+    assert tree is not None, "it was read with positions before"
     return tree
 
 

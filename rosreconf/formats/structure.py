@@ -2,8 +2,8 @@
 
 jsonschema-rs does the validating (the JSON Schema files editors use, in ``rosreconf/data``);
 this module turns each error into a ``Problem`` at the exact key or value (its instance path
-looked up in the positioned tree), saying what is wrong in words and how to fix it
-(``x-hint`` entries in the JSON Schemas, "did you mean", "quote it").
+looked up in the document's positions, ``positions.Positions``), saying what is wrong in
+words and how to fix it (``x-hint`` entries in the JSON Schemas, "did you mean", "quote it").
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from typing import Any
 
 from rosreconf.errors import Problem
 from rosreconf.formats import nodes
+from rosreconf.formats.positions import MAPPING, PLAIN_SCALAR, SEQUENCE, Place, Positions
 from rosreconf.model import Span
 from rosreconf.resources import Bundle, bundled
 
@@ -47,27 +48,28 @@ def kind_of(plain: nodes.Plain) -> DocumentKind | None:
 _KINDS = frozenset(DocumentKind)
 
 
-def format_problem(tree: nodes.Node | None, plain: nodes.Plain, name: str) -> Problem:
+def format_problem(tree: Positions | None, plain: nodes.Plain, name: str) -> Problem:
     """Return what is wrong with the format of a document ``kind_of`` found none in."""
     known = ", ".join(k.value for k in DocumentKind)
     if not isinstance(plain, dict):
         return Problem(
-            nodes.span(tree) if tree is not None else Span(name, 1, 1),
+            tree.span(tree.root) if tree is not None else Span(name, 1, 1),
             "expected a mapping with a 'format' key at the top of the file",
             f"start the file with 'format: <kind>' where kind is one of {known}",
             code="not-a-document",
         )
     if "format" not in plain:
         return Problem(
-            nodes.span(tree),
+            tree.span(tree.root) if tree is not None else Span(name, 1, 1),
             "missing 'format' key",
             f"add 'format: <kind>' where kind is one of {known}",
             code="missing-format",
         )
-    fmt = nodes.fields(tree)["format"]
+    assert tree is not None, "a mapping read has its positions"
+    fmt = tree.lookup(["format"])
     return Problem(
-        nodes.span(fmt),
-        f"unknown format '{nodes.text_of(fmt)}'",
+        tree.span(fmt),
+        f"unknown format '{tree.text(fmt)}'",
         f"use one of {known}",
         "unknown-format",
     )
@@ -81,8 +83,8 @@ def validator(kind: DocumentKind) -> Any:
     return jsonschema_rs.Draft202012Validator(json_schema(kind))
 
 
-def structure_problems(tree: nodes.Node, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
-    """Return every structural problem of ``plain``, each placed in ``tree``.
+def structure_problems(tree: Positions, kind: DocumentKind, plain: nodes.Plain) -> list[Problem]:
+    """Return every structural problem of ``plain``, each placed by ``tree``.
 
     Raises:
         ValueError: a mapping key of ``plain`` is not a string (jsonschema-rs reads none).
@@ -188,7 +190,7 @@ def _blamed(alternative: _Error) -> tuple[_Error, bool]:
     return errors[0], at_value(by_branch[branch]) == 0
 
 
-def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
+def _problem_of(error: _Error, tree: Positions) -> Problem:
     if error.validator in ("oneOf", "anyOf") and error.context:
         blamed, fits = _blamed(error)
         problem = _problem_of(blamed, tree)
@@ -197,8 +199,8 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
         hint = problem.hint or str(error.schema.get("x-hint", ""))  # else: the alternatives
         return Problem(problem.span, problem.message, hint, problem.code)
     path = error.path
-    node = nodes.lookup(tree, path)
-    span = nodes.span(node) if node is not None else Span("<unknown>", 1, 1)
+    node = tree.lookup(path)
+    span = tree.span(node)
     where = f"'{nodes.path_text(path)}'" if path else "the document"
     schema = error.schema
     hint = str(schema.get("x-hint", ""))
@@ -210,21 +212,21 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
         allowed = sorted(schema.get("properties", {}))
         extra = sorted(set(error.instance) - set(allowed))
         name = extra[0] if extra else "?"
-        kspan = nodes.key_span(tree, [*path, name]) or span
+        kspan = tree.key_span([*path, name]) or span
         close = difflib.get_close_matches(name, allowed, n=1)
         fix = f"did you mean '{close[0]}'?" if close else f"allowed keys: {', '.join(allowed)}"
         return Problem(kspan, f"unknown key '{name}' in {where}", fix, code="unknown-key")
     if validator == "type":
-        got = _written(node)
+        got = _written(tree, node)
         want = error.validator_value
         wanted = " or ".join(want) if isinstance(want, list) else str(want)
         fix = hint
-        if "string" in wanted and type(node) is nodes.ScalarNode and not node.tag:
-            fix = f"quote it ('{node.value}') if you mean the text"
+        if "string" in wanted and tree.kind(node) == PLAIN_SCALAR:
+            fix = f"quote it ('{tree.text(node)}') if you mean the text"
         return Problem(span, f"{where} must be a {wanted}, not {got}", fix, code="wrong-type")
     if validator == "pattern":
-        return Problem(span, f"{where} {_written(node)} is not valid", hint, code="bad-name")
-    limit, written = error.validator_value, _written(node)
+        return Problem(span, f"{where} {_written(tree, node)} is not valid", hint, code="bad-name")
+    limit, written = error.validator_value, _written(tree, node)
     if validator == "const":
         return Problem(
             span, f"{where} must be {json.dumps(limit)}, not {written}", hint, "wrong-value"
@@ -241,13 +243,15 @@ def _problem_of(error: _Error, tree: nodes.Node | None) -> Problem:
     return Problem(span, f"{where}: {error.message}", hint, code="invalid")
 
 
-def _written(node: nodes.Node | None) -> str:
-    if type(node) is nodes.ScalarNode:
-        kind = type(nodes.value(node)).__name__.replace("NoneType", "null").replace("str", "text")
-        kind = {"int": "number", "float": "number", "bool": "boolean"}.get(kind, kind)
-        return f"{kind} {node.value!r}" if node.value else "empty value"
-    if type(node) is nodes.MappingNode:
+def _written(tree: Positions, node: Place) -> str:
+    kind = tree.kind(node)
+    if kind == MAPPING:
         return "a mapping"
-    if type(node) is nodes.SequenceNode:
+    if kind == SEQUENCE:
         return "a list"
-    return "nothing"
+    text = tree.text(node)
+    if not text:
+        return "empty value"
+    what = type(node.value).__name__.replace("NoneType", "null").replace("str", "text")
+    what = {"int": "number", "float": "number", "bool": "boolean"}.get(what, what)
+    return f"{what} {text!r}"

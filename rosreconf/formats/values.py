@@ -18,8 +18,8 @@ The JSON Schema checks types and ranges, but three kinds of value pass it and th
   ``simchecks``'s, on the built model.
 
 Each check runs once, on the plain data, after its JSON Schema check passed and before model
-objects are built; only a value found wrong is looked up in the positioned tree for its
-``file:line:column`` and its text as written.
+objects are built; only a value found wrong is looked up in the document's positions
+(``positions.Positions``) for its ``file:line:column`` and its text as written.
 """
 
 from __future__ import annotations
@@ -31,6 +31,8 @@ from collections.abc import Iterator
 from rosreconf.errors import Problem, Severity
 from rosreconf.formats import nodes
 from rosreconf.formats.nodes import NUMBER
+from rosreconf.formats.positions import Place, Positions
+from rosreconf.model import Span
 
 MAX_METRIC = 1e12
 """Largest metric value: sums over 10,000 components stay exact in a float, and costs in PDDL."""
@@ -51,7 +53,7 @@ SUBSTITUTION = "$("
 """What starts a roslaunch / ROS 2 launch substitution."""
 
 
-def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
+def value_problems(tree: Positions, plain: nodes.Plain) -> list[Problem]:
     """Return the problems of a structurally valid library's numbers and launch values."""
     problems: list[Problem] = []
     components = plain.get("components") if isinstance(plain, dict) else None
@@ -81,7 +83,7 @@ def value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
     return problems
 
 
-def schema_value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
+def schema_value_problems(tree: Positions, plain: nodes.Plain) -> list[Problem]:
     """Return the integers of a schema's simulation block too large to become floats.
 
     Refused here, at their position, before they can stop the build.
@@ -90,19 +92,26 @@ def schema_value_problems(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]
     return list(_huge(simulation, tree, "simulation"))
 
 
-def _at(tree: nodes.Node, *path: str | int) -> nodes.Node | None:
-    """Return the node at ``path`` of the tree."""
-    return nodes.lookup(tree, path)
+def _at(tree: Positions, *path: str | int) -> tuple[Positions, Place]:
+    """Return the value at ``path`` of the document, with the positions that place it."""
+    return tree, tree.lookup(path)
 
 
-def _huge(plain: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator[Problem]:
+def _span(at: tuple[Positions, Place]) -> Span:
+    return at[0].span(at[1])
+
+
+def _text(at: tuple[Positions, Place]) -> str:
+    return at[0].text(at[1])
+
+
+def _huge(plain: nodes.Plain, tree: Positions, *path: str | int) -> Iterator[Problem]:
     """Refuse every integer under ``plain`` (at ``path``) too large for a float."""
     if type(plain) is int and abs(plain) > FLOAT_MAX:
         node = _at(tree, *path)
         yield Problem(
-            nodes.span(node),
-            f"'{nodes.path_text(path)}' is {_shown(nodes.text_of(node))}, too large to "
-            "compute with",
+            _span(node),
+            f"'{nodes.path_text(path)}' is {_shown(_text(node))}, too large to compute with",
             "write a number within the ranges docs/simulation.md gives (at most 1e12)",
             code="not-finite",
         )
@@ -114,7 +123,7 @@ def _huge(plain: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator[Pr
             yield from _huge(child, tree, *path, i)
 
 
-def _qos(interface: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator[Problem]:
+def _qos(interface: nodes.Plain, tree: Positions, *path: str | int) -> Iterator[Problem]:
     """Refuse an interface's (and its options') QoS numbers beyond DDS's 32-bit ``long``."""
     if not isinstance(interface, dict):
         return
@@ -126,8 +135,8 @@ def _qos(interface: nodes.Plain, tree: nodes.Node, *path: str | int) -> Iterator
         node = _at(tree, *path, "qos", name)
         unit = "" if name == "depth" else " s"
         yield Problem(
-            nodes.span(node),
-            f"QoS {name} is {_shown(nodes.text_of(node))}, more than DDS can carry "
+            _span(node),
+            f"QoS {name} is {_shown(_text(node))}, more than DDS can carry "
             f"({high}{unit}, a 32-bit 'long')",
             "give a depth of at most 2147483647 (0 keeps all)"
             if name == "depth"
@@ -144,7 +153,7 @@ def _within(value: nodes.Plain, high: float) -> bool:
     return type(value) not in NUMBER or 0.0 <= value <= high  # type: ignore[operator]
 
 
-def _number(value: nodes.Plain, high: float, what: str, node: nodes.Node | None) -> Problem:
+def _number(value: nodes.Plain, high: float, what: str, node: tuple[Positions, Place]) -> Problem:
     """Return the problem of a number ``_within`` refused: not finite, or outside [0, high]."""
     try:
         finite = math.isfinite(float(value))  # type: ignore[arg-type]
@@ -152,22 +161,21 @@ def _number(value: nodes.Plain, high: float, what: str, node: nodes.Node | None)
         finite = False
     how = "too large to compute with" if type(value) is int else "not a finite number"
     return Problem(
-        nodes.span(node),
-        f"{what} is {_shown(nodes.text_of(node))}, "
-        + (f"outside [0, {high:g}]" if finite else how),
+        _span(node),
+        f"{what} is {_shown(_text(node))}, " + (f"outside [0, {high:g}]" if finite else how),
         f"give a number between 0 and {high:g}",
         code="out-of-range" if finite else "not-finite",
     )
 
 
-def _parameter(key: str, value: nodes.Plain, tree: nodes.Node, i: int) -> Iterator[Problem]:
+def _parameter(key: str, value: nodes.Plain, tree: Positions, i: int) -> Iterator[Problem]:
     """Refuse unmarked substitutions, non-finite or subnormal floats, integers ROS 1 cannot carry.
 
     A mapping (``{substitution: "..."}``) is marked by the user; its shape is the Schema's job.
     """
     if isinstance(value, str) and SUBSTITUTION in value:
         yield Problem(
-            nodes.span(_at(tree, "components", i, "ros", "parameters", key)),
+            _span(_at(tree, "components", i, "ros", "parameters", key)),
             f"parameter '{key}' contains '$(', which roslaunch would evaluate as a "
             "substitution ($(eval ...) runs Python, $(env ...) reads the environment)",
             f'if it is meant as one, mark it: {key}: {{substitution: "{value}"}}; '
@@ -177,16 +185,16 @@ def _parameter(key: str, value: nodes.Plain, tree: nodes.Node, i: int) -> Iterat
     elif isinstance(value, float) and not math.isfinite(value):
         node = _at(tree, "components", i, "ros", "parameters", key)
         yield Problem(
-            nodes.span(node),
-            f"parameter '{key}' is {nodes.text_of(node)}, not a finite number",
+            _span(node),
+            f"parameter '{key}' is {_text(node)}, not a finite number",
             "give a finite number",
             code="not-finite",
         )
     elif isinstance(value, float) and value and abs(value) < sys.float_info.min:
         node = _at(tree, "components", i, "ros", "parameters", key)
         yield Problem(
-            nodes.span(node),
-            f"parameter '{key}' is {_shown(nodes.text_of(node))}, a subnormal number: ROS 2's "
+            _span(node),
+            f"parameter '{key}' is {_shown(_text(node))}, a subnormal number: ROS 2's "
             "rcl reads no spelling of it as a double (strtod reports an underflow), and the "
             "node would get a string",
             f"give 0 or a number of at least {sys.float_info.min!r} in size",
@@ -195,8 +203,8 @@ def _parameter(key: str, value: nodes.Plain, tree: nodes.Node, i: int) -> Iterat
     elif type(value) is int and not INT32[0] <= value <= INT32[1]:
         node = _at(tree, "components", i, "ros", "parameters", key)
         yield Problem(
-            nodes.span(node),
-            f"parameter '{key}' is {_shown(nodes.text_of(node))}, outside the 32-bit integers "
+            _span(node),
+            f"parameter '{key}' is {_shown(_text(node))}, outside the 32-bit integers "
             "ROS 1 can carry",
             "write it as a float (with a '.') or as a quoted string",
             code="out-of-range",
@@ -208,7 +216,7 @@ def _shown(raw: str) -> str:
     return raw if len(raw) <= 24 else f"{raw[:12]}...{raw[-4:]} ({len(raw)} characters)"
 
 
-def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
+def duplicate_edges(tree: Positions, plain: nodes.Plain) -> list[Problem]:
     """Warn about a consumer-provider pair listed twice in a schema's edges.
 
     The loader merges them (the entry without an ``interfaces`` restriction wins), which may
@@ -229,10 +237,10 @@ def duplicate_edges(tree: nodes.Node, plain: nodes.Plain) -> list[Problem]:
             if key not in seen:
                 seen[key] = at
                 continue
-            first = nodes.span(nodes.lookup(tree, seen[key]))
+            first = tree.span(tree.lookup(seen[key]))
             problems.append(
                 Problem(
-                    nodes.span(nodes.lookup(tree, at)),
+                    tree.span(tree.lookup(at)),
                     f"edge {provider} -> {consumer} is listed again (first at "
                     f"{first}); the two entries are merged and the one without "
                     "'interfaces' wins",
