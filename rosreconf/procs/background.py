@@ -18,6 +18,7 @@ from pathlib import Path
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
+from rosreconf.procs.procstat import PROC, read_stat
 from rosreconf.procs.signals import signal_group
 
 
@@ -154,11 +155,11 @@ def start_program(
 def descendants(root: int) -> set[int]:
     """Return the pids of every living process below ``root`` (Linux /proc)."""
     parents: dict[int, int] = {}
-    for entry in Path("/proc").iterdir():
-        with contextlib.suppress(OSError, ValueError, IndexError):
-            if entry.name.isdigit():
-                text = (entry / "stat").read_text()
-                parents[int(entry.name)] = int(text[text.rindex(")") + 2 :].split()[1])
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(PROC):
+            stat = read_stat(entry.name) if entry.name.isdigit() else None
+            if stat is not None:
+                parents[stat.pid] = stat.ppid
     found: set[int] = set()
     frontier = {root}
     while frontier:

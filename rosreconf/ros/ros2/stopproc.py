@@ -26,7 +26,8 @@ from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
 
-from rosreconf.ros.ros2.hostprocs import PROC, ProcId, read_proc_id
+from rosreconf.procs.procstat import PROC
+from rosreconf.ros.ros2.hostprocs import ProcId, read_proc_id
 from rosreconf.ros.ros2.pidwatch import STOPPED_STATES, open_pidfd, pidfd_supported, proc_state
 
 GRACE = 3.0
