@@ -34,7 +34,9 @@ long-running one: roslaunch), ``child`` (the setup between fork and exec: parent
 signal, watchdog, limits; ``pool_worker_setup`` gives local worker processes the same
 parent-death signal), ``signals`` (SIGTERM as an exception, signals to groups),
 ``workdirs`` (private temp dirs), ``procstat`` (read any process's /proc/<pid>/stat, with
-its command name intact). Import from here: the names below are the API.
+its command name intact), ``ladder`` (SIGINT, SIGTERM, SIGKILL in turn, a grace apart, until
+the processes have gone; each caller says what is signalled). Import from here: the names
+below are the API.
 """
 
 from rosreconf.procs.background import Background, descendants, start_program, stop_all
