@@ -23,14 +23,17 @@ NAME = "a) (b c)"
 
 @pytest.fixture
 def oddly_named(tmp_path: Path) -> Iterator[subprocess.Popen[bytes]]:
-    """Run a shell script named ``NAME`` that waits on its stdin (its comm is ``NAME``)."""
+    """Run a shell script named ``NAME``, and wait until it sleeps reading its stdin.
+
+    Its comm is ``NAME`` once it runs; its state stays ``S`` until stdin closes.
+    """
     script = tmp_path / NAME
     script.write_text("#!/bin/sh\nread line\n")
     script.chmod(0o755)
     proc = subprocess.Popen([str(script)], stdin=subprocess.PIPE)
     try:
         deadline = time.monotonic() + 10
-        while (stat := read_stat(proc.pid)) is None or stat.comm != NAME:
+        while (stat := read_stat(proc.pid)) is None or (stat.comm, stat.state) != (NAME, "S"):
             assert time.monotonic() < deadline, f"the script never ran: {stat}"
             time.sleep(0.01)
         yield proc
@@ -45,8 +48,7 @@ def test_the_command_name_may_hold_parentheses_and_spaces(
     stat = read_stat(oddly_named.pid)
     assert stat is not None
     assert (stat.pid, stat.comm, stat.ppid) == (oddly_named.pid, NAME, os.getpid())
-    assert stat.state in "RS"
-    assert proc_state(oddly_named.pid) == stat.state
+    assert stat.state == proc_state(oddly_named.pid) == "S"
     proc_id = read_proc_id(oddly_named.pid)
     assert proc_id is not None and proc_id.start_ticks == stat.start_ticks
     own = read_stat(os.getpid())
