@@ -45,7 +45,7 @@ def child(folder: str) -> dict[str, float]:
     d = Path(folder)
     seconds = dict.fromkeys(STAGES, 0.0)
     clock = time.process_time
-    gc.disable()  # as the loader does (loader._paused_gc)
+    gc.disable()  # as the loader does (rosreconf.gcpause.paused_gc)
     t = clock()
     sources = loader.read_sources(loader.discover([d / "libraries", d / "schemas"]))
     seconds["read"] = clock() - t

@@ -28,10 +28,11 @@ from collections import defaultdict
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from rosreconf.gcpause import paused_gc
 from rosreconf.solve.emptyroles import is_empty_choice
 from rosreconf.solve.factors import constraint_factors, elimination_order
 from rosreconf.solve.instance import Instance, prune
-from rosreconf.solve.tables import MAX_FACTOR_ROWS, Factor, _join_all, key_of, paused_gc
+from rosreconf.solve.tables import MAX_FACTOR_ROWS, Factor, _join_all, key_of
 
 __all__ = ["Marginals", "marginals"]
 

@@ -166,6 +166,21 @@ CurrentOption = Annotated[
 ]
 
 
+WorkersOption = Annotated[
+    int | None,
+    typer.Option(min=1, help="Worker processes. Default: one per core.", show_default=False),
+]
+
+
+def _cluster(work: str) -> Any:
+    """Return the ``--cluster`` option, saying what the scheduler's workers do."""
+    return typer.Option(help=f"{work} on a Dask scheduler at tcp://HOST:PORT.", show_default=False)
+
+
+SimulateClusterOption = Annotated[str | None, _cluster("Simulate")]
+SolveClusterOption = Annotated[str | None, _cluster("Solve")]
+
+
 def _search_limit(spent: str) -> Any:
     """Return the ``--search-limit`` option, saying what happens when it is spent."""
     return typer.Option(

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -29,7 +33,7 @@ from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
 from rosreconf.ros.connect import read_any
 from rosreconf.ros.importer import draft_library, is_anonymous
-from rosreconf.ros.livegraph import to_json, without_plumbing
+from rosreconf.ros.livegraph import LiveGraph, to_json, without_plumbing
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.solve.running import one_target
 
@@ -39,35 +43,80 @@ def _note(text: str) -> None:
     stderr.print(text, markup=False)
 
 
-def snapshot_command(
-    master: OptionalMasterOption = None,
-    output: Annotated[
-        str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
-    ] = "-",
+@dataclass(frozen=True)
+class LiveRead:
+    """How a command reads a live graph: the options of every command that reads one."""
+
+    timeout: float
+    max_bytes: int
+    ros2: bool
+    domain: int
+    distro: str | None
+
+    def graph(self, master: str | None, snapshot: Path | None) -> LiveGraph:
+        """Read the graph from ``master``, a saved ``snapshot`` or ROS 2 discovery."""
+        return read_any(
+            master,
+            snapshot,
+            self.ros2,
+            self.domain,
+            self.distro,
+            timeout=self.timeout,
+            max_bytes=self.max_bytes,
+            on_note=_note,
+        )
+
+
+def _live_read(
     master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
     max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
+) -> LiveRead:
+    """Declare the live-read options once; ``reads_live`` gives them to each command."""
+    return LiveRead(master_timeout, max_answer_mb << 20, ros2, domain, distro)
+
+
+def reads_live(command: Callable[..., None]) -> Callable[..., None]:
+    """Give ``command`` the live-read options, passed to it as one ``read: LiveRead``.
+
+    Typer reads a command's options from its signature, so the returned command's signature
+    is ``command``'s own without ``read``, followed by ``_live_read``'s parameters: the
+    options keep their place at the end of ``--help``, and a new one is added in one place.
+    """
+    own = inspect.signature(command, eval_str=True)
+    options = inspect.signature(_live_read, eval_str=True).parameters
+
+    @functools.wraps(command)
+    def with_options(**given: Any) -> None:
+        read = _live_read(**{name: given.pop(name) for name in options})
+        command(**given, read=read)
+
+    params = [p for p in own.parameters.values() if p.name != "read"]
+    params += options.values()
+    with_options.__signature__ = own.replace(parameters=params)  # type: ignore[attr-defined]
+    with_options.__annotations__ = {p.name: p.annotation for p in params}
+    return with_options
+
+
+@reads_live
+def snapshot_command(
+    master: OptionalMasterOption = None,
+    output: Annotated[
+        str, typer.Option("--output", "-o", help="Write here (- or default: stdout).")
+    ] = "-",
+    *,
+    read: LiveRead,
 ) -> None:
     """Save the live graph (nodes, topics, services, types; pids or QoS) as JSON."""
 
     target = output_target(output)
-    text = to_json(
-        read_any(
-            master,
-            None,
-            ros2,
-            domain,
-            distro,
-            timeout=master_timeout,
-            max_bytes=max_answer_mb << 20,
-            on_note=_note,
-        )
-    )
+    text = to_json(read.graph(master, None))
     write_output(target, text)
 
 
+@reads_live
 def import_command(
     output: Annotated[
         str, typer.Option("--output", "-o", help="The library file to write (- for stdout).")
@@ -79,25 +128,13 @@ def import_command(
         Path | None, typer.Option("--snapshot", help="Read a saved 'rosreconf snapshot'.")
     ] = None,
     name: Annotated[str, typer.Option(help="The library's name.")] = "imported",
-    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
-    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
-    ros2: Ros2Option = False,
-    domain: DomainOption = 0,
-    distro: DistroOption = None,
+    *,
+    read: LiveRead,
 ) -> None:
     """Draft a component library (one component per live node) with TODOs to fill in."""
 
     target = output_target(output)
-    graph = read_any(
-        master,
-        snapshot,
-        ros2,
-        domain,
-        distro,
-        timeout=master_timeout,
-        max_bytes=max_answer_mb << 20,
-        on_note=_note,
-    )
+    graph = read.graph(master, snapshot)
     text = draft_library(graph, name)
     where = write_output(target, text)
     live = without_plumbing(graph).nodes
@@ -117,6 +154,7 @@ def import_command(
         )
 
 
+@reads_live
 def inspect_command(
     master: OptionalMasterOption = None,
     snapshot: Annotated[
@@ -128,11 +166,8 @@ def inspect_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     as_json: JsonOption = False,
-    master_timeout: MasterTimeoutOption = DEFAULT_TIMEOUT,
-    max_answer_mb: MaxAnswerOption = DEFAULT_MAX_BYTES >> 20,
-    ros2: Ros2Option = False,
-    domain: DomainOption = 0,
-    distro: DistroOption = None,
+    *,
+    read: LiveRead,
 ) -> None:
     """Compare the live ROS-graph with the configuration's; exit 0 if it conforms, else 1.
 
@@ -142,16 +177,7 @@ def inspect_command(
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
-    graph = read_any(
-        master,
-        snapshot,
-        ros2,
-        domain,
-        distro,
-        timeout=master_timeout,
-        max_bytes=max_answer_mb << 20,
-        on_note=_note,
-    )
+    graph = read.graph(master, snapshot)
     result = compare(target.configuration, sel.library, target.schema, graph)
     write_stdout(REPORTERS[Output.of(as_json)].render(result, target.schema))
     raise typer.Exit(ExitCode.OK if result.ok else ExitCode.FAILED)

@@ -13,6 +13,8 @@ from rosreconf.cli.common import (
     LibraryOption,
     OnlyOption,
     SchemaOption,
+    SimulateClusterOption,
+    WorkersOption,
     select,
 )
 from rosreconf.cli.console import stderr, stdout, write_stdout_pieces
@@ -52,14 +54,8 @@ def simulate_command(
             help="Draw the step responses (and the front) to FILE.svg or .png.", show_default=False
         ),
     ] = None,
-    workers: Annotated[
-        int | None,
-        typer.Option(min=1, help="Worker processes. Default: one per core.", show_default=False),
-    ] = None,
-    cluster: Annotated[
-        str | None,
-        typer.Option(help="Simulate on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
-    ] = None,
+    workers: WorkersOption = None,
+    cluster: SimulateClusterOption = None,
     top: Annotated[
         int,
         typer.Option(

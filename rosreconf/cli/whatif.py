@@ -23,6 +23,8 @@ from rosreconf.cli.common import (
     LibraryOption,
     OnlyOption,
     SchemaOption,
+    SolveClusterOption,
+    WorkersOption,
     finite,
     select,
 )
@@ -39,14 +41,8 @@ def whatif_command(
     max_failures: Annotated[
         int, typer.Option("--max-failures", "-k", min=1, max=4, help="Largest failure set.")
     ] = 2,
-    workers: Annotated[
-        int | None,
-        typer.Option(min=1, help="Worker processes. Default: one per core.", show_default=False),
-    ] = None,
-    cluster: Annotated[
-        str | None,
-        typer.Option(help="Solve on a Dask scheduler at tcp://HOST:PORT.", show_default=False),
-    ] = None,
+    workers: WorkersOption = None,
+    cluster: SolveClusterOption = None,
     search_time: Annotated[
         float,
         typer.Option(

@@ -10,9 +10,7 @@ work on invalid input.
 
 from __future__ import annotations
 
-import contextlib
 import functools
-import gc
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -26,6 +24,7 @@ from rosreconf.formats.positions import Positions
 from rosreconf.formats.sources import YAML_SUFFIXES, Source, discover, read_sources
 from rosreconf.formats.structure import DocumentKind, format_problem, kind_of, structure_problems
 from rosreconf.formats.values import duplicate_edges, schema_value_problems, value_problems
+from rosreconf.gcpause import paused_gc
 from rosreconf.model import ComponentLibrary, ConfigurationLibrary, InteroperabilitySchema, Span
 from rosreconf.resources import Bundle, bundled
 
@@ -62,30 +61,11 @@ class Loaded:
         return ConfigurationLibrary(tuple(self.schemas))
 
 
-@contextlib.contextmanager
-def _paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while files are read and built, then freeze.
-
-    Loading only adds objects, and each collection would walk everything loaded so far (at
-    1000 roles x 10, more than the loading itself). The model then lives as long as the
-    command: frozen (``gc.freeze``), the next collections do not walk it again (reference
-    counting still frees it; only a reference cycle made while loading would outlive its use).
-    """
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.freeze()
-            gc.enable()
-
-
 def load_sources(sources: Iterable[Source]) -> Loaded:
     """Parse, check and build every source, collecting problems instead of stopping at the first."""
     loaded = Loaded()
     interfaces: Interfaces = {}  # shared by every library file (see build_library)
-    with _paused_gc():
+    with paused_gc():
         for src in sources:
             loaded.files.append(src.name)
             try:
@@ -244,7 +224,7 @@ def load_split(
 
 def check_loaded(loaded: Loaded) -> list[Problem]:
     """Return the semantic problems of what ``loaded`` holds (see ``rosreconf.formats.checks``)."""
-    with _paused_gc():
+    with paused_gc():
         return check(loaded.libraries, loaded.schemas, library_complete=loaded.library_complete)
 
 

@@ -33,11 +33,15 @@ The modules, one concern each: ``run`` (run a program to its end), ``background`
 long-running one: roslaunch), ``child`` (the setup between fork and exec: parent-death
 signal, watchdog, limits; ``pool_worker_setup`` gives local worker processes the same
 parent-death signal), ``signals`` (SIGTERM as an exception, signals to groups),
-``workdirs`` (private temp dirs). Import from here: the names below are the API.
+``workdirs`` (private temp dirs), ``procstat`` (read any process's /proc/<pid>/stat, with
+its command name intact), ``ladder`` (SIGINT, SIGTERM, SIGKILL in turn, a grace apart, until
+the processes have gone; each caller says what is signalled). Import from here: the names
+below are the API.
 """
 
 from rosreconf.procs.background import Background, descendants, start_program, stop_all
 from rosreconf.procs.child import pool_worker_setup
+from rosreconf.procs.procstat import PROC, ProcStat, read_stat
 from rosreconf.procs.run import (
     GRACE_SECONDS,
     MAX_OUTPUT_BYTES,
@@ -58,14 +62,17 @@ __all__ = [
     "GRACE_SECONDS",
     "MAX_OUTPUT_BYTES",
     "MISSING_RETURNCODE",
+    "PROC",
     "WORKDIR_PREFIX",
     "Background",
+    "ProcStat",
     "ProgramResult",
     "Terminated",
     "clean_stale_workdirs",
     "descendants",
     "pool_worker_setup",
     "private_workdir",
+    "read_stat",
     "run_program",
     "sigterm_raises",
     "start_program",

@@ -12,12 +12,13 @@ import contextlib
 import os
 import signal
 import subprocess
-import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from rosreconf.errors import ExternalToolError
 from rosreconf.procs.child import ALIVE_PIPES, LINUX, preexec, release
+from rosreconf.procs.ladder import climb, wait_all
+from rosreconf.procs.procstat import PROC, read_stat
 from rosreconf.procs.signals import signal_group
 
 
@@ -90,15 +91,25 @@ class Background:
 
 
 def stop_all(programs: Sequence[Background], grace: float = 5.0, sig: int = signal.SIGINT) -> None:
-    """Stop several ``Background`` programs: signal all, share one ``grace``, then kill all."""
-    for prog in programs:
-        if prog.process.poll() is None:
+    """Stop several ``Background`` programs: signal all, share one ``grace``, then kill all.
+
+    One rung of the ladder (``sig``), then SIGKILL whatever it came to: a program's
+    descendants may have left its group (``setsid``) and outlive it, so every recorded one
+    is killed too, even when the program itself has ended.
+    """
+
+    def send(step: signal.Signals) -> bool:
+        running = [prog for prog in programs if prog.process.poll() is None]
+        for prog in running:
             prog.remember()
-            signal_group(prog.process.pid, signal.Signals(sig))
-    deadline = time.monotonic() + grace
+            signal_group(prog.process.pid, step)
+        return bool(running)
+
+    def gone(wait: float) -> bool:
+        return wait_all([prog.process for prog in programs], wait)
+
+    climb(send, gone, grace, (signal.Signals(sig),))
     for prog in programs:
-        with contextlib.suppress(subprocess.TimeoutExpired):
-            prog.process.wait(timeout=max(0.0, deadline - time.monotonic()))
         for pid in (prog.process.pid, *prog.pids):
             signal_group(pid, signal.SIGKILL)
             with contextlib.suppress(ProcessLookupError, PermissionError):
@@ -154,11 +165,11 @@ def start_program(
 def descendants(root: int) -> set[int]:
     """Return the pids of every living process below ``root`` (Linux /proc)."""
     parents: dict[int, int] = {}
-    for entry in Path("/proc").iterdir():
-        with contextlib.suppress(OSError, ValueError, IndexError):
-            if entry.name.isdigit():
-                text = (entry / "stat").read_text()
-                parents[int(entry.name)] = int(text[text.rindex(")") + 2 :].split()[1])
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(PROC):
+            stat = read_stat(entry.name) if entry.name.isdigit() else None
+            if stat is not None:
+                parents[stat.pid] = stat.ppid
     found: set[int] = set()
     frontier = {root}
     while frontier:

@@ -25,6 +25,7 @@ import itertools
 from collections import defaultdict
 from collections.abc import Callable
 
+from rosreconf.gcpause import paused_gc
 from rosreconf.solve.instance import Instance
 from rosreconf.solve.tables import (
     MAX_FACTOR_ROWS,
@@ -37,7 +38,6 @@ from rosreconf.solve.tables import (
     _join_all_but_last,
     join_sum_out,
     key_of,
-    paused_gc,
 )
 
 __all__ = [

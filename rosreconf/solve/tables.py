@@ -10,11 +10,9 @@ a role's last join can take the role out in the same pass (``join_sum_out``, and
 
 from __future__ import annotations
 
-import contextlib
-import gc
 import operator
 from collections import defaultdict
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -189,31 +187,6 @@ def key_of(positions: list[int]) -> Callable[[tuple[str, ...]], tuple[str, ...]]
         p = positions[0]
         return lambda row: (row[p],)
     return operator.itemgetter(*positions)
-
-
-@contextlib.contextmanager
-def paused_gc() -> Iterator[None]:
-    """Pause the cyclic garbage collector while millions of acyclic rows are built.
-
-    Tables hold only tuples of strings and integers, which reference counting frees; but
-    every collection would still walk the whole loaded library, and at 1000 roles those
-    walks cost more than the elimination itself.
-
-    What is still alive at the end (the compiled instance, the answer) is frozen
-    (``gc.freeze``), as loading does (``rosreconf.formats.loader``): every object made while
-    the collector was paused sits in its youngest generation, and the first allocation
-    after re-enabling it would walk them all (0.02-0.03 CPU s after compiling 1000 roles x
-    10). Frozen objects are still freed by reference counting; only a reference cycle made
-    in the pause would outlive its use.
-    """
-    was = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if was:
-            gc.freeze()
-            gc.enable()
 
 
 def _join(a: Factor, b: Factor, times: Times, max_rows: int, one: int = 1) -> Factor:

@@ -45,9 +45,8 @@ from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
 
+from rosreconf.procs.procstat import PROC, read_stat
 from rosreconf.ros.ros2.fastdds_ids import domain_ports, fastdds_fields, low_pid, this_host_id
-
-PROC = Path("/proc")
 
 
 class Found(StrEnum):
@@ -108,20 +107,10 @@ class _Proc:
     inner_pid: int  # the pid the process sees itself as (its innermost namespace)
 
 
-def _stat(proc_root: Path, pid: int) -> tuple[str, int] | None:
-    """Return a process's state letter and start ticks (None: it is gone)."""
-    try:
-        text = (proc_root / str(pid) / "stat").read_text()
-    except OSError:
-        return None
-    fields = text[text.rindex(")") + 2 :].split()
-    return fields[0], int(fields[19])
-
-
 def read_proc_id(pid: int, proc_root: Path = PROC) -> ProcId | None:
     """Return the ProcId of a live pid (None: no such process)."""
-    stat = _stat(proc_root, pid)
-    return None if stat is None else ProcId(pid, stat[1])
+    stat = read_stat(pid, proc_root)
+    return None if stat is None else ProcId(pid, stat.start_ticks)
 
 
 def _processes(proc_root: Path) -> list[_Proc]:
@@ -131,7 +120,7 @@ def _processes(proc_root: Path) -> list[_Proc]:
         if not entry.name.isdigit():
             continue
         pid = int(entry.name)
-        stat = _stat(proc_root, pid)
+        stat = read_stat(pid, proc_root)
         inner = pid
         try:
             for line in (proc_root / entry.name / "status").read_text().splitlines():
@@ -140,8 +129,8 @@ def _processes(proc_root: Path) -> list[_Proc]:
                     break
         except (OSError, ValueError):
             pass
-        if stat is not None and stat[0] not in "ZX":  # a zombie runs nothing any more
-            found.append(_Proc(ProcId(pid, stat[1]), inner))
+        if stat is not None and stat.state not in "ZX":  # a zombie runs nothing any more
+            found.append(_Proc(ProcId(pid, stat.start_ticks), inner))
     return found
 
 

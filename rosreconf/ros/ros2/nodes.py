@@ -25,8 +25,6 @@ from __future__ import annotations
 
 import json
 import signal
-import subprocess
-import time
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,6 +34,7 @@ from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, Interface, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name, used_interfaces
 from rosreconf.procs import start_program
+from rosreconf.procs.ladder import climb, wait_all
 from rosreconf.procs.signals import signal_group
 from rosreconf.ros.launchfiles import Remap, ros2_node_arguments, wiring
 from rosreconf.ros.ros2.runtime import (
@@ -328,22 +327,28 @@ class NodeProcesses:
         return any(n.program.process.poll() is not None for n in self.nodes.values())
 
     def stop(self, components: Collection[str], grace: float = GRACE_SECONDS) -> list[OwnNode]:
-        """Stop these components' processes: SIGINT, SIGTERM, SIGKILL, ``grace`` s apart."""
+        """Stop these components' processes: SIGINT, SIGTERM, SIGKILL, ``grace`` s apart.
+
+        SIGINT and SIGTERM go to each running node's group; SIGKILL then goes to every
+        group, ended or not (``_reap``), so nothing a node forked outlives it.
+        """
         own = [self.nodes.pop(c) for c in components if c in self.nodes]
         if own:
             self.stopping(own)
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            alive = [n for n in own if n.program.process.poll() is None]
+        alive: list[OwnNode] = []
+
+        def send(sig: signal.Signals) -> bool:
+            alive[:] = [n for n in own if n.program.process.poll() is None]
             for n in alive:
                 n.program.remember()
                 signal_group(n.pid, sig)
                 signal_group(n.pid, signal.SIGCONT)  # a stopped (hung) process acts on it
-            deadline = time.monotonic() + grace
-            for n in alive:
-                try:
-                    n.program.process.wait(timeout=max(0.0, deadline - time.monotonic()))
-                except subprocess.TimeoutExpired:
-                    continue
+            return bool(alive)
+
+        def gone(wait: float) -> bool:
+            return wait_all([n.program.process for n in alive], wait)
+
+        climb(send, gone, grace, (signal.SIGINT, signal.SIGTERM))
         for n in own:
             self._reap(n)
         return own

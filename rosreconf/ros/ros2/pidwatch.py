@@ -21,7 +21,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rosreconf.ros.ros2.hostprocs import PROC, ProcId, read_proc_id
+from rosreconf.procs.procstat import PROC, read_stat
+from rosreconf.ros.ros2.hostprocs import ProcId, read_proc_id
 
 FALLBACK_STEP = 0.02
 """Seconds between /proc checks when pidfds are not available."""
@@ -62,11 +63,8 @@ def open_pidfd(proc: ProcId, proc_root: Path = PROC) -> int | None:
 
 def proc_state(pid: int, proc_root: Path = PROC) -> str | None:
     """Return a process's state letter (``R``, ``S``, ``T``, ``Z``...), None when gone."""
-    try:
-        text = (proc_root / str(pid) / "stat").read_text()
-    except OSError:
-        return None
-    return text[text.rindex(")") + 2 :].split(maxsplit=1)[0]
+    stat = read_stat(pid, proc_root)
+    return None if stat is None else stat.state
 
 
 @dataclass(frozen=True)

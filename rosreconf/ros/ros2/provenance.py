@@ -43,8 +43,9 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from rosreconf.procs.procstat import PROC
 from rosreconf.ros.ros2.fastdds_ids import fastdds_ipv4
-from rosreconf.ros.ros2.hostprocs import PROC, ProcId, socket_ports, udp_port_holders
+from rosreconf.ros.ros2.hostprocs import ProcId, socket_ports, udp_port_holders
 
 SPDP_GROUP = "239.255.0.1"
 """The RTPS discovery multicast group (the DDSI-RTPS specification's default)."""

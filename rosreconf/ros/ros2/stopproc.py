@@ -26,7 +26,9 @@ from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
 
-from rosreconf.ros.ros2.hostprocs import PROC, ProcId, read_proc_id
+from rosreconf.procs.ladder import LADDER, climb
+from rosreconf.procs.procstat import PROC
+from rosreconf.ros.ros2.hostprocs import ProcId, read_proc_id
 from rosreconf.ros.ros2.pidwatch import STOPPED_STATES, open_pidfd, pidfd_supported, proc_state
 
 GRACE = 3.0
@@ -109,22 +111,22 @@ def stop_node_process(
     if fd is None and read_proc_id(proc.pid, proc_root) != proc:
         return StopResult(Stopped.GONE, node, proc)
     start = time.monotonic()
-    sent: signal.Signals | None = None
     try:
-        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
-            if not _send(proc, fd, sig, proc_root):
-                break  # exited between two signals
-            sent = sig
-            if _exited(proc, fd, grace, proc_root):
-                break
-        else:
-            return StopResult(Stopped.FAILED, node, proc, sent, time.monotonic() - start)
+        climbed = climb(
+            lambda sig: _send(proc, fd, sig, proc_root),  # False: exited between two signals
+            lambda wait: _exited(proc, fd, wait, proc_root),
+            grace,
+            LADDER,
+        )
     finally:
         if fd is not None:
             os.close(fd)
-    if sent is None:
+    seconds = time.monotonic() - start
+    if not climbed.gone:
+        return StopResult(Stopped.FAILED, node, proc, climbed.last, seconds)
+    if climbed.last is None:
         return StopResult(Stopped.GONE, node, proc)
-    return StopResult(Stopped.STOPPED, node, proc, sent, time.monotonic() - start)
+    return StopResult(Stopped.STOPPED, node, proc, climbed.last, seconds)
 
 
 def _send(proc: ProcId, fd: int | None, sig: signal.Signals, proc_root: Path) -> bool:

@@ -1,0 +1,36 @@
+"""Pause the cyclic garbage collector while a command builds objects that live to its end.
+
+Loading a library and compiling its tables only add objects: tuples of strings and
+integers, model records. Reference counting frees those; but each collection of the cyclic
+collector would walk everything built so far, and at 1000 roles x 10 those walks cost more
+than the loading or the elimination itself. So both pause it (``paused_gc``).
+
+What is still alive at the end (the loaded model, a compiled instance, an answer) is frozen
+(``gc.freeze``): every object made while the collector was paused sits in its youngest
+generation, and the first allocation after re-enabling it would walk them all (0.02-0.03
+CPU s after compiling 1000 roles x 10). Frozen objects are still freed by reference
+counting; only a reference cycle made during the pause would outlive its use.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import gc
+from collections.abc import Iterator
+
+
+@contextlib.contextmanager
+def paused_gc() -> Iterator[None]:
+    """Disable the cyclic collector for the block, then freeze what it built and re-enable.
+
+    Nested pauses are no-ops: only the outermost one (the collector was enabled when it
+    began) freezes and re-enables.
+    """
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was:
+            gc.freeze()
+            gc.enable()
