@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Read a ROS 2 graph with rclpy itself, the tests' independent reference (run under rclpy).
 
-Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [--until-wired] [NODE ...]. Prints one JSON
+Usage: ros2_probe.py SECONDS [--wait-for NAME ...] [--until-wired [--wired NODE ...]] [NODE ...].
+Prints one JSON
 document:
 {"nodes": [full names], "topics": {name: [types]}, "services": {name: [types]},
  "states": {node: lifecycle state label, via its get_state service},
@@ -16,7 +17,9 @@ It reads once every ``--wait-for`` name (a node, topic or service) is seen and t
 then not changed for 1 s, or after SECONDS at most: discovery takes longer on a busy machine,
 so a fixed sleep would make the tests that read it fail by chance. ``--until-wired`` then reads
 again until nothing dangles (of the NODEs, when some are named: nodes taken out of service
-may keep calling a dead provider for good, and waiting on them ran out the whole SECONDS).
+may keep calling a dead provider for good, and waiting on them ran out the whole SECONDS);
+``--wired NODE`` names the nodes it waits on instead, without asking their states (a plain
+node has no get_state to ask, and a node that calls an unchosen alternative dangles for good).
 """
 
 from __future__ import annotations
@@ -100,6 +103,7 @@ def main() -> int:
     ap.add_argument("seconds", type=float)
     ap.add_argument("--wait-for", action="append", default=[])
     ap.add_argument("--until-wired", action="store_true")
+    ap.add_argument("--wired", action="append", default=[])
     ap.add_argument("nodes", nargs="*")
     args = ap.parse_intermixed_args()
     nodes = args.nodes
@@ -118,7 +122,7 @@ def main() -> int:
     # "nothing dangles" is a claim about the settled graph: a provider's endpoints that this
     # reader has not discovered yet are read again until they are, or the deadline passes
     dangling = _dangling(node)
-    while args.until_wired and _of(dangling, nodes) and time.monotonic() < deadline:
+    while args.until_wired and _of(dangling, args.wired or nodes) and time.monotonic() < deadline:
         rclpy.spin_once(node, timeout_sec=0.2)
         dangling = _dangling(node)
     names, topics, services = _graph(node)

@@ -270,7 +270,8 @@ def test_a_kept_outside_consumer_restarted_by_hand_with_its_old_wiring_is_unwire
         # rclpy's own view: one /NREA, and nothing dangles but NREA's own names for the
         # unchosen (digital) arm, which a team node acting out its whole entry keeps calling
         for _ in range(3):  # read again while discovery of the team's nodes is still going on
-            seen = probe(watch.env, ros2_domain, wait_for=["/NREA", *(f"/{c}" for c in DC_ARM)],
+            arm = [f"/{c}" for c in DC_ARM]  # until they are wired: NREA dangles for good
+            seen = probe(watch.env, ros2_domain, wait_for=["/NREA", *arm], wired=arm,
                          python=python)  # fmt: skip
             calls = seen["dangling"]["calls"]
             rest = [c for c in calls if c[0] != "/NREA" or "digital_servo_command" not in c[1]]

@@ -147,15 +147,19 @@ def probe(
     wait_for: Iterable[str] = (),
     python: Path | None = None,
     until_wired: bool = False,
+    wired: Iterable[str] = (),
 ) -> dict[str, Any]:
     """Return rclpy's own view of the domain (tests/ros2_probe.py).
 
     It reads once every name of ``wait_for`` and ``nodes`` is seen and the graph is still,
-    or after PROBE_SECONDS: a busy machine discovers slowly.
+    or after PROBE_SECONDS: a busy machine discovers slowly. ``until_wired``: then until
+    nothing of ``nodes`` dangles; ``wired``: until nothing of these dangles (no state asked).
     """
     waits = [arg for name in {*wait_for, *nodes} for arg in ("--wait-for", name)]
-    wired = ["--until-wired"] if until_wired else []
-    argv = [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *wired, *nodes]
+    wired_to = [arg for name in wired for arg in ("--wired", name)]
+    wired_args = ["--until-wired", *wired_to] if until_wired or wired_to else []
+    argv = [str(python or _ros2_python()), str(PROBE), str(PROBE_SECONDS), *waits, *wired_args,
+            *nodes]  # fmt: skip
     run = functools.partial(
         subprocess.run, argv, env={**env, "ROS_DOMAIN_ID": str(domain)}, capture_output=True,
         timeout=PROBE_SECONDS + 60, check=False,
