@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import os
 import subprocess
-import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -14,8 +13,6 @@ import pytest
 from rosreconf.procs import descendants, read_stat
 from rosreconf.ros.ros2.hostprocs import read_proc_id
 from rosreconf.ros.ros2.pidwatch import proc_state
-
-pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 
 NAME = "a) (b c)"
 """A script name the kernel keeps as the command name, parentheses and spaces included."""
