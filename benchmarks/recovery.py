@@ -61,6 +61,16 @@ def _events(log: Path) -> list[dict[str, Any]]:
     return [json.loads(x) for x in log.read_text().splitlines() if x.endswith("}")]
 
 
+def stop_watch(proc: subprocess.Popen[bytes], grace: float) -> None:
+    """Stop a watch as a person does (SIGTERM), and kill it if it is still there after ``grace``."""
+    proc.send_signal(signal.SIGTERM)
+    try:
+        proc.wait(grace)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
 def _at(event: dict[str, Any]) -> float:
     return datetime.fromisoformat(event["time"]).timestamp()
 
@@ -159,12 +169,7 @@ def one_kill(kind: str, tmp: Path) -> dict[str, float]:
             )
             return columns(_events(log), killed)
         finally:
-            proc.send_signal(signal.SIGTERM)
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+            stop_watch(proc, 10.0)
             if team is not None and team.poll() is None:
                 os.kill(team.pid, signal.SIGCONT)
                 team.kill()

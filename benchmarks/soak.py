@@ -32,17 +32,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "tests"))  # the test harness: loopback DDS, free domains
-JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
-UP_TIMEOUT = 240.0
-REPAIR_TIMEOUT = 120.0
-
-
-def _events(log: Path) -> list[dict[str, Any]]:
-    if not log.exists():
-        return []
-    return [json.loads(x) for x in log.read_text().splitlines() if x.endswith("}")]
+# This folder is the script's sys.path[0]; recovery puts the test harnesses on it too.
+from recovery import JAZZY, REPAIR_TIMEOUT, UP_TIMEOUT, _events, stop_watch
 
 
 def _status(pid: int, field: str) -> int:
@@ -112,12 +103,7 @@ def soak(repairs: int, tmp: Path) -> dict[str, Any]:
             fds.append(len(os.listdir(f"/proc/{proc.pid}/fd")))
         peak = _status(proc.pid, "VmHWM")
     finally:
-        proc.send_signal(signal.SIGTERM)
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        stop_watch(proc, 15.0)
     return {
         "repairs": repairs,
         "seconds": round(time.monotonic() - started, 1),
