@@ -5,7 +5,7 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: demo test lint typecheck pytest explore system-deps ros2-venvs bench architecture clean
+.PHONY: demo test test-cpu lint typecheck pytest explore system-deps ros2-venvs bench architecture clean
 
 $(STAMP): pyproject.toml
 	python3 -m venv $(VENV)
@@ -75,6 +75,13 @@ TEST_WORKERS ?= 4
 pytest: $(STAMP)
 	HYPOTHESIS_PROFILE=ci PYTHONHASHSEED=0 PYTHONDONTWRITEBYTECODE= \
 	  $(BIN)/pytest -n $(TEST_WORKERS) --dist loadgroup --durations=40
+
+## Where the suite's CPU goes: each test's CPU seconds (its worker's and the children it
+## waited for) in test-cpu.jsonl, summed per file. ROSRECONF_TEST_LANES sets the live lanes.
+test-cpu: $(STAMP)
+	rm -f test-cpu.jsonl
+	ROSRECONF_TEST_CPU=$(CURDIR)/test-cpu.jsonl $(MAKE) --no-print-directory pytest
+	$(PY) scripts/test_cpu.py test-cpu.jsonl
 
 ## Search for new counterexamples by hand: only the property tests, random seeds, 50 times the
 ## examples. Pin what it finds with @example; failures replay from .hypothesis until fixed.

@@ -148,7 +148,7 @@ def pytest_runtest_setup(item: pytest.Item) -> None:
             require_tool(marker)
 
 
-LIVE_ROS2_LANES = 2
+LIVE_ROS2_LANES = int(os.environ.get("ROSRECONF_TEST_LANES", "2"))
 """Tests on many real ROS 2 nodes run in this many lanes under xdist (``--dist loadgroup``):
 each such test starts 13 to 40 rclpy processes, and four at once on two cores (load 18, and
 30-48 with a second ``make test`` beside it) made their waits time out. The other workers
@@ -461,3 +461,31 @@ DC_CAMERA_1 = {
     "placing": "NFB14",
     "reasoner": "NREA",
 }
+
+
+CPU_LOG = os.environ.get("ROSRECONF_TEST_CPU")
+"""Where each test's CPU seconds go, one JSON line per test (``make test-cpu``): the suite's
+time on two cores is bounded by CPU as much as by waits, and ``--durations`` shows only the
+waits. Counted: the worker's own CPU and that of every child process it waited for."""
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None) -> Iterator[None]:
+    """Write ``item``'s wall and CPU seconds (own and waited-for children) to ``CPU_LOG``."""
+    if not CPU_LOG:
+        yield
+        return
+    import resource
+
+    def cpu() -> tuple[float, float]:
+        own = resource.getrusage(resource.RUSAGE_SELF)
+        kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return own.ru_utime + own.ru_stime, kids.ru_utime + kids.ru_stime
+
+    start, (own0, kids0) = time.monotonic(), cpu()
+    yield
+    own1, kids1 = cpu()
+    row = {"test": item.nodeid, "wall": round(time.monotonic() - start, 3),
+           "own": round(own1 - own0, 3), "children": round(kids1 - kids0, 3)}  # fmt: skip
+    with open(CPU_LOG, "a", encoding="utf-8") as log:
+        log.write(json.dumps(row) + "\n")

@@ -54,7 +54,9 @@ from rosreconf.ros.ros2.graph import (
     Endpoint,
     NodeInfo,
     build_graph,
+    silent_participants,
     stale_participants,
+    writing_since,
 )
 from rosreconf.ros.ros2.names import (
     DISCOVERY_TOPIC,
@@ -332,7 +334,7 @@ class Ros2Discovery:
             now = time.monotonic()
             if state != previous:
                 previous, stable_since = state, now
-            self._renew_if_stale(stale, now, still=now - stable_since >= settle)
+            self._renew_if_stale(stale | silent, now, still=now - stable_since >= settle)
             if self._settled or now - start >= timeout:
                 break
             listened = now - start >= FIRST_READ_AT_LEAST
@@ -350,8 +352,11 @@ class Ros2Discovery:
         self.hidden &= set(participants)  # gone from DDS: nothing left to hide
         return build_graph(self.domain, taken_at, ros - self.hidden, self._infos, endpoints)
 
-    def _renew_if_stale(self, stale: frozenset[bytes], now: float, *, still: bool) -> None:
-        """Make fresh info readers when participants stay stale (transient local resends).
+    def _renew_if_stale(self, stale: Collection[bytes], now: float, *, still: bool) -> None:
+        """Make fresh info readers when participants stay stale or silent (transient local
+        resends each writer's newest sample to a new reader). A silent one's single sample may
+        have been lost to the old reader (taken before its writer was matched, or undecodable
+        once): nothing else would send it again, and its nodes would stay unseen for good.
 
         The first read waits for the graph to be ``still``; later reads (one pass each, as
         ``watch`` polls) for the same participants to be stale since ``RENEW_EVERY`` s.
@@ -368,25 +373,10 @@ class Ros2Discovery:
             self._renewed_at = now
 
     def _silent(self, ros: set[bytes], endpoints: dict[bytes, Endpoint]) -> set[bytes]:
-        """Return ROS participants whose discovery writer has sent nothing decodable for a while.
-
-        A real participant's ``ros_discovery_info`` (transient local) arrives as soon as its
-        writer is matched; one that never decodes (another Gid layout: a wrong ``--distro``;
-        a broken writer) would otherwise hold every read for the full timeout.
-        """
-        now = time.monotonic()
-        writing = {
-            e.participant for e in endpoints.values() if e.writer and e.topic == DISCOVERY_TOPIC
-        }
-        for k in writing:
-            self._info_writer_since.setdefault(k, now)
-        return {
-            k
-            for k in ros
-            if k not in self._infos
-            and k in writing
-            and now - self._info_writer_since[k] >= UNDECODABLE_AFTER
-        }
+        """Return ROS participants whose discovery writer has sent nothing decodable for
+        ``UNDECODABLE_AFTER`` s (``graph.silent_participants``)."""
+        writing = writing_since(self._info_writer_since, endpoints, time.monotonic())
+        return silent_participants(ros, self._infos, writing, UNDECODABLE_AFTER)
 
 
 def read_ros2_graph(

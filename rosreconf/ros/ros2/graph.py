@@ -8,6 +8,7 @@ names) into the ``LiveGraph`` every live command reads. Pure data: no DDS here.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterable
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
@@ -16,7 +17,7 @@ from datetime import datetime
 from rosreconf.model.qos import QosProfile
 from rosreconf.printable import printable
 from rosreconf.ros.livegraph import LiveGraph, LiveNode
-from rosreconf.ros.ros2.names import Channel, ros_name, ros_type
+from rosreconf.ros.ros2.names import DISCOVERY_TOPIC, Channel, ros_name, ros_type
 
 _NAME_CHARS = 2048
 """Longest name kept whole (a Gid's namespace and name are 256 bytes each; DDS topics more)."""
@@ -94,6 +95,33 @@ def stale_participants(
         for e in endpoints.values()
         if e.participant in infos and e.guid not in named and ros_name(e.topic) is not None
     )
+
+
+def writing_since(
+    since: dict[bytes, float], endpoints: dict[bytes, Endpoint], now: float
+) -> dict[bytes, float]:
+    """Note in ``since`` when each participant's ``ros_discovery_info`` writer was first seen
+    (``now`` for a new one); return that of each writer there now (``silent_participants``)."""
+    writing = {e.participant for e in endpoints.values() if e.writer and e.topic == DISCOVERY_TOPIC}
+    return {k: since.setdefault(k, now) for k in writing}
+
+
+def silent_participants(
+    ros: AbstractSet[bytes],
+    infos: dict[bytes, tuple[int, tuple[NodeInfo, ...]]],
+    writing: dict[bytes, float],
+    after: float,
+    now: float | None = None,
+) -> set[bytes]:
+    """Return ROS participants whose discovery writer has sent nothing decodable for ``after`` s.
+
+    A real participant's ``ros_discovery_info`` (transient local) arrives as soon as its
+    writer is matched; one that never decodes (another Gid layout: a wrong ``--distro``; a
+    broken writer) would otherwise hold every read for the full timeout. ``writing`` holds
+    when each writer was first seen (``writing_since``) and ``now`` defaults to the time now.
+    """
+    now = time.monotonic() if now is None else now
+    return {k for k in ros if k not in infos and k in writing and now - writing[k] >= after}
 
 
 def build_graph(
