@@ -4,19 +4,22 @@ The watcher (``rosreconf.ros.watcher``) decides what must change; an actuator ch
 far as its middleware lets it. Each source makes its own (``LiveSource.actuator``), so the
 watcher holds one and never asks which::
 
-    actuator                      made for                  start           retire
-    ----------------------------  ------------------------  --------------  -----------------------
-    ``launcher.LaunchActuator``   ROS 1 (``--master URI``)  roslaunch       the node API's
-                                                                            ``shutdown``
-    ``ros2.acting.Ros2Launch``    ROS 2, ``--ros2-launch``  ``ros2 launch``  lifecycle transitions
-                                                                            listed for a person
-    ``ros2.acting.Ros2Actuator``  ROS 2, ``--apply``        own processes   own processes ended,
-                                                                            managed nodes
-                                                                            transitioned
+    actuator                        made for                  start            retire
+    ------------------------------  ------------------------  ---------------  ---------------------
+    ``launcher.LaunchActuator``     ROS 1 (``--master URI``)  roslaunch        the node API's
+                                                                               ``shutdown``
+    ``ros2.launching.Ros2Launch``   ROS 2, ``--ros2-launch``  ``ros2 launch``  lifecycle transitions
+                                                                               listed for a person
+    ``ros2.actuator.Ros2Actuator``  ROS 2, ``--apply``        own processes    own processes ended,
+                                                                               managed nodes
+                                                                               transitioned, outside
+                                                                               ones stopped or named
 
-A new way of acting (supervising nodes rosreconf did not start) is one more class: it
-implements ``start``, ``replace`` and ``close``, and inherits the rest as "nothing of that
-kind here" from ``Actuator``.
+Each implementation owns its state, as a ros2_control hardware interface does: the parts it
+acts through are its own (``Ros2Actuator`` holds its node processes, transitions, standbys
+and the supervisor of the nodes rosreconf did not start, ``ros2.supervisor``), never a layer
+it forwards to. A new way of acting is one more class: it implements ``start``, ``replace``
+and ``close``, and inherits the rest as "nothing of that kind here" from ``Actuator``.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ comparing, importing, and re-planning are shared. What differs is here::
 
 ``rosreconf.ros.connect`` opens the one the options name. Each source makes the watcher's
 ``Actuator``; ROS 2's ``--apply`` starts and retires each node's process itself
-(``ros2.acting``), or with ``--ros2-launch`` runs ``ros2 launch`` as in the table.
+(``ros2.actuator``), or with ``--ros2-launch`` runs ``ros2 launch`` as in the table.
 """
 
 from __future__ import annotations

@@ -1,4 +1,9 @@
-"""Bring started ROS 2 nodes into service as each comes up; say each that exits before it is ready.
+"""Bring ROS 2 nodes into service, the started ones as each comes up; say each early exit.
+
+``Bringup.start`` puts components into service the one way ROS 2 allows: a process of
+rosreconf's wired otherwise is stopped first (ROS names are fixed when a process starts), a
+standby of one is activated (a hung one is started cold instead: ``standby``), what does not
+run is started (``nodes``), and a managed node is then configured and activated.
 
 A managed node just started takes a while until its lifecycle services appear, and one may
 never come: a stand-in that cannot act out its actions (an action type not installed and none
@@ -23,14 +28,16 @@ crash); its data carries the end of that run's log either way. Nothing here prin
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from rosreconf.model import Configuration
+from rosreconf.errors import ExternalToolError
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.printable import printable
 from rosreconf.ros.ros2.lifecycle import APPEAR
 from rosreconf.ros.ros2.nodes import NodeProcesses, OwnNode
+from rosreconf.ros.ros2.standby import Standbys
 from rosreconf.ros.ros2.transitions import Transitions
 
 Say = Callable[..., None]
@@ -84,33 +91,119 @@ def exit_news(own: OwnNode, code: int, role: str) -> tuple[str, dict[str, Any]]:
 
 @dataclass
 class Bringup:
-    """Take managed nodes into service; the started ones as each comes up (module docstring).
+    """Take nodes into service; the started ones as each comes up (module docstring).
 
     Attributes:
+        library, schema: what the configuration is made of.
         nodes: the node processes rosreconf started.
         lifecycle: the lifecycle agent and the states it read back.
+        standbys: the standbys (one is activated, not started) and the nodes held out of
+            service (one taken into service is no longer).
         ended: component names -> those whose process has ended, with the exit status
-            (``Ros2Control.exited``: it keeps its own books on a dead node).
+            (the actuator's ``_ended``: it keeps its own books on a dead node).
+        started: told of the processes just started (their node names are theirs again).
         say: receives every event.
         appear: seconds a started node may take until its lifecycle services appear.
         failed: components said failed here (their process exited before ready), until
             taken (``take_failed``) by the watcher's next look at the exits.
     """
 
+    library: ComponentLibrary
+    schema: InteroperabilitySchema
     nodes: NodeProcesses
     lifecycle: Transitions
+    standbys: Standbys
     ended: Callable[[Collection[str]], list[tuple[OwnNode, int]]]
+    started: Callable[[Collection[OwnNode]], None]
     say: Say
     appear: float = APPEAR
     failed: set[str] = field(default_factory=set)
 
+    def _managed(self, component: str) -> bool:
+        launch = self.library[component].launch
+        return launch is not None and launch.lifecycle
+
+    def start(
+        self,
+        configuration: Configuration,
+        components: Collection[str],
+        why: str,
+        states: Mapping[str, str | None],
+    ) -> bool:
+        """Put ``components`` into service: start what does not run; configure, activate.
+
+        ``states``: node -> the lifecycle state of the graph last read (a standby that does
+        not answer is hung). Returns whether everything asked for was done.
+        """
+        self._rewire(configuration, components)
+        self.standbys.claim(components, states)
+        fresh = [c for c in components if c not in self.nodes.nodes]
+        ok = True
+        if fresh:
+            try:
+                started = self.nodes.start(self.library, self.schema, configuration, fresh)
+            except ExternalToolError as exc:
+                self._say_problems()
+                self.say("launch-error", f"cannot start {', '.join(fresh)}: {exc}")
+                return False
+            self._say_problems()
+            self.started(started)
+            how = "stand-ins of " if self.nodes.stand_ins else ""
+            pids = {own.component: own.pid for own in started}
+            self.say(
+                "launch",
+                f"started {how}{', '.join(fresh)} ({why}): "
+                + ", ".join(f"{c} pid {p}" for c, p in pids.items()),
+                components=fresh,
+                pids=pids,
+                output=str(self.nodes.directory),
+            )
+        managed = [c for c in components if self._managed(c)]
+        if managed:
+            names = [self.lifecycle.node_of(c) for c in managed]
+            self.lifecycle.call(lambda agent: agent.watch(names))
+        # the ready standbys first (one activate each), then what had to start, each as its
+        # services appear: a fresh node takes a while, and one may never come
+        ok = self.into_service([c for c in managed if c not in fresh]) and ok
+        ok = self.as_they_come(configuration, [c for c in managed if c in fresh]) and ok
+        self.standbys.unpark([self.lifecycle.node_of(c) for c in managed])
+        return ok
+
+    def _say_problems(self) -> None:
+        """Say what went wrong in a start that still started (a broken stand-in zygote), once."""
+        for problem in self.nodes.take_problems():
+            self.say("launch-error", problem)
+
+    def _rewire(self, configuration: Configuration, components: Collection[str]) -> None:
+        """Stop the processes of ``components`` that were started wired otherwise.
+
+        ROS names are fixed when a process starts, so a kept consumer whose providers
+        changed, or a standby prepared for another failure, is stopped here and started
+        again by ``start``, wired for ``configuration``. A node rosreconf did not start
+        cannot be restarted: it is named, with the remappings it needs. Each is stopped
+        with SIGINT first, so that it says goodbye on DDS at once: a lifecycle request to
+        the new process would otherwise go to the old one's lingering endpoints and be lost.
+        """
+        try:
+            stale = self.nodes.miswired(self.library, self.schema, configuration, components)
+        except ExternalToolError:
+            stale = []  # said by start, which fails the same way
+        for own in self.standbys.stop(stale):
+            self.say(
+                "stop",
+                f"stopped {own.component} to restart it wired for the new "
+                f"configuration (pid {own.pid})",
+                component=own.component,
+                how="rewire",
+            )
+
     def into_service(self, components: Sequence[str], appear: float | None = None) -> bool:
         """Configure (those unconfigured) and activate ``components``; True if all are active."""
-        states = self.lifecycle.states
-        todo = [c for c in components if states.get(c, "unconfigured") == "unconfigured"]
+        state = self.lifecycle.state
+        todo = [c for c in components if state(c) in (None, "unconfigured")]
         configured = self.lifecycle.perform([(c, "configure") for c in todo], appear)
         ready = [c for c in components if c not in todo or configured.get(c)]
-        steps = [(c, "activate") for c in ready if states.get(c) != "active"]
+        steps = [(c, "activate") for c in ready if state(c) != "active"]
         activated = self.lifecycle.perform(steps, appear)
         return len(ready) == len(components) and all(activated.values())
 
@@ -134,7 +227,7 @@ class Bringup:
                 ok = self.into_service(ready) and ok
                 pending = [c for c in pending if c not in ready]
                 for comp in ready:  # it answered: an exit from now on is a crash
-                    if comp in self.nodes.nodes and comp in self.lifecycle.states:
+                    if comp in self.nodes.nodes and self.lifecycle.state(comp) is not None:
                         self.nodes.nodes[comp].ready = True
             elif pending and time.monotonic() >= deadline:
                 for comp in pending:

@@ -11,7 +11,7 @@ gone: break before make. Every other newcomer still starts before the replaced c
 leave (make before break), so a switch that renames nothing keeps its speed.
 
 Who holds a name, besides the component's own process (a standby of it is activated, and a
-kept one restarted to be rewired is stopped first by ``Ros2Control``):
+kept one restarted to be rewired is stopped first by ``bringup``):
 
     holder                                          what is done
     ----------------------------------------------  ------------------------------------------

@@ -14,9 +14,10 @@ from rosreconf.procs import Background, start_program
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros2.acting import Ros2Actuator, Ros2Launch
+from rosreconf.ros.ros2.actuator import Ros2Actuator
 from rosreconf.ros.ros2.discovery import Ros2Discovery
 from rosreconf.ros.ros2.graph import graph_uri
+from rosreconf.ros.ros2.launching import Ros2Launch
 from rosreconf.ros.ros2.lifecycle_state import StateReader, with_states
 from rosreconf.ros.ros2.names import gid_sizes
 
@@ -155,7 +156,10 @@ class Ros2Source:
         return ()
 
     def stop(self, graph: LiveGraph, node: str, reason: str) -> bool:
-        """Refuse: ROS 2 has no remote kill (ros2/ros2cli#535); see ``acting.lifecycle_steps``."""
+        """Refuse: ROS 2 has no remote kill (ros2/ros2cli#535).
+
+        What a person runs instead is ``launching.lifecycle_steps``.
+        """
         return False
 
     def start(

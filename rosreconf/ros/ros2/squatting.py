@@ -22,10 +22,11 @@ from __future__ import annotations
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
 
-from rosreconf.ros.ros2.control import Ros2Control
 from rosreconf.ros.ros2.fastdds_ids import fastdds_fields, may_be_of
 from rosreconf.ros.ros2.hostprocs import locate_participants, nodes_by_process
+from rosreconf.ros.ros2.nodes import NodeProcesses
 from rosreconf.ros.ros2.stopproc import Stopped
+from rosreconf.ros.ros2.supervisor import OutsideSupervisor
 
 Participants = Callable[[], dict[bytes, tuple[str, ...]]]
 
@@ -35,18 +36,21 @@ class Squatting:
     """Keep rosreconf from starting a name twice; name or stop squatters (module docstring).
 
     Attributes:
-        control: the watcher's ROS 2 control (own processes, outside ones, ``by_hand``).
+        nodes: the node processes rosreconf started (its own participants).
+        supervisor: the nodes rosreconf did not start: their confirmed processes, and those
+            named for a person to stop.
         participants: each alive participant's GUID -> its nodes (the last read).
         hide: leaves participants out of later reads (a squatter stopped here).
     """
 
-    control: Ros2Control
+    nodes: NodeProcesses
+    supervisor: OutsideSupervisor
     participants: Participants
     hide: Callable[[Collection[bytes]], None]
 
     def _own(self, guid: bytes, nodes: Collection[str]) -> bool:
         """Tell whether participant ``guid`` (with ``nodes``) is a process rosreconf started."""
-        own = self.control.nodes.nodes.values()
+        own = self.nodes.nodes.values()
         if fastdds_fields(guid) is None:  # another vendor's GUID carries no pid: names tell
             return set(nodes) <= {o.node for o in own}
         return any(may_be_of(guid, o.pid) for o in own)
@@ -68,16 +72,16 @@ class Squatting:
         ``beside``: the component runs too; the squatter is then the participant that is not
         its process (known only when rosreconf started the component).
         """
-        control = self.control
+        supervisor = self.supervisor
         what = f"has {component}'s name ({role}) but none of its endpoints: a name clash"
-        if beside and component not in control.nodes.nodes:  # which one is which is not known
-            self._by_hand(component, node, f"a node named {node} {what} (which of the nodes of "
-                          "that name it is cannot be told: stop the one that is not)")  # fmt: skip
+        if beside and component not in self.nodes.nodes:  # which one is which is not known
+            which = "which of the nodes of that name it is cannot be told: stop the one that is not"
+            supervisor.stop_by_hand(component, node, f"a node named {node} {what} ({which})")
             return False
         held = self.holders(node)
         if not held:
             return False  # every node of that name is rosreconf's own: nothing to hand on
-        outside = control.outside
+        outside = supervisor.outside
         located = locate_participants(
             self.participants(),
             outside.domain if outside is not None else -1,
@@ -89,11 +93,11 @@ class Squatting:
             proc = located[guid].proc
             if proc is not None and outside is not None:
                 outside.drop(proc)  # not the component's process: never failed by its exit
-            if control.stop_outside and proc is not None and outside is not None:
+            if supervisor.stop_outside and proc is not None and outside is not None:
                 result = outside.stop_proven(proc, guid, node, procs.get(proc, (node,)))
                 if result.outcome in (Stopped.STOPPED, Stopped.GONE):
                     self.hide({guid})
-                    control.say(
+                    supervisor.say(
                         "stop",
                         f"stopped {node}: it {what}; {result.message}",
                         component=component,
@@ -105,21 +109,11 @@ class Squatting:
                     stopped += 1
                     continue
                 why = result.message
-            elif control.stop_outside:
+            elif supervisor.stop_outside:
                 why = f"its process is not known: {located[guid].detail}"
             else:
                 why = "ROS 2 has no remote kill" + (
                     f"; --stop-outside would stop its process {proc.pid}" if proc else ""
                 )
-            self._by_hand(component, node, f"{node} {what} ({why})")
+            supervisor.stop_by_hand(component, node, f"{node} {what} ({why})")
         return stopped == len(held)
-
-    def _by_hand(self, component: str, node: str, why: str) -> None:
-        """Name a squatter for a person to stop (``stop-by-hand``); ``left-running`` says it."""
-        self.control.by_hand.nodes[node] = component
-        self.control.say(
-            "stop-by-hand",
-            f"stop this by hand: {why}; rosreconf did not start it",
-            component=component,
-            node=node,
-        )

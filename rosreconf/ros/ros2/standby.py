@@ -8,6 +8,10 @@ failure probability) decides when two would wire one alternative differently; on
 with other wiring is started again. Configuring them happens on the watch loop's path, so
 each ``configure`` waits at most ``TEND_TIMEOUT`` and is tried again on a later tick.
 
+The managed nodes a change retires are held here too (``retire``: deactivated, and cleaned up
+but with ``--standby``, an inactive node being a ready standby): one set of parked nodes,
+which the actuator's other parts ask about and never hold.
+
 A hung standby (its process stopped, or its state query unanswered: ``hung``) could answer
 no ``activate``: on each tick it is stopped and started anew for the configuration it joins
 (event ``standby-hung``), and one found hung at a failover is started cold instead of
@@ -22,8 +26,9 @@ from dataclasses import dataclass, field
 from rosreconf.errors import ExternalToolError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
+from rosreconf.ros.ros2.lifecycle import OUT_OF_SERVICE
 from rosreconf.ros.ros2.lifecycle_state import UNANSWERED
-from rosreconf.ros.ros2.nodes import NodeProcesses
+from rosreconf.ros.ros2.nodes import NodeProcesses, OwnNode
 from rosreconf.ros.ros2.pidwatch import STOPPED_STATES, proc_state
 from rosreconf.ros.ros2.transitions import Transitions
 
@@ -41,8 +46,10 @@ class Standbys:
         library, schema: what the configuration is made of.
         nodes: the watcher's node processes (standbys are among them).
         lifecycle: the lifecycle agent's transitions.
-        parked: live names of the nodes held out of service (shared with the watcher's control).
         say: receives every event.
+        parked: live names of the managed nodes held out of service, standbys and retired
+            ones alike (kept here alone: the actuator parks and unparks through ``retire``,
+            ``unpark`` and ``ended``, and asks ``is_parked`` and ``held``).
         unready: standby components started and not yet configured (``tend`` does it).
         tries: standby component -> configure attempts that failed (``STANDBY_TRIES`` at most).
         last: the configuration and failures the standbys were last prepared for.
@@ -55,14 +62,60 @@ class Standbys:
     schema: InteroperabilitySchema
     nodes: NodeProcesses
     lifecycle: Transitions
-    parked: set[str]
     say: Callable[..., None]
+    parked: set[str] = field(default_factory=set)
     unready: list[str] = field(default_factory=list)
     tries: dict[str, int] = field(default_factory=dict)
     last: tuple[Configuration, frozenset[str]] | None = None
     lost: bool = False
     seen: set[str] = field(default_factory=set)
     refused: dict[str, str] = field(default_factory=dict)
+
+    def retire(self, managed: list[tuple[str, str, str]], *, standby: bool) -> None:
+        """Take managed nodes out of service with lifecycle transitions, and hold them there.
+
+        ``managed`` holds (component, role, replacement). Each stays, parked: not an extra
+        node to the graph's judgement. With ``standby``, deactivate is enough: an inactive
+        node is a ready standby.
+        """
+        steps = OUT_OF_SERVICE[:1] if standby else OUT_OF_SERVICE
+        out = {c: True for c, _, _ in managed}
+        for transition in steps:
+            todo = [(c, transition) for c, _, _ in managed if out[c]]
+            out.update(self.lifecycle.perform(todo))
+        for component, role, replacement in managed:
+            self.parked.add(self.node_of(component))
+            self.say(
+                "stop",
+                f"took {component} ({role}) out of service: replaced by {replacement}",
+                component=component,
+                how="lifecycle",
+            )
+
+    def unpark(self, nodes: Collection[str]) -> None:
+        """Take ``nodes`` back into service, or note their processes stopped."""
+        self.parked -= set(nodes)
+
+    def ended(self, node: str) -> None:
+        """Note that ``node``'s process exited: a standby lost is started again (``lost``)."""
+        self.lost |= node in self.parked
+        self.parked.discard(node)
+
+    def is_parked(self, node: str) -> bool:
+        """Tell whether ``node`` is held out of service on purpose."""
+        return node in self.parked
+
+    def held(self) -> frozenset[str]:
+        """Return the nodes held out of service now (a copy: they change only here)."""
+        return frozenset(self.parked)
+
+    def claim(self, components: Collection[str], states: Mapping[str, str | None]) -> None:
+        """Take ``components`` into service: a hung standby among them is stopped, to be
+        started cold (``hung``; ``states`` as there), and none is configured as a standby.
+        """
+        standing = [c for c in components if c in self.nodes.nodes]
+        self.drop(self.hung(standing, states), "started cold instead of activated")
+        self.unready = [c for c in self.unready if c not in components]
 
     def node_of(self, component: str) -> str:
         """Return the live node name of ``component``."""
@@ -91,7 +144,7 @@ class Standbys:
         ]
         for own in self.nodes.stop(stale):
             self.parked.discard(own.node)
-            self.lifecycle.states.pop(own.component, None)
+            self.lifecycle.forget(own.component)
         wanted = self._unshared(
             [c for c in joins if c not in self.nodes.nodes and c not in running], running
         )
@@ -174,15 +227,22 @@ class Standbys:
                 out.append(c)
         return out
 
-    def drop(self, components: Collection[str], why: str) -> None:
-        """Stop hung standbys' processes and say so; they start again on ``replace_hung``."""
+    def stop(self, components: Collection[str]) -> list[OwnNode]:
+        """Stop these components' own processes (a hung standby, one wired otherwise); return
+        those stopped. None of them stays parked, and the agent's clients, matched to the old
+        processes, are made anew for the processes started next.
+        """
         stopped = self.nodes.stop(components)
-        if not stopped:
-            return
-        self.lifecycle.call(lambda agent: agent.forget([own.node for own in stopped]))
+        if stopped:
+            self.lifecycle.call(lambda agent: agent.forget([own.node for own in stopped]))
         for own in stopped:
             self.parked.discard(own.node)
-            self.lifecycle.states.pop(own.component, None)
+            self.lifecycle.forget(own.component)
+        return stopped
+
+    def drop(self, components: Collection[str], why: str) -> None:
+        """Stop hung standbys' processes and say so; they start again on ``replace_hung``."""
+        for own in self.stop(components):
             self.say(
                 "standby-hung",
                 f"standby {own.component} ({own.node}) is hung (its process is stopped, or it "
@@ -233,7 +293,7 @@ class Standbys:
         Up means both: the lifecycle agent's client has matched the node's services, and the
         node is in a graph rosreconf read after starting it (``seen``). The agent alone is not
         enough: it also matches a dead predecessor's services while DDS still announces them,
-        and rosreconf's own reads leave those out (``Ros2Actuator._hide_stopping``). A
+        and rosreconf's own reads leave those out (``exits.OwnExits.stopping``). A
         configure sent before the node itself is up goes unanswered and uses up its tries.
         """
         self.unready = [c for c in self.unready if c in self.nodes.nodes]

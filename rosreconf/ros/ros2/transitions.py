@@ -1,9 +1,10 @@
 """Perform lifecycle transitions through rosreconf's lifecycle agent, and say each one.
 
-``Ros2Control`` decides which managed node goes to which state; this module owns the
-talking: the agent process (``rosreconf.ros.ros2.lifecycle.LifecycleAgent``, started on
-first use and not retried once it could not start), one batch request per group of
-transitions, each confirmed by reading the state back, and one ``lifecycle`` event per
+The actuator's parts (``actuator``, ``bringup``, ``standby``) decide which managed node goes
+to which state; this module owns the talking: the agent process
+(``rosreconf.ros.ros2.lifecycle.LifecycleAgent``, started on first use and not retried once
+it could not start), one batch request per group of transitions, each confirmed by reading
+the state back (kept here alone: ``state``, ``forget``), and one ``lifecycle`` event per
 outcome. Nothing here raises for a failed transition: a failure is said and returned.
 """
 
@@ -80,6 +81,14 @@ class Transitions:
             "death is no component's failure)"
         )
         return True
+
+    def state(self, component: str) -> str | None:
+        """Return the lifecycle state last read back from ``component``'s node, if any."""
+        return self.states.get(component)
+
+    def forget(self, component: str) -> None:
+        """Forget ``component``'s state: its process is gone, and a new one starts unconfigured."""
+        self.states.pop(component, None)
 
     def take_helpers(self) -> list[str]:
         """Return the agent deaths seen since the last call; a dead agent is started anew."""
