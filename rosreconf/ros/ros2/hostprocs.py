@@ -137,7 +137,8 @@ def _processes(proc_root: Path) -> list[_Proc]:
 def _udp_ports(proc_root: Path, pid: int | str) -> dict[int, int]:
     """Return socket inode -> local UDP port in the process's own network namespace.
 
-    ``pid`` may be ``"self"``: this process's network namespace."""
+    ``pid`` may be ``"self"``: this process's network namespace.
+    """
     ports: dict[int, int] = {}
     for name in ("udp", "udp6"):
         try:
