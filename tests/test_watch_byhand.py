@@ -155,15 +155,18 @@ def test_a_squatter_on_the_only_reasoner_is_named_and_the_reasoner_started_once_
         assert squatter.poll() is None and "NREA" not in watch.pids()
         mark = len(watch.events())
         _stop_by_hand(squatter)  # the person does it
-        release = watch.wait("release", after=mark)
-        while "node" not in release:  # a hold's end again, not the squatter gone
-            release = watch.wait("release", after=watch.events().index(release) + 1)
-        assert (release["component"], release["node"]) == ("NREA", "/NREA")
-        done = watch.wait("conformant", after=watch.events().index(release))
+        # NREA starts once its name is free: said as a release naming /NREA, or, when its
+        # hold ended as the squatter went, started as a missing component of the configuration
+        launch = watch.wait("launch", after=mark)
+        while "NREA" not in launch["components"]:
+            launch = watch.wait("launch", after=watch.events().index(launch) + 1)
+        done = watch.wait("conformant", after=watch.events().index(launch))
         assert done["configuration"]["reasoner"] == "NREA"
         events = watch.events()
+        freed = [e for e in events[mark:] if e["event"] == "release" and "node" in e]
+        assert all((e["component"], e["node"]) == ("NREA", "/NREA") for e in freed), freed
         launched = [e for e in events if e["event"] == "launch" and "NREA" in e["components"]]
-        assert len(launched) == 1 and events.index(launched[0]) > events.index(release)
+        assert len(launched) == 1 and events.index(launched[0]) >= mark  # never beside it
         _wired_once_each(watch, ros2_domain, done, python)
     finally:
         if watch is not None:
