@@ -130,6 +130,11 @@ class Actuator(Protocol):
         """Return whether the process that made the last change has exited (no use waiting)."""
         return False
 
+    def forget(self, graph: LiveGraph, dead: list[str]) -> None:
+        """Forget the ``dead`` nodes of ``graph`` where the middleware keeps listing them
+        (ROS 1's master: ``purged``). Default: it forgets them by itself (a DDS lease)."""
+        return None
+
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes held out of service on purpose."""
         return graph

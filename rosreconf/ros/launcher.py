@@ -1,13 +1,14 @@
 """Act on a system through launch files: roslaunch (or ``ros2 launch``), and follow what it says.
 
-``Launcher`` writes one launch file per step, runs it through the ``LiveSource`` (or says the
-command when there is no launcher here), and while the watcher waits it reads each launch
+``Launcher`` writes one launch file per step, runs it through its ``LaunchPort`` (roslaunch,
+``ros1.standins.Roslaunch``, or ``ros2 launch``, ``ros2.launching.Ros2LaunchPort``; or says
+the command when there is no launcher here), and while the watcher waits it reads each launch
 process's output for errors (escaped, with the paths of the launch file and of that output)
 and notices when one exits. ``LaunchActuator`` is the watcher's ``Actuator`` over it: the
-new components start from a launch file, and the replaced ones are stopped through the source
-(a ROS 1 node API's ``shutdown``). Launch files and output are kept in ``launch_dir``
-(``launch_log_dir`` makes one next to ROS's own logs). Every observation goes to the ``say``
-callback; nothing here prints.
+new components start from a launch file, and the replaced ones are stopped where the
+middleware can stop a node (``stop_node``: a ROS 1 node API's ``shutdown``). Launch files
+and output are kept in ``launch_dir`` (``launch_log_dir`` makes one next to ROS's own logs).
+Every observation goes to the ``say`` callback; nothing here prints.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
+from typing import Protocol
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
@@ -28,7 +30,6 @@ from rosreconf.ros.actuator import Acting, Actuator, Say
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
-from rosreconf.ros.sources import LiveSource
 
 CLOSE_GRACE_SECONDS = 2.0
 """Seconds the launch processes get to stop their nodes when the watcher ends, before their
@@ -38,12 +39,35 @@ ROS 2's SIGINT, SIGTERM, SIGKILL steps of 1 s do. It was ``stop_all``'s 5 s: a r
 slow to stop (a loaded machine) then ended watch by the hard stop, before it said anything."""
 
 
+class LaunchPort(Protocol):
+    """How launch files are run on one middleware: the one thing a ``Launcher`` needs of it."""
+
+    @property
+    def ros_version(self) -> RosVersion:
+        """Return which launch files this launcher runs."""
+        ...
+
+    def start(
+        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
+    ) -> Background | None:
+        """Run ``launch`` as a process rosreconf owns; None when there is no launcher here.
+
+        ``stand_ins``: a private directory where what stand-in nodes need can be written
+        (None: the launch file starts no stand-ins).
+        """
+        ...
+
+    def command(self, launch: Path) -> list[str]:
+        """Return the command ``start`` runs for ``launch``."""
+        ...
+
+
 @dataclass
 class Launcher:
     """Own the launch processes one watcher starts, from the first launch file to ``close``.
 
     Attributes:
-        source: where launch files are run (``LiveSource.start``).
+        port: how launch files are run (``LaunchPort``).
         library, schema: what the launch files are written from.
         workdir: a private directory for the stand-in package.
         env: the environment the launch processes run in.
@@ -57,7 +81,7 @@ class Launcher:
         steps: how many launch files were written.
     """
 
-    source: LiveSource
+    port: LaunchPort
     library: ComponentLibrary
     schema: InteroperabilitySchema
     workdir: Path
@@ -82,7 +106,7 @@ class Launcher:
         """
         self.steps += 1
         self.directory.mkdir(parents=True, exist_ok=True)
-        version = self.source.ros_version
+        version = self.port.ros_version
         suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
         launch = self.directory / f"step{self.steps}{suffix}"
         text = launch_file(
@@ -94,9 +118,9 @@ class Launcher:
             stand_ins=self.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
-        process = self.source.start(launch, self.env, self.workdir if self.stand_ins else None)
+        process = self.port.start(launch, self.env, self.workdir if self.stand_ins else None)
         self.launched |= set(components)
-        command = " ".join(self.source.launch_command(launch))
+        command = " ".join(self.port.command(launch))
         if process is None:
             self.say(
                 "would-launch",
@@ -183,15 +207,15 @@ class Launcher:
 
 @dataclass
 class LaunchActuator(Actuator):
-    """Start components from launch files; stop the replaced ones through the source.
+    """Start components from launch files; stop the replaced ones where a node can be stopped.
 
-    The ``Actuator`` of ROS 1: a replan stops each live component it takes out or restarts
-    (``LiveSource.stop``, the node API's ``shutdown``, as ``rosnode kill`` does), then one
-    launch file starts the new ones, and a kept one that is rewired again (ROS names are
-    fixed at start).
+    A replan stops each live component it takes out or restarts (``stop_node``: ROS 1's
+    actuator, ``ros1.source.MasterActuator``, calls the node API's ``shutdown``, as
+    ``rosnode kill`` does), then one launch file starts the new ones, and a kept one that is
+    rewired again (ROS names are fixed at start).
     """
 
-    source: LiveSource
+    port: LaunchPort
     acting: Acting
     launcher: Launcher = field(init=False)
     _ended: bool = False
@@ -199,7 +223,7 @@ class LaunchActuator(Actuator):
     def __post_init__(self) -> None:
         a = self.acting
         self.launcher = Launcher(
-            self.source,
+            self.port,
             a.library,
             a.schema,
             a.workdir,
@@ -227,10 +251,10 @@ class LaunchActuator(Actuator):
     def stop_replaced(
         self, graph: LiveGraph, changes: list[Change], failed: Collection[str]
     ) -> None:
-        """Stop, through the source, each live component a replan takes out or restarts.
+        """Stop each live component a replan takes out or restarts (``stop_node``).
 
         A kept component restarted to be rewired is stopped too: its launch file starts it
-        again, wired (``stop`` event). Sources that cannot stop a node (ROS 2) stop none.
+        again, wired (``stop`` event). Middlewares that cannot stop a node (ROS 2) stop none.
         """
         alive = {n.name for n in graph.nodes}
         for role, old_comp, new_comp in changes:
@@ -241,9 +265,13 @@ class LaunchActuator(Actuator):
             reason = "rosreconf: " + (
                 f"{role} is rewired" if restart else f"{role} is now {new_comp}"
             )
-            if name in alive and self.source.stop(graph, name, reason):
+            if name in alive and self.stop_node(graph, name, reason):
                 how = "to restart it rewired" if restart else f"replaced by {new_comp or '(empty)'}"
                 self.acting.say("stop", f"stopped {old_comp} ({role}): {how}", component=old_comp)
+
+    def stop_node(self, graph: LiveGraph, node: str, reason: str) -> bool:
+        """Ask node ``node`` to shut down; return whether that was possible (here: never)."""
+        return False
 
     def not_running(self, missing: list[str]) -> tuple[list[str], str]:
         """Return the launched ones of ``missing``; point at the launch output or file."""

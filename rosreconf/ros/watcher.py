@@ -7,7 +7,7 @@ with ``apply`` has its ``Actuator`` retire the components that must go and start
 ones, then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
-does not answer (ROS 1: SIGKILLed nodes linger in the master; they are then purged), or its
+does not answer (ROS 1: SIGKILLed nodes linger in the master; its actuator purges them), or its
 process was seen to exit or hang (ROS 2: no DDS lease to wait for), or it was seen alive by
 this watcher and is gone now. A component never seen is only *missing*: with ``apply`` it is
 started (so a watcher can also bring a configuration up); without, it is only reported. A
@@ -205,13 +205,7 @@ class Watcher:
             )
         dead = [n.name for n in graph.nodes if not n.answered]
         if dead:
-            purged = self.source.purge(graph, dead)
-            if purged:
-                self._say(
-                    "purged",
-                    f"unregistered dead node(s) {', '.join(purged)} from the master",
-                    nodes=list(purged),
-                )
+            self._actuator.forget(graph, dead)
         self.failed |= self._clashes.failed(check, self._actuator.started(), self.failed)
         # a managed node out of 'active' is a fault, re-activated with apply (lifecycle_faults)
         if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
