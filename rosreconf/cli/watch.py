@@ -6,6 +6,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from contextlib import ExitStack
+from dataclasses import replace
 from pathlib import Path
 from typing import IO, Annotated
 
@@ -36,6 +37,7 @@ from rosreconf.render.reports.watch import event_json, event_line
 from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, watch_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
+from rosreconf.ros.options import Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.ros.watcher import Watcher
@@ -173,20 +175,27 @@ def watch_command(
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    options = WatchOptions(
+        apply=apply,
+        stand_ins=stand_ins,
+        settle=settle,
+        restart_limit=restarts,
+        restart_window=restart_window,
+        hold=hold,
+        prefer_after=prefer_after,
+        budget=Budget(search_limit, search_time),
+        ros2=Ros2Options(standby, ros2_launch, stop_outside, force),
+    )
+    timeout, max_bytes = master_timeout, max_answer_mb << 20
     source, release = watch_source(
         master,
         ros2,
         domain,
         distro,
         env,
-        apply=apply,
-        stand_ins=stand_ins,
-        standby=standby,
-        ros2_launch=ros2_launch,
-        stop_outside=stop_outside,
-        force=force,
-        timeout=master_timeout,
-        max_bytes=max_answer_mb << 20,
+        options,
+        timeout=timeout,
+        max_bytes=max_bytes,
         on_note=_note,
     )
     try:  # a refusal below closes the source at once: nothing left for the exit to wait on
@@ -221,19 +230,8 @@ def watch_command(
             work,
             env,
             log,
-            apply=apply,
-            stand_ins=stand_ins,
-            settle=settle,
+            replace(options, launch_dir=keep),
             failed=set(fail or []),
-            launch_dir=keep,
-            standby=standby,
-            ros2_launch=ros2_launch,
-            stop_outside=stop_outside,
-            restart_limit=restarts,
-            restart_window=restart_window,
-            hold=hold,
-            prefer_after=prefer_after,
-            budget=Budget(search_limit, search_time),
             stop_requested=signals.requested,
         )
         stack.callback(watcher.close)

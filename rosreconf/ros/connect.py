@@ -14,6 +14,7 @@ from pathlib import Path
 
 from rosreconf.errors import UsageError
 from rosreconf.ros.livegraph import LiveGraph, from_json
+from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros1.source import MasterSource
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
@@ -93,18 +94,13 @@ def watch_source(
     domain: int,
     distro: str | None,
     env: MutableMapping[str, str],
+    options: WatchOptions,
     *,
-    apply: bool,
-    stand_ins: bool,
-    standby: bool,
-    ros2_launch: bool,
-    stop_outside: bool,
-    force: bool,
     timeout: float,
     max_bytes: int,
     on_note: Callable[[str], None],
 ) -> tuple[LiveSource, Callable[[], None] | None]:
-    """Open the source ``watch`` watches, its options checked against it and its domain taken.
+    """Open the source ``watch`` watches, ``options`` checked against it and its domain taken.
 
     Returns the source and what releases the domain's claim (ROS 2 ``--apply``; else None).
     ``env`` (what started processes run in) gets the master's URI or the domain. ``on_note``
@@ -114,7 +110,8 @@ def watch_source(
         UsageError: options that do not go together, or another watch on the domain (exit 2).
         ExternalToolError: stand-ins on ROS 2 and no Python with rclpy here (exit 3).
     """
-    if ros2 and master is None and apply and stand_ins:
+    apply = options.apply
+    if ros2 and master is None and apply and options.stand_ins:
         ros2_python(env)  # no rclpy here: said now, before a DDS session is even opened
     source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
     try:  # a refusal below closes the source at once: nothing left for the exit to wait on
@@ -124,15 +121,12 @@ def watch_source(
             )
             source.on_note = on_note
         ros2 = isinstance(source, Ros2Source)
-        if (standby or ros2_launch or stop_outside) and not (ros2 and apply):
-            raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
-        if stand_ins and ros2_launch:
-            raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
+        options.check(ros2)
         if master is not None:
             env["ROS_MASTER_URI"] = master
         else:
             env["ROS_DOMAIN_ID"] = str(domain)
-        claim = _claim(domain, force, on_note) if ros2 and apply else None
+        claim = _claim(domain, options.ros2.force, on_note) if ros2 and apply else None
     except BaseException:
         source.close()
         raise

@@ -22,11 +22,11 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Protocol
 
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import Configuration
 from rosreconf.model.wiring import node_live_name
 from rosreconf.printable import printable
 from rosreconf.procs import Background, stop_all
-from rosreconf.ros.actuator import Acting, Actuator, Say
+from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
@@ -68,36 +68,21 @@ class Launcher:
 
     Attributes:
         port: how launch files are run (``LaunchPort``).
-        library, schema: what the launch files are written from.
-        workdir: a private directory for the stand-in package.
-        env: the environment the launch processes run in.
-        say: receives every event (``launch``, ``would-launch``, ``launch-error``,
+        acting: what they are written from (the library, the schema, stand-ins or not),
+            where they and their output go, what the launch processes run in, and who
+            receives every event (``launch``, ``would-launch``, ``launch-error``,
             ``launch-exited``, ``stopped``, ``kept``).
-        stand_ins: launch stand-in nodes instead of the components' real executables.
-        launch_dir: where launch files and their output go, kept after the watcher ends
-            (default: ``workdir``).
         launches: the launch processes started and not yet stopped.
         launched: the components launched since the master (re)started.
         steps: how many launch files were written.
     """
 
     port: LaunchPort
-    library: ComponentLibrary
-    schema: InteroperabilitySchema
-    workdir: Path
-    env: Mapping[str, str]
-    say: Say
-    stand_ins: bool = False
-    launch_dir: Path | None = None
+    acting: Acting
     launches: list[Background] = field(default_factory=list)
     launched: set[str] = field(default_factory=set)
     steps: int = 0
     _exited: set[int] = field(default_factory=set)
-
-    @property
-    def directory(self) -> Path:
-        """Return where launch files and their output go."""
-        return self.launch_dir if self.launch_dir is not None else self.workdir
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` of ``current`` with one launch process (or say what would run).
@@ -105,24 +90,25 @@ class Launcher:
         Returns whether a process was started.
         """
         self.steps += 1
-        self.directory.mkdir(parents=True, exist_ok=True)
+        a = self.acting
+        a.directory.mkdir(parents=True, exist_ok=True)
         version = self.port.ros_version
         suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
-        launch = self.directory / f"step{self.steps}{suffix}"
+        launch = a.directory / f"step{self.steps}{suffix}"
         text = launch_file(
-            self.library,
-            self.schema,
+            a.library,
+            a.schema,
             current,
             version,
             only=components,
-            stand_ins=self.stand_ins,
+            stand_ins=a.options.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
-        process = self.port.start(launch, self.env, self.workdir if self.stand_ins else None)
+        process = self.port.start(launch, a.env, a.workdir if a.options.stand_ins else None)
         self.launched |= set(components)
         command = " ".join(self.port.command(launch))
         if process is None:
-            self.say(
+            self.acting.say(
                 "would-launch",
                 f"no launcher here: would run '{command}' to start {', '.join(components)} "
                 f"({why}); wrote {launch}",
@@ -132,9 +118,9 @@ class Launcher:
             )
             return False
         self.launches.append(process)
-        how = "stand-ins of " if self.stand_ins else ""
+        how = "stand-ins of " if a.options.stand_ins else ""
         launcher = "roslaunch" if version is RosVersion.ROS1 else "ros2 launch"
-        self.say(
+        self.acting.say(
             "launch",
             f"{launcher} started {how}{', '.join(components)} ({why})",
             components=list(components),
@@ -148,11 +134,13 @@ class Launcher:
         for launch in self.launches:
             files = self._files(launch)
             for line in error_lines(launch.new_output()):
-                self.say("launch-error", f"roslaunch: {line} ({files})", **self._paths(launch))
+                self.acting.say(
+                    "launch-error", f"roslaunch: {line} ({files})", **self._paths(launch)
+                )
             code = launch.poll()
             if code is not None and launch.process.pid not in self._exited:
                 self._exited.add(launch.process.pid)
-                self.say(
+                self.acting.say(
                     "launch-exited",
                     f"roslaunch exited with code {code} ({files})",
                     returncode=code,
@@ -176,7 +164,7 @@ class Launcher:
         """Forget what was launched with a master that restarted (with ``stop``, stop it)."""
         if stop and self.launches:
             n = self.stop()
-            self.say(
+            self.acting.say(
                 "stopped",
                 f"stopped the {n} roslaunch process(es) started with the old master, "
                 "to start their nodes again with the new one",
@@ -187,12 +175,13 @@ class Launcher:
         """Stop every launch process, and say where the launch files are kept."""
         n = self.stop(CLOSE_GRACE_SECONDS)
         if n:
-            self.say("stopped", f"stopped the {n} roslaunch process(es) started")
-        if self.steps and self.launch_dir is not None:
-            self.say(
+            self.acting.say("stopped", f"stopped the {n} roslaunch process(es) started")
+        launch_dir = self.acting.options.launch_dir
+        if self.steps and launch_dir is not None:
+            self.acting.say(
                 "kept",
-                f"launch files and roslaunch's output are kept in {self.launch_dir}",
-                launch_dir=str(self.launch_dir),
+                f"launch files and roslaunch's output are kept in {launch_dir}",
+                launch_dir=str(launch_dir),
             )
 
     @staticmethod
@@ -221,17 +210,7 @@ class LaunchActuator(Actuator):
     _ended: bool = False
 
     def __post_init__(self) -> None:
-        a = self.acting
-        self.launcher = Launcher(
-            self.port,
-            a.library,
-            a.schema,
-            a.workdir,
-            a.env,
-            a.say,
-            stand_ins=a.stand_ins,
-            launch_dir=a.launch_dir,
-        )
+        self.launcher = Launcher(self.port, self.acting)
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` with one launch process (or say what would run)."""
@@ -275,7 +254,7 @@ class LaunchActuator(Actuator):
 
     def not_running(self, missing: list[str]) -> tuple[list[str], str]:
         """Return the launched ones of ``missing``; point at the launch output or file."""
-        where = self.launcher.directory
+        where = self.acting.directory
         if self.launcher.launches:
             why = f"launched but not running (see the launch output in {where})"
         else:

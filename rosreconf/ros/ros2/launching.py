@@ -61,7 +61,7 @@ class Ros2Launch(LaunchActuator):
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Launch those of ``components`` whose node name is free; the others wait."""
-        if not self.acting.apply:  # only says what would run
+        if not self.acting.options.apply:  # only says what would run
             return super().start(current, components, why)
         free = self.names.admit(components, current.components, ())
         return super().start(current, free, why) if free else not components

@@ -162,7 +162,7 @@ class Ros2Source:
 
     def actuator(self, acting: Acting) -> Actuator:
         """Return the actuator ``acting`` asks for: each node's own process, or ``ros2 launch``."""
-        if acting.apply and not acting.ros2_launch:
+        if acting.options.apply and not acting.options.ros2.launch:
             return Ros2Actuator(acting, self.participants, self.hide)
         return Ros2Launch(Ros2LaunchPort(), acting, participants=self.participants)
 
