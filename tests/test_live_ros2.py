@@ -170,6 +170,7 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
     from dataclasses import replace
 
     from rosreconf.model import ComponentLibrary, Configuration
+    from rosreconf.ros.options import Ros2Options, WatchOptions
     from rosreconf.ros.ros2.source import Ros2Source
     from rosreconf.ros.watcher import Event, Watcher
 
@@ -194,9 +195,9 @@ def test_watch_lists_lifecycle_transitions_and_writes_the_launch_file(
     events: list[Event] = []
     config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
     no_ros2 = {"PATH": str(tmp_path)}  # no `ros2` command on this PATH
+    options = WatchOptions(apply=True, launch_dir=tmp_path, ros2=Ros2Options(launch=True))
     watcher = Watcher(Ros2Source(ros2_domain), managed, schema, config, tmp_path, no_ros2,
-                      events.append, apply=True, launch_dir=tmp_path,
-                      ros2_launch=True)  # fmt: skip
+                      events.append, options)  # fmt: skip
     try:
         # announcers serve get_state but cannot answer it: a managed node whose state cannot
         # be read is not known to be active, and is said so (never assumed conformant)

@@ -27,6 +27,7 @@ from rosreconf.cli.app import app
 from rosreconf.errors import ExternalToolError
 from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration
+from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.ros1.source import MasterSource
 from rosreconf.ros.ros1.standins import standin_spec
 from rosreconf.ros.watcher import Event, Watcher
@@ -47,7 +48,7 @@ def _watcher(
     source = MasterSource(master.uri)
     return Watcher(
         source, bundle.library, schema, nominal, work, master.env(), events.append,
-        apply=True, **kw,  # type: ignore[arg-type]
+        WatchOptions(**{"apply": True, **kw}),  # type: ignore[arg-type]
     )  # fmt: skip
 
 
@@ -94,8 +95,7 @@ def test_a_master_read_before_roscore_sets_run_id_is_not_a_restart(
     code, _, run_id = answer
     assert code == 1 and isinstance(run_id, str), answer
     events: list[Event] = []
-    watcher = _watcher(ros_master, tmp_path, events)
-    watcher.apply = False
+    watcher = _watcher(ros_master, tmp_path, events, apply=False)
     try:
         master.deleteParam("/test", "/run_id")
         watcher.step()
@@ -155,8 +155,7 @@ def test_without_apply_a_restart_leaves_components_missing_not_failed(
     ros_master: ros_harness.Master, standin: StartStandIn, tmp_path: Path
 ) -> None:
     events: list[Event] = []
-    watcher = _watcher(ros_master, tmp_path, events)
-    watcher.apply = False
+    watcher = _watcher(ros_master, tmp_path, events, apply=False)
     for comp in watcher.current.components:
         standin(standin_spec(watcher.library[comp]))
     assert watcher.step().ok

@@ -31,10 +31,9 @@ from rosreconf.outfiles import output_target
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.connect import read_any
+from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_any
 from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import LiveGraph, to_json, without_plumbing
-from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.solve.running import one_target
 
 

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import contextlib
 import os
+from collections.abc import Callable
 from contextlib import ExitStack
+from dataclasses import replace
 from pathlib import Path
 from typing import IO, Annotated
 
@@ -32,17 +34,12 @@ from rosreconf.cli.stopping import stop_on_signals
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
-from rosreconf.ros.connect import open_source
+from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, watch_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
-from rosreconf.ros.launchfiles import RosVersion
+from rosreconf.ros.options import Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
-from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
-from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
-from rosreconf.ros.ros2.runtime import ros2_python
-from rosreconf.ros.ros2.source import Ros2Source
-from rosreconf.ros.sources import LiveSource
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
@@ -178,23 +175,39 @@ def watch_command(
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
-    if ros2 and master is None and apply and stand_ins:
-        ros2_python(env)  # no rclpy here: said now, before a DDS session is even opened
-    source = open_source(
-        master, ros2, domain, distro, timeout=master_timeout, max_bytes=max_answer_mb << 20
+    options = WatchOptions(
+        apply=apply,
+        stand_ins=stand_ins,
+        settle=settle,
+        restart_limit=restarts,
+        restart_window=restart_window,
+        hold=hold,
+        prefer_after=prefer_after,
+        budget=Budget(search_limit, search_time),
+        ros2=Ros2Options(standby, ros2_launch, stop_outside, force),
+    )
+    timeout, max_bytes = master_timeout, max_answer_mb << 20
+    source, release = watch_source(
+        master,
+        ros2,
+        domain,
+        distro,
+        env,
+        options,
+        timeout=timeout,
+        max_bytes=max_bytes,
+        on_note=_note,
     )
     try:  # a refusal below closes the source at once: nothing left for the exit to wait on
-        claim, keep = _prepare(
-            source, env, apply, stand_ins, standby, ros2_launch, stop_outside, master, domain, force
-        )
+        keep = _launch_dir(env, release) if apply else None
     except BaseException:
         source.close()
         raise
     with ExitStack() as stack:
         signals = stack.enter_context(stop_on_signals())
         stack.callback(source.close)
-        if claim is not None:
-            stack.callback(claim.release)
+        if release is not None:
+            stack.callback(release)
         if keep is not None:
             stack.callback(_remove_if_empty, keep)
         log_file: IO[str] | None = None
@@ -217,19 +230,8 @@ def watch_command(
             work,
             env,
             log,
-            apply=apply,
-            stand_ins=stand_ins,
-            settle=settle,
+            replace(options, launch_dir=keep),
             failed=set(fail or []),
-            launch_dir=keep,
-            standby=standby,
-            ros2_launch=ros2_launch,
-            stop_outside=stop_outside,
-            restart_limit=restarts,
-            restart_window=restart_window,
-            hold=hold,
-            prefer_after=prefer_after,
-            budget=Budget(search_limit, search_time),
             stop_requested=signals.requested,
         )
         stack.callback(watcher.close)
@@ -252,79 +254,25 @@ def watch_command(
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
 
 
-def _prepare(
-    source: LiveSource,
-    env: dict[str, str],
-    apply: bool,
-    stand_ins: bool,
-    standby: bool,
-    ros2_launch: bool,
-    stop_outside: bool,
-    master: str | None,
-    domain: int,
-    force: bool,
-) -> tuple[Claim | None, Path | None]:
-    """Check the options against the source, take the domain, make the launch directory.
+def _note(text: str) -> None:
+    """Say what a ROS 2 read left out, or a domain claim not made (on stderr)."""
+    stderr.print(text, markup=False)
 
-    Returns the domain's claim (ROS 2 ``--apply``) and the launch directory (``--apply``).
+
+def _launch_dir(env: dict[str, str], release: Callable[[], None] | None) -> Path:
+    """Make the directory launch files and launch output are kept in (``--apply``).
 
     Raises:
-        UsageError: options that do not go together, another watch on the domain, or no
-            launch directory (exit 2).
-    """
-    ros2 = source.ros_version is RosVersion.ROS2
-    if isinstance(source, Ros2Source):
-        source.empty_ok = apply  # it starts the nodes itself: an empty domain is where it starts
-        source.on_note = lambda text: stderr.print(text, markup=False)
-    if (standby or ros2_launch or stop_outside) and not (ros2 and apply):
-        raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
-    if stand_ins and ros2_launch:
-        raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
-    if master is not None:
-        env["ROS_MASTER_URI"] = master
-    else:
-        env["ROS_DOMAIN_ID"] = str(domain)
-    claim = _claim(domain, force) if ros2 and apply else None
-    keep: Path | None = None
-    if apply:
-        try:
-            keep = launch_log_dir(env)
-        except OSError as exc:
-            if claim is not None:
-                claim.release()
-            where = exc.filename or "ROS's log directory"
-            msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
-            raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
-    return claim, keep
-
-
-def _claim(domain: int, force: bool) -> Claim | None:
-    """Take ``domain`` for this watch; refuse when another watch holds it (see domainclaim).
-
-    Two supervisors of one domain each start and stop nodes against the other. ``--force``
-    goes on without the claim, said on stderr; so does a claim that cannot be made at all.
-
-    Raises:
-        UsageError: another watch supervises the domain, and no ``--force`` (exit 2).
+        UsageError: it cannot be made (exit 2; the domain's claim is released first).
     """
     try:
-        got = claim_domain(domain)
+        return launch_log_dir(env)
     except OSError as exc:
-        stderr.print(
-            f"note: cannot claim ROS domain {domain} ({exc.strerror}): another watch on it"
-            " would not be seen",
-            markup=False,
-        )
-        return None
-    if isinstance(got, Claim):
-        return got
-    if not force:
-        raise UsageError(
-            f"{got.message}: two watches would start and stop nodes against each other. Stop "
-            "that one, watch without --apply, or pass --force"
-        )
-    stderr.print(f"note: {got.message}; going on (--force)", markup=False)
-    return None
+        if release is not None:
+            release()
+        where = exc.filename or "ROS's log directory"
+        msg = f"{where}: cannot make a directory for launch files: {exc.strerror}"
+        raise UsageError(f"{msg} (set ROS_LOG_DIR to a writable directory)") from None
 
 
 def _remove_if_empty(path: Path) -> None:

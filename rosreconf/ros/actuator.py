@@ -25,13 +25,14 @@ and ``close``, and inherits the rest as "nothing of that kind here" from ``Actua
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.conformance import Conformance
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.options import WatchOptions
 
 if TYPE_CHECKING:
     from rosreconf.ros.replanning import Change
@@ -42,22 +43,15 @@ Say = Callable[..., None]
 
 @dataclass(frozen=True)
 class Acting:
-    """What a watcher's actuator is made from (its options, as ``watch`` got them).
+    """What a watcher's actuator is made from: the watcher's options, and what it acts with.
 
     Attributes:
         library, schema: what the configuration is made of.
         workdir: a private directory (the stand-in package; removed by the caller).
         env: the environment started processes run in.
         say: receives every event.
-        apply: act; without, the actuator is asked only to read (``visible``, ``filtered``).
-        stand_ins: start stand-in nodes instead of the components' real executables.
-        launch_dir: where launch files and launch output go, kept after the watcher ends
-            (default: ``workdir``).
-        standby: ROS 2: start and configure managed alternatives in advance.
-        ros2_launch: ROS 2: run ``ros2 launch`` on launch files instead of starting each
-            node's process.
-        stop_outside: ROS 2: stop the process of a replaced node rosreconf did not start,
-            when it runs only that node (``ros2.byhand``).
+        options: as ``watch`` got them; without ``apply``, the actuator is asked only to
+            read (``visible``, ``filtered``).
     """
 
     library: ComponentLibrary
@@ -65,17 +59,13 @@ class Acting:
     workdir: Path
     env: Mapping[str, str]
     say: Say
-    apply: bool = False
-    stand_ins: bool = False
-    launch_dir: Path | None = None
-    standby: bool = False
-    ros2_launch: bool = False
-    stop_outside: bool = False
+    options: WatchOptions = field(default_factory=WatchOptions)
 
     @property
     def directory(self) -> Path:
         """Return where launch files and launch output go."""
-        return self.launch_dir if self.launch_dir is not None else self.workdir
+        launch_dir = self.options.launch_dir
+        return launch_dir if launch_dir is not None else self.workdir
 
 
 class Actuator(Protocol):
@@ -129,6 +119,11 @@ class Actuator(Protocol):
     def ended(self) -> bool:
         """Return whether the process that made the last change has exited (no use waiting)."""
         return False
+
+    def forget(self, graph: LiveGraph, dead: list[str]) -> None:
+        """Forget the ``dead`` nodes of ``graph`` where the middleware keeps listing them
+        (ROS 1's master: ``purged``). Default: it forgets them by itself (a DDS lease)."""
+        return None
 
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes held out of service on purpose."""

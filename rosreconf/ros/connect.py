@@ -1,20 +1,29 @@
 """Open the live source the options name: a ROS 1 master, a ROS 2 domain or a snapshot.
 
 The one place that knows both middlewares (``ros1.source``, ``ros2.source``); everything else
-in ``rosreconf.ros`` works on a ``LiveSource`` (``rosreconf.ros.sources``).
+in ``rosreconf.ros`` works on a ``LiveSource`` (``rosreconf.ros.sources``), and the CLI
+imports neither middleware: what ``watch`` needs of ROS 2 before it reads (rclpy for the
+stand-ins, the domain's claim, the options only ROS 2 has) is checked and taken here
+(``watch_source``), and the defaults of every read are named here.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, MutableMapping
 from pathlib import Path
 
 from rosreconf.errors import UsageError
-from rosreconf.ros.livegraph import LiveGraph
-from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_live
+from rosreconf.ros.livegraph import LiveGraph, from_json
+from rosreconf.ros.options import WatchOptions
+from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros1.source import MasterSource
+from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
 from rosreconf.ros.ros2.names import check_domain, gid_sizes
+from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.ros2.source import Ros2Source
+from rosreconf.ros.sources import LiveSource
+
+__all__ = ["DEFAULT_MAX_BYTES", "DEFAULT_TIMEOUT", "open_source", "read_any", "watch_source"]
 
 
 def open_source(
@@ -66,7 +75,10 @@ def read_any(
     if sum((master is not None, snapshot is not None, ros2)) != 1:
         raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
     if snapshot is not None:
-        return read_live(None, snapshot)
+        try:
+            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
+        except OSError as exc:
+            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
     source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
     if isinstance(source, Ros2Source):
         source.on_note = on_note
@@ -74,3 +86,76 @@ def read_any(
         return source.read()
     finally:
         source.close()
+
+
+def watch_source(
+    master: str | None,
+    ros2: bool,
+    domain: int,
+    distro: str | None,
+    env: MutableMapping[str, str],
+    options: WatchOptions,
+    *,
+    timeout: float,
+    max_bytes: int,
+    on_note: Callable[[str], None],
+) -> tuple[LiveSource, Callable[[], None] | None]:
+    """Open the source ``watch`` watches, ``options`` checked against it and its domain taken.
+
+    Returns the source and what releases the domain's claim (ROS 2 ``--apply``; else None).
+    ``env`` (what started processes run in) gets the master's URI or the domain. ``on_note``
+    says what a read left out, and a claim not made.
+
+    Raises:
+        UsageError: options that do not go together, or another watch on the domain (exit 2).
+        ExternalToolError: stand-ins on ROS 2 and no Python with rclpy here (exit 3).
+    """
+    apply = options.apply
+    if ros2 and master is None and apply and options.stand_ins:
+        ros2_python(env)  # no rclpy here: said now, before a DDS session is even opened
+    source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
+    try:  # a refusal below closes the source at once: nothing left for the exit to wait on
+        if isinstance(source, Ros2Source):
+            source.empty_ok = (
+                apply  # it starts the nodes itself: an empty domain is where it starts
+            )
+            source.on_note = on_note
+        ros2 = isinstance(source, Ros2Source)
+        options.check(ros2)
+        if master is not None:
+            env["ROS_MASTER_URI"] = master
+        else:
+            env["ROS_DOMAIN_ID"] = str(domain)
+        claim = _claim(domain, options.ros2.force, on_note) if ros2 and apply else None
+    except BaseException:
+        source.close()
+        raise
+    return source, None if claim is None else claim.release
+
+
+def _claim(domain: int, force: bool, on_note: Callable[[str], None]) -> Claim | None:
+    """Take ``domain`` for this watch; refuse when another watch holds it (see domainclaim).
+
+    Two supervisors of one domain each start and stop nodes against the other. ``--force``
+    goes on without the claim, said through ``on_note``; so does a claim that cannot be made.
+
+    Raises:
+        UsageError: another watch supervises the domain, and no ``--force`` (exit 2).
+    """
+    try:
+        got = claim_domain(domain)
+    except OSError as exc:
+        on_note(
+            f"note: cannot claim ROS domain {domain} ({exc.strerror}): another watch on it"
+            " would not be seen"
+        )
+        return None
+    if isinstance(got, Claim):
+        return got
+    if not force:
+        raise UsageError(
+            f"{got.message}: two watches would start and stop nodes against each other. Stop "
+            "that one, watch without --apply, or pass --force"
+        )
+    on_note(f"note: {got.message}; going on (--force)")
+    return None

@@ -1,13 +1,14 @@
 """Act on a system through launch files: roslaunch (or ``ros2 launch``), and follow what it says.
 
-``Launcher`` writes one launch file per step, runs it through the ``LiveSource`` (or says the
-command when there is no launcher here), and while the watcher waits it reads each launch
+``Launcher`` writes one launch file per step, runs it through its ``LaunchPort`` (roslaunch,
+``ros1.standins.Roslaunch``, or ``ros2 launch``, ``ros2.launching.Ros2LaunchPort``; or says
+the command when there is no launcher here), and while the watcher waits it reads each launch
 process's output for errors (escaped, with the paths of the launch file and of that output)
 and notices when one exits. ``LaunchActuator`` is the watcher's ``Actuator`` over it: the
-new components start from a launch file, and the replaced ones are stopped through the source
-(a ROS 1 node API's ``shutdown``). Launch files and output are kept in ``launch_dir``
-(``launch_log_dir`` makes one next to ROS's own logs). Every observation goes to the ``say``
-callback; nothing here prints.
+new components start from a launch file, and the replaced ones are stopped where the
+middleware can stop a node (``stop_node``: a ROS 1 node API's ``shutdown``). Launch files
+and output are kept in ``launch_dir`` (``launch_log_dir`` makes one next to ROS's own logs).
+Every observation goes to the ``say`` callback; nothing here prints.
 """
 
 from __future__ import annotations
@@ -19,16 +20,16 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
+from typing import Protocol
 
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model import Configuration
 from rosreconf.model.wiring import node_live_name
 from rosreconf.printable import printable
 from rosreconf.procs import Background, stop_all
-from rosreconf.ros.actuator import Acting, Actuator, Say
+from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion, launch_file
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
-from rosreconf.ros.sources import LiveSource
 
 CLOSE_GRACE_SECONDS = 2.0
 """Seconds the launch processes get to stop their nodes when the watcher ends, before their
@@ -38,42 +39,50 @@ ROS 2's SIGINT, SIGTERM, SIGKILL steps of 1 s do. It was ``stop_all``'s 5 s: a r
 slow to stop (a loaded machine) then ended watch by the hard stop, before it said anything."""
 
 
+class LaunchPort(Protocol):
+    """How launch files are run on one middleware: the one thing a ``Launcher`` needs of it."""
+
+    @property
+    def ros_version(self) -> RosVersion:
+        """Return which launch files this launcher runs."""
+        ...
+
+    def start(
+        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
+    ) -> Background | None:
+        """Run ``launch`` as a process rosreconf owns; None when there is no launcher here.
+
+        ``stand_ins``: a private directory where what stand-in nodes need can be written
+        (None: the launch file starts no stand-ins).
+        """
+        ...
+
+    def command(self, launch: Path) -> list[str]:
+        """Return the command ``start`` runs for ``launch``."""
+        ...
+
+
 @dataclass
 class Launcher:
     """Own the launch processes one watcher starts, from the first launch file to ``close``.
 
     Attributes:
-        source: where launch files are run (``LiveSource.start``).
-        library, schema: what the launch files are written from.
-        workdir: a private directory for the stand-in package.
-        env: the environment the launch processes run in.
-        say: receives every event (``launch``, ``would-launch``, ``launch-error``,
+        port: how launch files are run (``LaunchPort``).
+        acting: what they are written from (the library, the schema, stand-ins or not),
+            where they and their output go, what the launch processes run in, and who
+            receives every event (``launch``, ``would-launch``, ``launch-error``,
             ``launch-exited``, ``stopped``, ``kept``).
-        stand_ins: launch stand-in nodes instead of the components' real executables.
-        launch_dir: where launch files and their output go, kept after the watcher ends
-            (default: ``workdir``).
         launches: the launch processes started and not yet stopped.
         launched: the components launched since the master (re)started.
         steps: how many launch files were written.
     """
 
-    source: LiveSource
-    library: ComponentLibrary
-    schema: InteroperabilitySchema
-    workdir: Path
-    env: Mapping[str, str]
-    say: Say
-    stand_ins: bool = False
-    launch_dir: Path | None = None
+    port: LaunchPort
+    acting: Acting
     launches: list[Background] = field(default_factory=list)
     launched: set[str] = field(default_factory=set)
     steps: int = 0
     _exited: set[int] = field(default_factory=set)
-
-    @property
-    def directory(self) -> Path:
-        """Return where launch files and their output go."""
-        return self.launch_dir if self.launch_dir is not None else self.workdir
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` of ``current`` with one launch process (or say what would run).
@@ -81,24 +90,25 @@ class Launcher:
         Returns whether a process was started.
         """
         self.steps += 1
-        self.directory.mkdir(parents=True, exist_ok=True)
-        version = self.source.ros_version
+        a = self.acting
+        a.directory.mkdir(parents=True, exist_ok=True)
+        version = self.port.ros_version
         suffix = ".launch" if version is RosVersion.ROS1 else ".launch.xml"
-        launch = self.directory / f"step{self.steps}{suffix}"
+        launch = a.directory / f"step{self.steps}{suffix}"
         text = launch_file(
-            self.library,
-            self.schema,
+            a.library,
+            a.schema,
             current,
             version,
             only=components,
-            stand_ins=self.stand_ins,
+            stand_ins=a.options.stand_ins,
         ).text
         launch.write_text(text, encoding="utf-8")
-        process = self.source.start(launch, self.env, self.workdir if self.stand_ins else None)
+        process = self.port.start(launch, a.env, a.workdir if a.options.stand_ins else None)
         self.launched |= set(components)
-        command = " ".join(self.source.launch_command(launch))
+        command = " ".join(self.port.command(launch))
         if process is None:
-            self.say(
+            self.acting.say(
                 "would-launch",
                 f"no launcher here: would run '{command}' to start {', '.join(components)} "
                 f"({why}); wrote {launch}",
@@ -108,9 +118,9 @@ class Launcher:
             )
             return False
         self.launches.append(process)
-        how = "stand-ins of " if self.stand_ins else ""
+        how = "stand-ins of " if a.options.stand_ins else ""
         launcher = "roslaunch" if version is RosVersion.ROS1 else "ros2 launch"
-        self.say(
+        self.acting.say(
             "launch",
             f"{launcher} started {how}{', '.join(components)} ({why})",
             components=list(components),
@@ -124,11 +134,13 @@ class Launcher:
         for launch in self.launches:
             files = self._files(launch)
             for line in error_lines(launch.new_output()):
-                self.say("launch-error", f"roslaunch: {line} ({files})", **self._paths(launch))
+                self.acting.say(
+                    "launch-error", f"roslaunch: {line} ({files})", **self._paths(launch)
+                )
             code = launch.poll()
             if code is not None and launch.process.pid not in self._exited:
                 self._exited.add(launch.process.pid)
-                self.say(
+                self.acting.say(
                     "launch-exited",
                     f"roslaunch exited with code {code} ({files})",
                     returncode=code,
@@ -152,7 +164,7 @@ class Launcher:
         """Forget what was launched with a master that restarted (with ``stop``, stop it)."""
         if stop and self.launches:
             n = self.stop()
-            self.say(
+            self.acting.say(
                 "stopped",
                 f"stopped the {n} roslaunch process(es) started with the old master, "
                 "to start their nodes again with the new one",
@@ -163,12 +175,13 @@ class Launcher:
         """Stop every launch process, and say where the launch files are kept."""
         n = self.stop(CLOSE_GRACE_SECONDS)
         if n:
-            self.say("stopped", f"stopped the {n} roslaunch process(es) started")
-        if self.steps and self.launch_dir is not None:
-            self.say(
+            self.acting.say("stopped", f"stopped the {n} roslaunch process(es) started")
+        launch_dir = self.acting.options.launch_dir
+        if self.steps and launch_dir is not None:
+            self.acting.say(
                 "kept",
-                f"launch files and roslaunch's output are kept in {self.launch_dir}",
-                launch_dir=str(self.launch_dir),
+                f"launch files and roslaunch's output are kept in {launch_dir}",
+                launch_dir=str(launch_dir),
             )
 
     @staticmethod
@@ -183,31 +196,21 @@ class Launcher:
 
 @dataclass
 class LaunchActuator(Actuator):
-    """Start components from launch files; stop the replaced ones through the source.
+    """Start components from launch files; stop the replaced ones where a node can be stopped.
 
-    The ``Actuator`` of ROS 1: a replan stops each live component it takes out or restarts
-    (``LiveSource.stop``, the node API's ``shutdown``, as ``rosnode kill`` does), then one
-    launch file starts the new ones, and a kept one that is rewired again (ROS names are
-    fixed at start).
+    A replan stops each live component it takes out or restarts (``stop_node``: ROS 1's
+    actuator, ``ros1.source.MasterActuator``, calls the node API's ``shutdown``, as
+    ``rosnode kill`` does), then one launch file starts the new ones, and a kept one that is
+    rewired again (ROS names are fixed at start).
     """
 
-    source: LiveSource
+    port: LaunchPort
     acting: Acting
     launcher: Launcher = field(init=False)
     _ended: bool = False
 
     def __post_init__(self) -> None:
-        a = self.acting
-        self.launcher = Launcher(
-            self.source,
-            a.library,
-            a.schema,
-            a.workdir,
-            a.env,
-            a.say,
-            stand_ins=a.stand_ins,
-            launch_dir=a.launch_dir,
-        )
+        self.launcher = Launcher(self.port, self.acting)
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` with one launch process (or say what would run)."""
@@ -227,10 +230,10 @@ class LaunchActuator(Actuator):
     def stop_replaced(
         self, graph: LiveGraph, changes: list[Change], failed: Collection[str]
     ) -> None:
-        """Stop, through the source, each live component a replan takes out or restarts.
+        """Stop each live component a replan takes out or restarts (``stop_node``).
 
         A kept component restarted to be rewired is stopped too: its launch file starts it
-        again, wired (``stop`` event). Sources that cannot stop a node (ROS 2) stop none.
+        again, wired (``stop`` event). Middlewares that cannot stop a node (ROS 2) stop none.
         """
         alive = {n.name for n in graph.nodes}
         for role, old_comp, new_comp in changes:
@@ -241,13 +244,17 @@ class LaunchActuator(Actuator):
             reason = "rosreconf: " + (
                 f"{role} is rewired" if restart else f"{role} is now {new_comp}"
             )
-            if name in alive and self.source.stop(graph, name, reason):
+            if name in alive and self.stop_node(graph, name, reason):
                 how = "to restart it rewired" if restart else f"replaced by {new_comp or '(empty)'}"
                 self.acting.say("stop", f"stopped {old_comp} ({role}): {how}", component=old_comp)
 
+    def stop_node(self, graph: LiveGraph, node: str, reason: str) -> bool:
+        """Ask node ``node`` to shut down; return whether that was possible (here: never)."""
+        return False
+
     def not_running(self, missing: list[str]) -> tuple[list[str], str]:
         """Return the launched ones of ``missing``; point at the launch output or file."""
-        where = self.launcher.directory
+        where = self.acting.directory
         if self.launcher.launches:
             why = f"launched but not running (see the launch output in {where})"
         else:

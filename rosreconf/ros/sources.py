@@ -1,4 +1,4 @@
-"""Where a live graph comes from, and how nodes there are stopped and started: ``LiveSource``.
+"""Where a live graph comes from, and what acts on it there: ``LiveSource``.
 
 Every live command reads one ``LiveGraph`` document, whatever the middleware, so that
 comparing, importing, and re-planning are shared. What differs is here::
@@ -16,25 +16,24 @@ comparing, importing, and re-planning are shared. What differs is here::
                                                        written and the command said
     implemented   ``ros1.source.MasterSource``         ``ros2.source.Ros2Source``
 
-``rosreconf.ros.connect`` opens the one the options name. Each source makes the watcher's
-``Actuator``; ROS 2's ``--apply`` starts and retires each node's process itself
-(``ros2.actuator``), or with ``--ros2-launch`` runs ``ros2 launch`` as in the table.
+``rosreconf.ros.connect`` opens the one the options name. A source only reads; each makes the
+watcher's ``Actuator``, which does the rest of the table: ROS 1's purges, stops and runs
+roslaunch (``ros1.source.MasterActuator``); ROS 2's ``--apply`` starts and retires each node's
+process itself (``ros2.actuator``), or with ``--ros2-launch`` runs ``ros2 launch``. Both
+launchers are a ``launcher.LaunchPort``.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from pathlib import Path
 from typing import Any, Protocol
 
-from rosreconf.procs import Background
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 
 
 class LiveSource(Protocol):
-    """A running system rosreconf can read, and act on as far as its middleware allows."""
+    """A running system rosreconf reads; its actuator acts on it as far as the middleware allows."""
 
     @property
     def uri(self) -> str:
@@ -61,28 +60,6 @@ class LiveSource(Protocol):
         A restarted ROS 1 master lists none of the nodes registered with the old one; a
         ROS 2 graph has no master, and never restarts as a whole.
         """
-        ...
-
-    def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
-        """Forget dead nodes the middleware keeps listing; return the ones forgotten."""
-        ...
-
-    def stop(self, graph: LiveGraph, node: str, reason: str) -> bool:
-        """Ask node ``node`` to shut down; return whether that was possible."""
-        ...
-
-    def start(
-        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
-    ) -> Background | None:
-        """Run ``launch`` as a process rosreconf owns; None when there is no launcher here.
-
-        ``stand_ins``: a private directory where what stand-in nodes need can be written
-        (None: the launch file starts no stand-ins).
-        """
-        ...
-
-    def launch_command(self, launch: Path) -> list[str]:
-        """Return the command ``start`` runs for ``launch``."""
         ...
 
     def actuator(self, acting: Acting) -> Actuator:

@@ -7,7 +7,7 @@ with ``apply`` has its ``Actuator`` retire the components that must go and start
 ones, then confirms with ``rosreconf.ros.conformance.compare``.
 
 When a component counts as failed: it was given as failed, or its node is registered but
-does not answer (ROS 1: SIGKILLed nodes linger in the master; they are then purged), or its
+does not answer (ROS 1: SIGKILLed nodes linger in the master; its actuator purges them), or its
 process was seen to exit or hang (ROS 2: no DDS lease to wait for), or it was seen alive by
 this watcher and is gone now. A component never seen is only *missing*: with ``apply`` it is
 started (so a watcher can also bring a configuration up); without, it is only reported. A
@@ -49,13 +49,13 @@ from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
 from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.outsiders import Outsiders
 from rosreconf.ros.preference import Preference
 from rosreconf.ros.replanning import Change, replan
-from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW, Restarts
+from rosreconf.ros.restarts import Restarts
 from rosreconf.ros.sources import LiveSource
 from rosreconf.ros.verdicts import Missing, judge
-from rosreconf.solve.search import Budget
 
 __all__ = ["Event", "Watcher"]
 
@@ -72,19 +72,10 @@ class Watcher:
         workdir: a private directory for the stand-in package (removed by the caller).
         env: the environment roslaunch runs in.
         log: receives every ``Event``.
-        apply: stop and start components, rather than only say what should change.
-        stand_ins: launch stand-in nodes instead of the components' real executables.
-        settle: seconds to wait for the live graph to conform after applying a change.
-        launch_dir: where launch files and roslaunch's output go, kept after the watcher
-            ends (default: ``workdir``).
+        options: how it watches and acts (``options.WatchOptions``; its actuator gets them
+            whole).
         failed: components known to have failed, until restarted in place or released.
-        standby, ros2_launch, stop_outside: ROS 2 acting options (``actuator.Acting``).
-        restart_limit, restart_window, hold: restart in place, hold, release (``restarts``).
-        prefer_after: return to the configuration a failure left once its components have
-            been candidates this long (``preference``; 0: never).
         stop_requested: polled between steps and while waiting; True ends ``run``.
-        budget: how far to search for a configuration that meets the performance
-            requirements when the fewest-change one does not (``analysis.choice``).
     """
 
     source: LiveSource
@@ -94,20 +85,9 @@ class Watcher:
     workdir: Path
     env: Mapping[str, str]
     log: Callable[[Event], None]
-    apply: bool = False
-    stand_ins: bool = False
-    settle: float = 30.0
-    launch_dir: Path | None = None
+    options: WatchOptions = field(default_factory=WatchOptions)
     failed: set[str] = field(default_factory=set)
-    standby: bool = False
-    ros2_launch: bool = False
-    stop_outside: bool = False
-    restart_limit: int = 0
-    restart_window: float = RESTART_WINDOW
-    hold: float = HOLD_SECONDS
-    prefer_after: float = 0.0
     stop_requested: Callable[[], bool] = lambda: False
-    budget: Budget | None = None
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: Missing = field(default_factory=Missing)
@@ -122,28 +102,15 @@ class Watcher:
     _prefer: Preference = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        acting = Acting(
-            self.library,
-            self.schema,
-            self.workdir,
-            self.env,
-            self._say,
-            apply=self.apply,
-            stand_ins=self.stand_ins,
-            launch_dir=self.launch_dir,
-            standby=self.standby,
-            ros2_launch=self.ros2_launch,
-            stop_outside=self.stop_outside,
-        )
+        o = self.options
+        acting = Acting(self.library, self.schema, self.workdir, self.env, self._say, o)
         self._actuator = self.source.actuator(acting)
         self._lifecycle = LifecycleFaults(self._say, self._actuator.reactivate)
         self._clashes = NameClashes(self._say, self._role, self._actuator.squatter)
-        self._restarts = Restarts(
-            self._say, self._role, self.restart_limit, self.restart_window, self.hold
-        )
+        self._restarts = Restarts(self._say, self._role, o.restart_limit, o.restart_window, o.hold)
         parts = self._actuator, self._clashes, self._restarts
         self._outsiders = Outsiders(self.library, self.schema, self._say, self._role, *parts)
-        self._prefer = Preference(self._say, self.prefer_after if self.apply else 0.0)
+        self._prefer = Preference(self._say, o.prefer_after if o.apply else 0.0)
 
     def _read(self) -> LiveGraph:
         """Read the live graph; who announced a newly failed node is noted before and after."""
@@ -205,13 +172,7 @@ class Watcher:
             )
         dead = [n.name for n in graph.nodes if not n.answered]
         if dead:
-            purged = self.source.purge(graph, dead)
-            if purged:
-                self._say(
-                    "purged",
-                    f"unregistered dead node(s) {', '.join(purged)} from the master",
-                    nodes=list(purged),
-                )
+            self._actuator.forget(graph, dead)
         self.failed |= self._clashes.failed(check, self._actuator.started(), self.failed)
         # a managed node out of 'active' is a fault, re-activated with apply (lifecycle_faults)
         if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
@@ -220,7 +181,7 @@ class Watcher:
             if self._replan():
                 return self._confirm()
         elif missing:
-            fresh = self._missing.report(missing, self._actuator, self.apply, self._say)
+            fresh = self._missing.report(missing, self._actuator, self.options.apply, self._say)
             if fresh and self._start(fresh, "not running yet"):
                 return self._confirm()
         if dead:
@@ -268,7 +229,7 @@ class Watcher:
         if said is None:
             return
         self._say("master-restarted", said[0], **said[1])
-        self._actuator.restart(stop=self.apply)
+        self._actuator.restart(stop=self.options.apply)
         self._seen.clear()
         self._missing = Missing()
         self._running = False
@@ -287,7 +248,7 @@ class Watcher:
         due = self._restarts.due() & self.failed & inside
         back = self._restarts.released() & self.failed
         self.failed -= back
-        if self.apply and not (self.failed - due) & inside:
+        if self.options.apply and not (self.failed - due) & inside:
             due |= back & inside  # no configuration was left without them: tried again
         return self._restart(due, "restarted in place after its backoff or hold")
 
@@ -305,22 +266,24 @@ class Watcher:
         minimal-change configuration without the failed components, and apply it. With none
         left, restart them in place all the same, backing off (``Restarts.last_resort``)."""
         failing = self.failed & set(self.current.components)
-        again = self._restarts.restartable(failing, self.apply)
+        apply = self.options.apply
+        again = self._restarts.restartable(failing, apply)
         started = self._restart(again, "restarted in place")
         if not failing - again:
             return started
         failed = frozenset(self.failed)
         found = None
         if failed != self._hopeless:  # the same failures: the same answer, said already
-            found = replan(self.library, self.schema, self.current, failed, self._say, self.budget)
+            budget = self.options.budget
+            found = replan(self.library, self.schema, self.current, failed, self._say, budget)
         if found is None:
             self._hopeless = failed
-            now = self._restarts.last_resort(failing - again, self.apply, self._actuator.theirs())
+            now = self._restarts.last_resort(failing - again, apply, self._actuator.theirs())
             return (
                 self._restart(now, "restarted in place: no configuration is left without it")
                 or started
             )
-        self._restarts.hold_failed(failing - again, self.apply)
+        self._restarts.hold_failed(failing - again, apply)
         new, changes = found
         self._prefer.leaving(self.current)
         if self._pending is None:
@@ -329,7 +292,7 @@ class Watcher:
 
     def _switch(self, new: Configuration, changes: list[Change]) -> bool:
         """Make ``new`` the configuration; with ``apply``, start and retire as ``changes`` say."""
-        if not self.apply:
+        if not self.options.apply:
             self.current = new
             return False
         started = self._actuator.replace(changes, new, self.failed, self._live)
@@ -360,7 +323,7 @@ class Watcher:
                 or self._actuator.left_running(check)
             ):
                 return check
-            if took > self.settle or ended:
+            if took > self.options.settle or ended:
                 first = "; ".join(f.message for f in check.findings[:3])
                 why = "roslaunch has exited" if ended else f"after {took:.0f} s"
                 self._say(

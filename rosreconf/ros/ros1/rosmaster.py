@@ -20,12 +20,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from datetime import UTC, datetime
-from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UsageError
 from rosreconf.printable import printable
-from rosreconf.ros.livegraph import LiveGraph, LiveNode, from_json
+from rosreconf.ros.livegraph import LiveGraph, LiveNode
 from rosreconf.ros.ros1 import rpc
 from rosreconf.ros.ros1.rpc import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 
@@ -297,29 +296,3 @@ def known_identity(
         now[0] if now[0] is not None else before[0],
         now[1] if now[1] is not None else before[1],
     )
-
-
-def read_live(
-    master: str | None,
-    snapshot: Path | None,
-    *,
-    timeout: float = DEFAULT_TIMEOUT,
-    max_bytes: int = DEFAULT_MAX_BYTES,
-) -> LiveGraph:
-    """Read the live graph from exactly one of a master's URI and a saved snapshot file.
-
-    ``timeout`` and ``max_bytes`` bound each call to the master (see ``read_live_graph``).
-
-    Raises:
-        UsageError: both or neither are given, or the snapshot cannot be read.
-        ExternalToolError: the master does not answer.
-    """
-    if (master is None) == (snapshot is None):
-        raise UsageError("give exactly one of --master URI and --snapshot FILE")
-    if snapshot is not None:
-        try:
-            return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
-        except OSError as exc:
-            raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
-    assert master is not None
-    return read_live_graph(master, timeout=timeout, max_bytes=max_bytes)

@@ -1,13 +1,15 @@
-"""A ROS 1 system as a ``LiveSource``: read from its master, acted on with roslaunch."""
+"""A ROS 1 system as a ``LiveSource``: read from its master, acted on with roslaunch.
+
+``MasterSource`` only reads; what acts is its actuator, ``MasterActuator``: roslaunch starts
+nodes (``standins.Roslaunch``), the node API's ``shutdown`` stops them, and dead nodes the
+master keeps listing are unregistered.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
-from rosreconf.procs import Background
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launcher import LaunchActuator
 from rosreconf.ros.launchfiles import RosVersion
@@ -22,7 +24,7 @@ from rosreconf.ros.ros1.rosmaster import (
     restart_event,
     shutdown_node,
 )
-from rosreconf.ros.ros1.standins import start_roslaunch, write_standin_package
+from rosreconf.ros.ros1.standins import Roslaunch
 
 
 @dataclass
@@ -54,31 +56,35 @@ class MasterSource:
         before, self._known = self._known, known_identity(self._known, now)
         return restart_event(before, now)
 
-    def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
-        """Unregister dead nodes (SIGKILLed nodes linger in the master)."""
-        return purge_dead(
-            self.master_uri, graph, only=dead, timeout=self.timeout, max_bytes=self.max_bytes
-        )
-
-    def stop(self, graph: LiveGraph, node: str, reason: str) -> bool:
-        """Call the node API's ``shutdown`` (what ``rosnode kill`` does)."""
-        uri = next((n.uri for n in graph.nodes if n.name == node), None)
-        return uri is not None and shutdown_node(uri, reason, timeout=self.timeout)
-
-    def start(
-        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
-    ) -> Background | None:
-        """Start ``roslaunch --wait`` on the file (the stand-in package made in ``stand_ins``)."""
-        package = None if stand_ins is None else write_standin_package(stand_ins / "pkg")
-        return start_roslaunch(launch, env, package_path=package)
-
-    def launch_command(self, launch: Path) -> list[str]:
-        """Return the roslaunch command line."""
-        return ["roslaunch", "--wait", str(launch)]
-
     def actuator(self, acting: Acting) -> Actuator:
         """Return roslaunch's actuator (nodes stopped through their API's ``shutdown``)."""
-        return LaunchActuator(self, acting)
+        return MasterActuator(Roslaunch(), acting, master=self)
 
     def close(self) -> None:
         """Hold nothing: each read is its own XML-RPC calls."""
+
+
+@dataclass
+class MasterActuator(LaunchActuator):
+    """The ``Actuator`` of ROS 1: roslaunch, nodes stopped through their API, dead ones
+    unregistered from ``master`` (each call with its deadline and answer cap)."""
+
+    master: MasterSource = field(kw_only=True)
+
+    def stop_node(self, graph: LiveGraph, node: str, reason: str) -> bool:
+        """Call the node API's ``shutdown`` (what ``rosnode kill`` does)."""
+        uri = next((n.uri for n in graph.nodes if n.name == node), None)
+        return uri is not None and shutdown_node(uri, reason, timeout=self.master.timeout)
+
+    def forget(self, graph: LiveGraph, dead: list[str]) -> None:
+        """Unregister dead nodes (SIGKILLed nodes linger in the master), saying which."""
+        m = self.master
+        purged = purge_dead(
+            m.master_uri, graph, only=dead, timeout=m.timeout, max_bytes=m.max_bytes
+        )
+        if purged:
+            self.acting.say(
+                "purged",
+                f"unregistered dead node(s) {', '.join(purged)} from the master",
+                nodes=list(purged),
+            )

@@ -1,10 +1,11 @@
 """Stand-in nodes for trying reconfiguration without the robot's packages, and roslaunch.
 
 ``rosreconf.ros.launchfiles`` writes the launch files (real or stand-in); this module supplies
-what the stand-in ones need and starts roslaunch. A stand-in ``<node>`` runs
-``rosreconf/ros/ros1/scripts/standin_node.py`` from a package that exists only in a temp dir.
-roslaunch finds packages through ``ROS_PACKAGE_PATH`` (rospkg crawls it for
-``package.xml``); no catkin workspace is needed. So ``write_standin_package`` makes::
+what the stand-in ones need and starts roslaunch (``Roslaunch``, the launcher's port). A
+stand-in ``<node>`` runs ``rosreconf/ros/ros1/scripts/standin_node.py`` from a package that
+exists only in a temp dir. roslaunch finds packages through ``ROS_PACKAGE_PATH`` (rospkg
+crawls it for ``package.xml``); no catkin workspace is needed. So ``write_standin_package``
+makes::
 
     <dir>/rosreconf_standin/package.xml     a minimal format-2 manifest
     <dir>/rosreconf_standin/standin_node    a copy of standin_node.py, mode 0755
@@ -20,14 +21,17 @@ from __future__ import annotations
 import os
 import shutil
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 from rosreconf.procs import Background, start_program
+from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.standin_spec import STANDIN_EXECUTABLE, STANDIN_PACKAGE, standin_spec
 
 __all__ = [  # the names and specs live in standin_spec (launchfiles needs only them)
     "STANDIN_EXECUTABLE",
     "STANDIN_PACKAGE",
+    "Roslaunch",
     "standin_spec",
     "start_roslaunch",
     "write_standin_package",
@@ -66,5 +70,23 @@ def start_roslaunch(
     if package_path is not None:
         rest = full.get("ROS_PACKAGE_PATH")
         full["ROS_PACKAGE_PATH"] = os.pathsep.join(p for p in (str(package_path), rest) if p)
-    argv = ["roslaunch", "--wait", str(launch_file)]
+    argv = Roslaunch().command(launch_file)
     return start_program(argv, log=launch_file.with_suffix(".log"), env=full)
+
+
+@dataclass(frozen=True)
+class Roslaunch:
+    """roslaunch as the ``launcher.LaunchPort`` of ROS 1."""
+
+    ros_version: RosVersion = RosVersion.ROS1
+
+    def start(
+        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
+    ) -> Background | None:
+        """Start ``roslaunch --wait`` on the file (the stand-in package made in ``stand_ins``)."""
+        package = None if stand_ins is None else write_standin_package(stand_ins / "pkg")
+        return start_roslaunch(launch, env, package_path=package)
+
+    def command(self, launch: Path) -> list[str]:
+        """Return the roslaunch command line (never its own master: ``--wait``)."""
+        return ["roslaunch", "--wait", str(launch)]

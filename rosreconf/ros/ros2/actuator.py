@@ -105,9 +105,9 @@ class Ros2Actuator(Actuator):
 
     def __post_init__(self) -> None:
         a = self.acting
-        self.nodes = NodeProcesses(a.env, a.directory, stand_ins=a.stand_ins)
+        self.nodes = NodeProcesses(a.env, a.directory, stand_ins=a.options.stand_ins)
         self.supervisor = OutsideSupervisor(
-            a.library, a.schema, a.env, a.say, stop_outside=a.stop_outside
+            a.library, a.schema, a.env, a.say, stop_outside=a.options.ros2.stop_outside
         )
         self.lifecycle = Transitions(a.env, a.directory, a.say, self._node)
         forget = self.lifecycle.forget
@@ -226,7 +226,7 @@ class Ros2Actuator(Actuator):
             else:
                 outside.append((component, role, replacement, alive))
         self.supervisor.retire(outside)  # their processes stopped together, graces overlapping
-        self.standbys.retire(managed, standby=self.acting.standby)  # parked: they stay
+        self.standbys.retire(managed, standby=self.acting.options.ros2.standby)  # parked: they stay
         stopped = {n.component: n for n in self.nodes.stop([c for c, _, _ in processes])}
         for component, role, replacement in processes:
             ended = stopped[component]
@@ -284,7 +284,7 @@ class Ros2Actuator(Actuator):
         if not now and not tend:  # while confirming; a poll starts them as missing ones
             self._admit_waiting(current)
         if tend and not now:
-            if self.acting.standby:
+            if self.acting.options.ros2.standby:
                 self.standbys.replace_hung(self.read_states)
             self.standbys.tend()  # configure those whose services have come up (no waiting)
         return now
@@ -324,7 +324,7 @@ class Ros2Actuator(Actuator):
         After the confirmation, not before it: choosing each standby's wiring replans.
         """
         self.supervisor.settled()
-        if self.acting.standby:
+        if self.acting.options.ros2.standby:
             self.standbys.prepare(current, failed)
 
     def started(self) -> frozenset[str]:

@@ -8,15 +8,38 @@ instead (``rosreconf.ros.ros2.actuator``).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Collection
+import shutil
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from rosreconf.model import Configuration
 from rosreconf.model.wiring import node_live_name
+from rosreconf.procs import Background, start_program
 from rosreconf.ros.launcher import LaunchActuator
+from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.replanning import Change
 from rosreconf.ros.ros2.onename import OneName
+
+
+@dataclass(frozen=True)
+class Ros2LaunchPort:
+    """``ros2 launch`` as the ``launcher.LaunchPort`` of ROS 2, where a ``ros2`` command exists."""
+
+    ros_version: RosVersion = RosVersion.ROS2
+
+    def start(
+        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
+    ) -> Background | None:
+        """Start ``ros2 launch FILE`` if a ``ros2`` command exists here, else None."""
+        if shutil.which("ros2", path=env.get("PATH")) is None:
+            return None
+        return start_program(self.command(launch), log=launch.with_suffix(".log"), env=env)
+
+    def command(self, launch: Path) -> list[str]:
+        """Return the ``ros2 launch`` command line."""
+        return ["ros2", "launch", str(launch)]
 
 
 @dataclass
@@ -25,18 +48,20 @@ class Ros2Launch(LaunchActuator):
 
     A newcomer whose node name a live node still has is not launched beside it (``onename``):
     it waits until a person has ended that node's process, as the transitions listed say.
+    ``participants`` finds that node (``Ros2Source.participants``).
     """
 
+    participants: Callable[[], Mapping[bytes, tuple[str, ...]]] = dict
     names: OneName = field(init=False)
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        participants = getattr(self.source, "participants", dict)
-        self.names = OneName(self.acting.library, None, participants, lambda: None, self.acting.say)
+        a = self.acting
+        self.names = OneName(a.library, None, self.participants, lambda: None, a.say)
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Launch those of ``components`` whose node name is free; the others wait."""
-        if not self.acting.apply:  # only says what would run
+        if not self.acting.options.apply:  # only says what would run
             return super().start(current, components, why)
         free = self.names.admit(components, current.components, ())
         return super().start(current, free, why) if free else not components

@@ -2,22 +2,19 @@
 
 from __future__ import annotations
 
-import shutil
 import time
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Callable, Collection
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError, UnsettledGraphError
-from rosreconf.procs import Background, start_program
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.actuator import Ros2Actuator
 from rosreconf.ros.ros2.discovery import Ros2Discovery
 from rosreconf.ros.ros2.graph import graph_uri
-from rosreconf.ros.ros2.launching import Ros2Launch
+from rosreconf.ros.ros2.launching import Ros2Launch, Ros2LaunchPort
 from rosreconf.ros.ros2.lifecycle_state import StateReader, with_states
 from rosreconf.ros.ros2.names import gid_sizes
 
@@ -151,29 +148,6 @@ class Ros2Source:
         """Return None: a ROS 2 graph has no master to restart."""
         return None
 
-    def purge(self, graph: LiveGraph, dead: list[str]) -> tuple[str, ...]:
-        """Forget nothing: DDS drops a participant whose lease expired by itself."""
-        return ()
-
-    def stop(self, graph: LiveGraph, node: str, reason: str) -> bool:
-        """Refuse: ROS 2 has no remote kill (ros2/ros2cli#535).
-
-        What a person runs instead is ``launching.lifecycle_steps``.
-        """
-        return False
-
-    def start(
-        self, launch: Path, env: Mapping[str, str], stand_ins: Path | None
-    ) -> Background | None:
-        """Start ``ros2 launch FILE`` if a ``ros2`` command exists here, else None."""
-        if shutil.which("ros2", path=env.get("PATH")) is None:
-            return None
-        return start_program(self.launch_command(launch), log=launch.with_suffix(".log"), env=env)
-
-    def launch_command(self, launch: Path) -> list[str]:
-        """Return the ``ros2 launch`` command line."""
-        return ["ros2", "launch", str(launch)]
-
     def participants(self) -> dict[bytes, tuple[str, ...]]:
         """Return each alive participant's GUID -> its nodes (the last read).
 
@@ -188,9 +162,9 @@ class Ros2Source:
 
     def actuator(self, acting: Acting) -> Actuator:
         """Return the actuator ``acting`` asks for: each node's own process, or ``ros2 launch``."""
-        if acting.apply and not acting.ros2_launch:
+        if acting.options.apply and not acting.options.ros2.launch:
             return Ros2Actuator(acting, self.participants, self.hide)
-        return Ros2Launch(self, acting)
+        return Ros2Launch(Ros2LaunchPort(), acting, participants=self.participants)
 
     def close(self) -> None:
         """Leave the DDS domain."""
