@@ -243,7 +243,8 @@ class Watcher:
     def _release(self) -> bool:
         """Restart the components whose backoff is over (``Restarts.last_resort``); make held
         components whose hold is over candidates again, and start those in service when no
-        configuration was left without them. True if something was started."""
+        configuration was left without them. True if something was started.
+        """
         inside = set(self.current.components)
         due = self._restarts.due() & self.failed & inside
         back = self._restarts.released() & self.failed
@@ -264,7 +265,8 @@ class Watcher:
     def _replan(self) -> bool:
         """Restart failed components in place where allowed (``restarts``); else find the
         minimal-change configuration without the failed components, and apply it. With none
-        left, restart them in place all the same, backing off (``Restarts.last_resort``)."""
+        left, restart them in place all the same, backing off (``Restarts.last_resort``).
+        """
         failing = self.failed & set(self.current.components)
         apply = self.options.apply
         again = self._restarts.restartable(failing, apply)
@@ -346,7 +348,8 @@ class Watcher:
     def replan_due(self) -> bool:
         """Tell whether a failure waits for a replan, or a freed component to start: poll now.
 
-        Not one held, or waiting out a restart's backoff: its time is ``due_at``."""
+        Not one held, or waiting out a restart's backoff: its time is ``due_at``.
+        """
         waiting = {*self._restarts.held, *self._restarts.backoff}
         failing = (self.failed & set(self.current.components)) - waiting
         return bool(failing or self._clashes.freed)
