@@ -35,6 +35,7 @@ from rosreconf.model import (
     SystemGraph,
     TransferFunction,
 )
+from rosreconf.model.context import Condition, ContextVariable
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
@@ -172,8 +173,38 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
         qos=MappingProxyType(qos),
         dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
+        when=_conditions(item["when"]) if "when" in item else (),
         where=where,
     )
+
+
+def _conditions(when: Doc) -> tuple[Condition, ...]:
+    """Build a component's ``when``; where each is written is its ``when.<name>`` position."""
+    return tuple(
+        [
+            Condition(
+                name,
+                at_least=_bound(spec.get("at_least")),
+                at_most=_bound(spec.get("at_most")),
+                equals=spec.get("equals"),
+            )
+            for name, spec in when.items()
+        ]
+    )
+
+
+def _bound(value: Any) -> float | None:
+    return float(value) if isinstance(value, NUMBER) else None
+
+
+def _context(doc: Doc, places: Positions) -> tuple[ContextVariable, ...]:
+    """Build a library's context declarations, each with where it is written."""
+    out = []
+    for i, v in enumerate(doc.get("context", ())):
+        spans = [places.find(["context", i, *key]) for key in ((), ("field",))]
+        at, field_at = (places.span(s if s is not None else places.root) for s in spans)
+        out.append(ContextVariable(v["name"], v["topic"], v["type"], v["field"], at, field_at))
+    return tuple(out)
 
 
 def component_where(tree: Positions, node: Place) -> dict[str, Span]:
@@ -268,6 +299,7 @@ def build_library(
         ),
         description=doc.get("description", ""),
         source=(name,),
+        context=_context(doc, table or tree()) if doc.get("context") else (),
     )
 
 
