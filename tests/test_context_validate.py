@@ -43,7 +43,7 @@ CASES = [
         VIS,
         "when: {visibilty: {at_least: 3.25}}",
         "when: {visibilty",
-        23,
+        12,
         "error: spiral_high has a condition on 'visibilty', which is not a context of the "
         "library (did you mean 'visibility'? declare it under context: ({name, topic, type, "
         "field}), or fix the name)",

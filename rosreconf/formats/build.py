@@ -153,7 +153,9 @@ def _positions(tree: Positions, node: Place, key: str, where: dict[str, Span]) -
         _positions(tree, child, f"{key}.{step}" if key else str(step), where)
 
 
-def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
+def _component(
+    item: Doc, seen: Interfaces, where: Mapping[str, Span], names: Callable[[str], Span]
+) -> Component:
     get = item.get
     qos: dict[str, QosProfile] = {}
     provided = frozenset([_interface(p, seen, qos) for p in get("provides", ())])
@@ -173,13 +175,13 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
         qos=MappingProxyType(qos),
         dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
-        when=_conditions(item["when"]) if "when" in item else (),
+        when=_conditions(item["when"], names) if "when" in item else (),
         where=where,
     )
 
 
-def _conditions(when: Doc) -> tuple[Condition, ...]:
-    """Build a component's ``when``; where each is written is its ``when.<name>`` position."""
+def _conditions(when: Doc, names: Callable[[str], Span]) -> tuple[Condition, ...]:
+    """Build a component's ``when``; each condition's span is where its name is written."""
     return tuple(
         [
             Condition(
@@ -187,10 +189,32 @@ def _conditions(when: Doc) -> tuple[Condition, ...]:
                 at_least=_bound(spec.get("at_least")),
                 at_most=_bound(spec.get("at_most")),
                 equals=spec.get("equals"),
+                span=names(name),
             )
             for name, spec in when.items()
         ]
     )
+
+
+class _KeySpans:
+    """Where a component's ``when`` names are written, from the file's positions read once.
+
+    Only a component with conditions asks; a library without any never reads positions.
+    """
+
+    def __init__(self, tree: Callable[[], Positions], table: Positions | None) -> None:
+        self._tree, self._places = tree, table
+
+    def at(self, index: int) -> Callable[[str], Span]:
+        """Return the finder of component ``index``'s condition names."""
+
+        def name_at(name: str) -> Span:
+            if self._places is None:
+                self._places = self._tree()
+            found = self._places.key_span(["components", index, "when", name])
+            return found if found is not None else self._places.span(self._places.root)
+
+        return name_at
 
 
 def _bound(value: Any) -> float | None:
@@ -292,10 +316,11 @@ def build_library(
     if seen is None:
         seen = {}
     items = doc["components"]
+    keys = _KeySpans(tree, table)
     return ComponentLibrary(
         name=doc["name"],
         components=tuple(
-            [_component(c, seen, _Where(tree, table, i)) for i, c in enumerate(items)]
+            [_component(c, seen, _Where(tree, table, i), keys.at(i)) for i, c in enumerate(items)]
         ),
         description=doc.get("description", ""),
         source=(name,),

@@ -50,7 +50,7 @@ def _unknown(c: Component, w: Condition, names: list[str]) -> Problem:
     close = difflib.get_close_matches(w.name, names, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
     return Problem(
-        c.at(f"when.{w.name}"),
+        w.span if w.span.line else c.at(f"when.{w.name}"),
         f"{c.name} has a condition on '{w.name}', which is not a context of the library",
         f"{hint}declare it under context: ({{name, topic, type, field}}), or fix the name",
         code="unknown-context",
