@@ -153,9 +153,7 @@ def _positions(tree: Positions, node: Place, key: str, where: dict[str, Span]) -
         _positions(tree, child, f"{key}.{step}" if key else str(step), where)
 
 
-def _component(
-    item: Doc, seen: Interfaces, where: Mapping[str, Span], names: Callable[[str], Span]
-) -> Component:
+def _component(item: Doc, seen: Interfaces, where: _Where, keys: _KeySpans) -> Component:
     get = item.get
     qos: dict[str, QosProfile] = {}
     provided = frozenset([_interface(p, seen, qos) for p in get("provides", ())])
@@ -175,7 +173,7 @@ def _component(
         qos=MappingProxyType(qos),
         dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
-        when=_conditions(item["when"], names) if "when" in item else (),
+        when=_conditions(item["when"], keys.at(where.index)) if "when" in item else (),
         where=where,
     )
 
@@ -272,6 +270,11 @@ class _Where(Mapping[str, Span]):
         self._tree, self._table, self._index = tree, table, index
         self._found: dict[str, Span] | None = None
 
+    @property
+    def index(self) -> int:
+        """Return the component's index in its file's ``components`` list."""
+        return self._index
+
     def _spans(self) -> dict[str, Span]:
         if self._found is None:
             tree = self._tree()
@@ -320,7 +323,7 @@ def build_library(
     return ComponentLibrary(
         name=doc["name"],
         components=tuple(
-            [_component(c, seen, _Where(tree, table, i), keys.at(i)) for i, c in enumerate(items)]
+            [_component(c, seen, _Where(tree, table, i), keys) for i, c in enumerate(items)]
         ),
         description=doc.get("description", ""),
         source=(name,),
