@@ -174,3 +174,18 @@ def test_booleans_and_strings_at_design_time(runner: CliRunner, files: list[str]
     assert "ruled out: lidar needs weather = clear (it is fog) and depth <= 2.0 (it is 12.0)" in (
         result.stdout
     )
+
+
+def test_fail_components_stay_failed_across_the_table(runner: CliRunner) -> None:
+    """spiral_high both failed and ruled out: failed at every visibility of the table."""
+    example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "suave"
+    files = ["-l", str(example / "library.yaml"), "-s", str(example / "schema.yaml")]
+    doc = _analyse(runner, files, "--fail", "spiral_high", "--context", "visibility=1.0")
+    # battery unconstrained: two controllers per search path
+    assert _table(doc, "visibility") == [
+        ("visibility < 1.25", 0),
+        ("1.25 <= visibility < 2.25", 2),
+        ("visibility >= 2.25", 4),
+    ]
+    assert doc["failed"] == ["spiral_high", "spiral_medium", "spiral_low"]
+    assert doc["schemas"][0]["valid"] == 0

@@ -50,8 +50,11 @@ def analyse_command(
 
     sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
     results = [analyse(sel.library, s, sel.failed, samples=samples, seed=seed) for s in sel.schemas]
-    given = [f for f in sel.failed if f not in {r.component for r in sel.ruled_out}]
     used = dict.fromkeys(w.name for c in sel.library for w in c.when)
-    tables = [thresholds(sel.library, s, v, sel.context, given) for s in sel.schemas for v in used]
+    tables = [
+        thresholds(sel.library, s, v, sel.context, sel.fail_given)
+        for s in sel.schemas
+        for v in used
+    ]
     write_stdout(REPORTERS[Output.of(as_json)].render(sel, results, tables))
     raise typer.Exit(ExitCode.FAILED if any(r.valid == 0 for r in results) else ExitCode.OK)

@@ -33,6 +33,8 @@ class Selection:
         ruled_out: the components whose ``when`` conditions fail under ``context``, with why.
         ignored: context names some condition uses but ``--context`` did not give, taken to
             hold (``--ignore-context``).
+        fail_given: ``--fail``'s components alone (``analyse``'s thresholds vary context
+            and keep these failed throughout).
     """
 
     loaded: Loaded
@@ -42,6 +44,7 @@ class Selection:
     context: Mapping[str, ContextValue] = field(default_factory=dict)
     ruled_out: tuple[RuledOut, ...] = ()
     ignored: tuple[str, ...] = ()
+    fail_given: tuple[str, ...] = ()
 
     @property
     def has_context(self) -> bool:
@@ -88,12 +91,12 @@ def select(
         chosen = [s for s in chosen if s.name in only]
     given = tuple(dict.fromkeys(failed or []))
     if context is None:  # a command that does not apply context (launch, graph, watch...)
-        return Selection(loaded, library, tuple(chosen), given)
+        return Selection(loaded, library, tuple(chosen), given, fail_given=given)
     values = context_values(library, context)
     out = ruled_out(library, values, ignore_unset=ignore_context)
     unusable = tuple(dict.fromkeys([*given, *(r.component for r in out)]))
     ignored = unset_names(library, values)
-    return Selection(loaded, library, tuple(chosen), unusable, values, out, ignored)
+    return Selection(loaded, library, tuple(chosen), unusable, values, out, ignored, given)
 
 
 def _did_you_mean(name: str, choices: Sequence[str]) -> str:
