@@ -205,7 +205,8 @@ class Component:
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``;
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``,
+            ``"when.<name>"``, ``"when.<name>.at_least"``;
             ``""`` is the component itself, when the loader looks positions up only when asked
             (then ``span`` is not given). Positions never take part in comparisons.
     """
