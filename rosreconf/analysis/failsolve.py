@@ -10,7 +10,7 @@ false).
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 import clingo
@@ -72,9 +72,14 @@ class Outcome:
         return self.configuration is not None
 
 
-def make_task(library: ComponentLibrary, schema: InteroperabilitySchema) -> Task:
-    """Compile ``schema`` over ``library`` into a worker's task description."""
-    inst = compile_instance(library, schema)
+def make_task(
+    library: ComponentLibrary, schema: InteroperabilitySchema, failed: Collection[str] = ()
+) -> Task:
+    """Compile ``schema`` over ``library`` into a worker's task description.
+
+    ``failed`` components are gone from every task (what context rules out).
+    """
+    inst = compile_instance(library, schema, failed)
     # the instance's library: the library with each optional role's empty choice after it
     ids = {c.name: i for i, c in enumerate(inst.library.components)}
     atoms: dict[str, list[tuple[int, int]]] = {}

@@ -19,7 +19,7 @@ import functools
 import itertools
 import math
 import time
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass, field
 
@@ -170,6 +170,7 @@ def analyse(
     progress: Progress | None = None,
     chunk_size: int = 64,
     deadline: float | None = None,
+    failed: Collection[str] = (),
 ) -> SchemaReport:
     """Decide every failure set of up to ``max_failures`` relevant components of ``schema``.
 
@@ -183,14 +184,14 @@ def analyse(
             which failure sets were decided.
     """
     with paused_gc():
-        inst = compile_instance(library, schema)
+        inst = compile_instance(library, schema, failed)
     try:
         marg: Marginals | None = marginals(inst)
     except TooHard:
         marg = None
     task: Task | None = None
     if marg is None:
-        task = make_task(library, schema)
+        task = make_task(library, schema, failed)
         relevant = relevant_components(task)
         first = ClingoEngine().first(inst)
     else:
@@ -229,7 +230,7 @@ def analyse(
         pending = undecided()
         head = next(pending, None)
         if head is not None and task is None:
-            task = make_task(library, schema)
+            task = make_task(library, schema, failed)
         chunks = (
             ()
             if task is None or head is None
@@ -291,6 +292,8 @@ def sweep(
     cluster: str | None = None,
     progress: SchemaProgress | None = None,
     seconds: float | None = None,
+    *,
+    failed: Collection[str] = (),
 ) -> list[SchemaReport]:
     """Analyse every schema on one pool: local worker processes, or a Dask cluster.
 
@@ -298,7 +301,8 @@ def sweep(
     ADDRESS``), the one that also runs ``simulate``'s sweep, so both commands run their units
     of work the same way. ``progress`` is how a caller shows progress: this never prints.
 
-    ``seconds`` bounds the whole sweep (``--search-time``; None: no bound).
+    ``seconds`` bounds the whole sweep (``--search-time``; None: no bound). ``failed``
+    components (those context rules out) are gone in every failure set and in none swept.
 
     Raises:
         UsageError: both ``workers`` and ``cluster`` were given.
@@ -314,7 +318,9 @@ def sweep(
                 tick(0)
             try:
                 reports.append(
-                    analyse(library, schema, max_failures, pool, tick, deadline=deadline)
+                    analyse(
+                        library, schema, max_failures, pool, tick, deadline=deadline, failed=failed
+                    )
                 )
             except SweepOutOfTime as exc:
                 done = f"; {len(reports)} schema(s) before it were swept" if reports else ""

@@ -18,10 +18,12 @@ from rosreconf.formats.selection import Selection, select
 
 __all__ = [  # the input the options select, then the options
     "ConfigurationOption",
+    "ContextOption",
     "CurrentOption",
     "DistroOption",
     "DomainOption",
     "FailOption",
+    "IgnoreContextOption",
     "JsonOption",
     "LibraryOption",
     "MasterOption",
@@ -75,6 +77,24 @@ FailOption = Annotated[
         metavar="COMPONENT",
         help="Treat this component as failed (repeatable).",
         show_default=False,
+    ),
+]
+ContextOption = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--context",
+        metavar="NAME=VALUE",
+        help="A measured context value (repeatable): components whose 'when' conditions "
+        "fail under it are unusable, as failed ones are (docs/context.md).",
+        show_default=False,
+    ),
+]
+IgnoreContextOption = Annotated[
+    bool,
+    typer.Option(
+        "--ignore-context",
+        help="Take conditions on context values not given by --context to hold (without it, "
+        "such a condition is an error).",
     ),
 ]
 OnlyOption = Annotated[

@@ -11,7 +11,9 @@ import typer
 from rich.console import Console
 
 from rosreconf.cli.common import (
+    ContextOption,
     FailOption,
+    IgnoreContextOption,
     JsonOption,
     LibraryOption,
     ObjectiveOption,
@@ -39,6 +41,8 @@ def enumerate_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     fail: FailOption = None,
+    context: ContextOption = None,
+    ignore_context: IgnoreContextOption = False,
     only: OnlyOption = None,
     limit: Annotated[
         int | None, typer.Option(min=1, help="Stop after N configurations per schema.")
@@ -76,7 +80,7 @@ def enumerate_command(
     goal = Objective(weights=weights_of(objective)) if best else None
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before the work
-    sel = select(library, schema, fail, only)
+    sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
     report = REPORTERS[Output.of(as_json)](sel, write_stdout)

@@ -8,8 +8,10 @@ from typing import Annotated
 import typer
 
 from rosreconf.cli.common import (
+    ContextOption,
     CurrentOption,
     FailOption,
+    IgnoreContextOption,
     JsonOption,
     LibraryOption,
     ObjectiveOption,
@@ -37,6 +39,8 @@ MAX_TIMEOUT = 7 * 24 * 3600.0
 
 def plan_command(
     fail: FailOption = None,
+    context: ContextOption = None,
+    ignore_context: IgnoreContextOption = False,
     library: LibraryOption = None,
     schema: SchemaOption = None,
     only: OnlyOption = None,
@@ -81,9 +85,10 @@ def plan_command(
 
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before planning
-    sel = select(library, schema, fail, only)
+    sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
     if not sel.failed:
-        raise UsageError("give at least one --fail COMPONENT")
+        ruled = " (--context rules none out)" if sel.context else ""
+        raise UsageError(f"give at least one --fail COMPONENT{ruled}")
     weights = weights_of(objective)
     chosen = planner_named(planner, search)
     running = running_mappings(sel, current, weights)

@@ -8,7 +8,9 @@ from typing import Annotated
 import typer
 
 from rosreconf.cli.common import (
+    ContextOption,
     FailOption,
+    IgnoreContextOption,
     JsonOption,
     LibraryOption,
     OnlyOption,
@@ -30,6 +32,8 @@ def simulate_command(
     schema: SchemaOption = None,
     only: OnlyOption = None,
     fail: FailOption = None,
+    context: ContextOption = None,
+    ignore_context: IgnoreContextOption = False,
     limit: Annotated[
         int,
         typer.Option(
@@ -66,9 +70,10 @@ def simulate_command(
 ) -> None:
     """Simulate every valid configuration's control loops; rank by settling time and error."""
     from rosreconf.analysis.simulate import sweep  # imports numpy: only when run
+    from rosreconf.render.reports.context import context_doc, context_text
     from rosreconf.render.reports.simulate import document, table
 
-    sel = select(library, schema, fail, only)
+    sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
     metrics = tuple(m.strip() for m in (pareto or "").split(",") if m.strip())
     result = sweep(
         sel.library, sel.schemas, sel.failed, limit, metrics, workers, cluster, explicit=bool(only)
@@ -78,10 +83,12 @@ def simulate_command(
 
         draw_sweep(plot, sel.library, result)
     if as_json:
-        write_stdout_pieces(document(result))
+        write_stdout_pieces(document(result, context_doc(sel)))
     else:
         for note in result.notes:
             stderr.print(f"rosreconf: {note}", markup=False)
+        if sel.has_context:
+            stdout.print(context_text(sel).rstrip("\n") + "\n", markup=False, highlight=False)
         for report in result.reports:
             stdout.print(table(report, top))
     ok = all(r.any_meets() for r in result.reports)

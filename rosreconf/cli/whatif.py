@@ -19,6 +19,8 @@ from rich.progress import (
 
 from rosreconf.analysis.whatif import SWEEP_TIME, SchemaProgress, sweep
 from rosreconf.cli.common import (
+    ContextOption,
+    IgnoreContextOption,
     JsonOption,
     LibraryOption,
     OnlyOption,
@@ -31,6 +33,7 @@ from rosreconf.cli.common import (
 from rosreconf.cli.console import stderr, stdout, write_stdout
 from rosreconf.errors import ExitCode
 from rosreconf.model import InteroperabilitySchema
+from rosreconf.render.reports.context import context_doc, context_text
 from rosreconf.render.reports.whatif import document, table
 
 
@@ -38,6 +41,8 @@ def whatif_command(
     library: LibraryOption = None,
     schema: SchemaOption = None,
     only: OnlyOption = None,
+    context: ContextOption = None,
+    ignore_context: IgnoreContextOption = False,
     max_failures: Annotated[
         int, typer.Option("--max-failures", "-k", min=1, max=4, help="Largest failure set.")
     ] = 2,
@@ -58,16 +63,25 @@ def whatif_command(
 ) -> None:
     """Show which schemas survive each set of up to K failures: critical parts and pairs."""
 
-    sel = select(library, schema, None, only)
+    sel = select(library, schema, None, only, context or [], ignore_context=ignore_context)
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
     with _bars(stderr) as progress:
         reports = sweep(
-            sel.library, sel.schemas, max_failures, workers, cluster, progress, search_time
+            sel.library,
+            sel.schemas,
+            max_failures,
+            workers,
+            cluster,
+            progress,
+            search_time,
+            failed=sel.failed,
         )
     if as_json:
-        write_stdout(document(reports, max_failures))
+        write_stdout(document(reports, max_failures, context_doc(sel)))
     else:
+        if sel.has_context:
+            write_stdout(context_text(sel))
         for s, report in zip(sel.schemas, reports, strict=True):
             stdout.print(table(report, s.display_name, max_failures))
     raise typer.Exit(ExitCode.OK)

@@ -35,6 +35,7 @@ from rosreconf.model import (
     SystemGraph,
     TransferFunction,
 )
+from rosreconf.model.context import Condition, ContextVariable
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
 
@@ -152,7 +153,7 @@ def _positions(tree: Positions, node: Place, key: str, where: dict[str, Span]) -
         _positions(tree, child, f"{key}.{step}" if key else str(step), where)
 
 
-def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Component:
+def _component(item: Doc, seen: Interfaces, where: _Where, keys: _KeySpans) -> Component:
     get = item.get
     qos: dict[str, QosProfile] = {}
     provided = frozenset([_interface(p, seen, qos) for p in get("provides", ())])
@@ -172,8 +173,60 @@ def _component(item: Doc, seen: Interfaces, where: Mapping[str, Span]) -> Compon
         qos=MappingProxyType(qos),
         dynamics=_dynamics(item["dynamics"]) if "dynamics" in item else None,
         description=get("description", ""),
+        when=_conditions(item["when"], keys.at(where.index)) if "when" in item else (),
         where=where,
     )
+
+
+def _conditions(when: Doc, names: Callable[[str], Span]) -> tuple[Condition, ...]:
+    """Build a component's ``when``; each condition's span is where its name is written."""
+    return tuple(
+        [
+            Condition(
+                name,
+                at_least=_bound(spec.get("at_least")),
+                at_most=_bound(spec.get("at_most")),
+                equals=spec.get("equals"),
+                span=names(name),
+            )
+            for name, spec in when.items()
+        ]
+    )
+
+
+class _KeySpans:
+    """Where a component's ``when`` names are written, from the file's positions read once.
+
+    Only a component with conditions asks; a library without any never reads positions.
+    """
+
+    def __init__(self, tree: Callable[[], Positions], table: Positions | None) -> None:
+        self._tree, self._places = tree, table
+
+    def at(self, index: int) -> Callable[[str], Span]:
+        """Return the finder of component ``index``'s condition names."""
+
+        def name_at(name: str) -> Span:
+            if self._places is None:
+                self._places = self._tree()
+            found = self._places.key_span(["components", index, "when", name])
+            return found if found is not None else self._places.span(self._places.root)
+
+        return name_at
+
+
+def _bound(value: Any) -> float | None:
+    return float(value) if isinstance(value, NUMBER) else None
+
+
+def _context(doc: Doc, places: Positions) -> tuple[ContextVariable, ...]:
+    """Build a library's context declarations, each with where it is written."""
+    out = []
+    for i, v in enumerate(doc.get("context", ())):
+        spans = [places.find(["context", i, *key]) for key in ((), ("field",))]
+        at, field_at = (places.span(s if s is not None else places.root) for s in spans)
+        out.append(ContextVariable(v["name"], v["topic"], v["type"], v["field"], at, field_at))
+    return tuple(out)
 
 
 def component_where(tree: Positions, node: Place) -> dict[str, Span]:
@@ -216,6 +269,11 @@ class _Where(Mapping[str, Span]):
     def __init__(self, tree: Callable[[], Positions], table: Positions | None, index: int) -> None:
         self._tree, self._table, self._index = tree, table, index
         self._found: dict[str, Span] | None = None
+
+    @property
+    def index(self) -> int:
+        """Return the component's index in its file's ``components`` list."""
+        return self._index
 
     def _spans(self) -> dict[str, Span]:
         if self._found is None:
@@ -261,13 +319,15 @@ def build_library(
     if seen is None:
         seen = {}
     items = doc["components"]
+    keys = _KeySpans(tree, table)
     return ComponentLibrary(
         name=doc["name"],
         components=tuple(
-            [_component(c, seen, _Where(tree, table, i)) for i, c in enumerate(items)]
+            [_component(c, seen, _Where(tree, table, i), keys) for i, c in enumerate(items)]
         ),
         description=doc.get("description", ""),
         source=(name,),
+        context=_context(doc, table or tree()) if doc.get("context") else (),
     )
 
 

@@ -13,7 +13,7 @@ import difflib
 from collections.abc import Iterator, Sequence
 
 from rosreconf.errors import Problem, Severity
-from rosreconf.formats import interfacechecks, qoschecks, simchecks
+from rosreconf.formats import contextchecks, interfacechecks, qoschecks, simchecks
 from rosreconf.model import (
     Component,
     ComponentLibrary,
@@ -45,6 +45,7 @@ def check(
         problems.extend(_couplings(index))
         problems.extend(interfacechecks.index_problems(components, index.interfaces))
         problems.extend(_launch_args(index.launched))
+        problems.extend(contextchecks.context_problems(libraries, components))
     problems.extend(_schema_names(schemas))
     known = index if library_complete else _Index([])
     for schema in schemas:

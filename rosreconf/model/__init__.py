@@ -23,6 +23,9 @@ How the paper's names map onto this module::
     configuration                          Configuration (role -> component)
     M-solution: a component's model        Component.dynamics (TransferFunction | StateSpace)
     M-solution: environment, loops         InteroperabilitySchema.simulation (Simulation)
+    (not in the paper) what is measured    ComponentLibrary.context (ContextVariable, in
+                                           model.context; docs/context.md)
+    (not in the paper) usable only when    Component.when (Condition), RuledOut
 """
 
 # The model's public names, re-exported so that readers import them from one place.

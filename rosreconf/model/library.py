@@ -13,35 +13,26 @@ import enum
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import NamedTuple
 
+from rosreconf.model.context import Condition, ContextVariable
 from rosreconf.model.dynamics import Dynamics
 from rosreconf.model.qos import QosProfile
+from rosreconf.model.span import NOWHERE, Span
 
-
-class Span(NamedTuple):
-    """Where a value was written: file, 1-based line and column.
-
-    A NamedTuple rather than a dataclass: a large library creates one per YAML event
-    (hundreds of thousands), and tuples are several times cheaper to build; they are just as
-    immutable, ordered and hashable.
-
-    Attributes:
-        file: the path as the user gave it (or a bundled resource name).
-        line: 1-based line number.
-        column: 1-based column number.
-    """
-
-    file: str
-    line: int
-    column: int
-
-    def __str__(self) -> str:
-        return f"{self.file}:{self.line}:{self.column}"
-
-
-NOWHERE = Span("<model>", 0, 0)
-"""The span of values built in code rather than read from a file."""
+__all__ = [  # Span and NOWHERE live in model.span (model.context needs them too)
+    "NOWHERE",
+    "TYPE_FOLDERS",
+    "Component",
+    "ComponentLibrary",
+    "Interface",
+    "InterfaceKind",
+    "Requirement",
+    "RosLaunch",
+    "Span",
+    "Substitution",
+    "type_folder",
+    "type_key",
+]
 
 
 class InterfaceKind(enum.StrEnum):
@@ -209,10 +200,13 @@ class Component:
         dynamics: its dynamical model for the M-solution (``rosreconf simulate``), if known;
             a role whose component has none is simulated as unity gain.
         description: free text for people.
+        when: the conditions on context (``rosreconf.model.context``) that must all hold for
+            it to be usable; none = always usable.
         span: where the component was written.
         where: positions of individual values for error messages, keyed ``"name"``,
             ``"abstraction"``, ``"needs.<name>"``, ``"excludes.<name>"``, ``"schemas.<name>"``,
-            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``;
+            ``"provides.<i>"``, ``"requires.<i>"``, ``"ros.args.<i>"``, ``"qos.<label>"``,
+            ``"when.<name>"``, ``"when.<name>.at_least"``;
             ``""`` is the component itself, when the loader looks positions up only when asked
             (then ``span`` is not given). Positions never take part in comparisons.
     """
@@ -230,6 +224,7 @@ class Component:
     qos: Mapping[str, QosProfile] = field(default_factory=lambda: MappingProxyType({}))
     dynamics: Dynamics | None = None
     description: str = ""
+    when: tuple[Condition, ...] = ()
     span: Span = field(default=NOWHERE, compare=False)
     where: Mapping[str, Span] = field(default_factory=lambda: MappingProxyType({}), compare=False)
 
@@ -271,12 +266,14 @@ class ComponentLibrary:
         components: the components, in file order.
         description: free text.
         source: the file(s) it came from.
+        context: what the robot measures, that components' ``when`` conditions are on.
     """
 
     name: str
     components: tuple[Component, ...]
     description: str = ""
     source: tuple[str, ...] = ()
+    context: tuple[ContextVariable, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_by_name", MappingProxyType({c.name: c for c in self.components}))
@@ -319,4 +316,5 @@ class ComponentLibrary:
             components=tuple(c for lib in libs for c in lib.components),
             description="; ".join(lib.description for lib in libs if lib.description),
             source=tuple(s for lib in libs for s in lib.source),
+            context=tuple(v for lib in libs for v in lib.context),
         )

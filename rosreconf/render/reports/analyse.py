@@ -8,36 +8,62 @@ from typing import Protocol
 
 from rosreconf import jsonout
 from rosreconf.analysis.library import SchemaAnalysis
+from rosreconf.analysis.thresholds import Thresholds
 from rosreconf.formats.selection import Selection
 from rosreconf.render.reports import Output
+from rosreconf.render.reports.context import (
+    context_doc,
+    context_text,
+    thresholds_doc,
+    thresholds_text,
+)
 
 
 class AnalyseReporter(Protocol):
     """Render the analyses of the selected schemas."""
 
-    def render(self, sel: Selection, results: Sequence[SchemaAnalysis]) -> str:
-        """Return the whole report."""
+    def render(
+        self,
+        sel: Selection,
+        results: Sequence[SchemaAnalysis],
+        tables: Sequence[Thresholds] = (),
+    ) -> str:
+        """Return the whole report; ``tables``: the context thresholds of each schema."""
         ...
 
 
 class TextReporter:
     """One block per schema; long lists are cut (the JSON has them whole)."""
 
-    def render(self, sel: Selection, results: Sequence[SchemaAnalysis]) -> str:
-        """Return one block per schema."""
-        return "".join(_text(r) for r in results)
+    def render(
+        self,
+        sel: Selection,
+        results: Sequence[SchemaAnalysis],
+        tables: Sequence[Thresholds] = (),
+    ) -> str:
+        """Return one block per schema, then the context thresholds."""
+        blocks = "".join(_text(r) for r in results)
+        return context_text(sel) + blocks + thresholds_text(tables)
 
 
 class JsonReporter:
     """One JSON document: the failures assumed, the files and every analysis in full."""
 
-    def render(self, sel: Selection, results: Sequence[SchemaAnalysis]) -> str:
-        """Return the JSON document."""
-        doc = {
+    def render(
+        self,
+        sel: Selection,
+        results: Sequence[SchemaAnalysis],
+        tables: Sequence[Thresholds] = (),
+    ) -> str:
+        """Return the JSON document; the thresholds are in ``context``."""
+        doc: dict[str, object] = {
             "failed": list(sel.failed),
             "files": sel.loaded.files,
             "schemas": [asdict(r) for r in results],
         }
+        said = context_doc(sel)
+        if said is not None:
+            doc["context"] = {**said, "thresholds": thresholds_doc(tables)}
         return jsonout.dumps(doc, indent=2) + "\n"
 
 

@@ -16,6 +16,7 @@ from rosreconf.formats.selection import Selection
 from rosreconf.model import EMPTY, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.reports import Output
+from rosreconf.render.reports.context import context_doc, context_text
 
 
 class EnumerateReporter(Protocol):
@@ -56,6 +57,8 @@ class TextReporter:
 
     def __init__(self, sel: Selection, write: Callable[[str], None]) -> None:
         self.write = write
+        if sel.has_context:
+            write(context_text(sel))
 
     def begin_schema(self, s: InteroperabilitySchema) -> None:
         """Write the schema's heading."""
@@ -121,12 +124,14 @@ class JsonReporter:
         self.write = write
         self.first_schema = True
         self.first_config = True
-        head = {
+        head: dict[str, object] = {
             "library": {"name": sel.library.name, "components": len(sel.library)},
             "files": sel.loaded.files,
             "note": sel.loaded.note,
             "failed": list(sel.failed),
         }
+        if sel.has_context:
+            head["context"] = context_doc(sel)
         self._w(jsonout.dumps(head)[:-1] + ', "schemas": [')
 
     def _w(self, text: str) -> None:

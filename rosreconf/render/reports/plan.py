@@ -11,6 +11,7 @@ from rosreconf.model import Configuration, shown, shown_text
 from rosreconf.planning.planners import Planner, PlanStatus
 from rosreconf.planning.replan import ReplanResult
 from rosreconf.render.reports import Output
+from rosreconf.render.reports.context import context_doc, context_text, reworded
 
 if TYPE_CHECKING:  # drawn only with --graph: render.pictures is imported then
     from rosreconf.render.pictures import RosPicture
@@ -29,7 +30,7 @@ class TextReporter:
 
     def render(self, sel: Selection, planner: Planner, results: Sequence[ReplanResult]) -> str:
         """Return one block per schema."""
-        return "".join(_text(r) for r in results)
+        return context_text(sel) + "".join(_text(r, sel) for r in results)
 
 
 class JsonReporter:
@@ -37,20 +38,22 @@ class JsonReporter:
 
     def render(self, sel: Selection, planner: Planner, results: Sequence[ReplanResult]) -> str:
         """Return the JSON document."""
-        doc = {
+        doc: dict[str, object] = {
             "library": {"name": sel.library.name, "components": len(sel.library)},
             "files": sel.loaded.files,
             "failed": list(sel.failed),
             "planner": planner.label,
-            "schemas": [_schema_doc(r) for r in results],
+            "schemas": [_schema_doc(r, sel) for r in results],
         }
+        if sel.has_context:
+            doc["context"] = context_doc(sel)
         return jsonout.dumps(doc, indent=2) + "\n"
 
 
 REPORTERS: dict[Output, PlanReporter] = {Output.TEXT: TextReporter(), Output.JSON: JsonReporter()}
 
 
-def _text(r: ReplanResult) -> str:
+def _text(r: ReplanResult, sel: Selection) -> str:
     out = [f"{r.schema.display_name} ({r.schema.name}):"]
     if r.status is PlanStatus.UNSOLVABLE_PROVEN:
         out.append("  no configuration is possible")
@@ -69,11 +72,11 @@ def _text(r: ReplanResult) -> str:
         out += [f"    {c}" for c in r.changes]
     if r.explanation:
         out.append("  why:")
-        out += [f"    {line}" for line in r.explanation]
+        out += [f"    {line}" for line in reworded(r.explanation, sel)]
     return "\n".join(out) + "\n\n"
 
 
-def _schema_doc(r: ReplanResult) -> dict[str, Any]:
+def _schema_doc(r: ReplanResult, sel: Selection) -> dict[str, Any]:
     run = r.planner
     configs = [] if r.configuration is None else [{"assignment": r.configuration.shown}]
     return {
@@ -94,7 +97,7 @@ def _schema_doc(r: ReplanResult) -> dict[str, Any]:
             for c in r.changes
         ],
         "fewest_changes": r.fewest_changes,
-        "explanation": list(r.explanation),
+        "explanation": reworded(r.explanation, sel),
         "why_not": r.why_not or None,
         "message": r.message,
         "cost": run.cost if run else None,

@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Iterator
+from typing import Any
 
 from rich.table import Table
 
@@ -92,7 +93,7 @@ def table(report: SchemaSimulation, top: int = TOP) -> Table:
     return out
 
 
-def document(result: Sweep) -> Iterator[str]:
+def document(result: Sweep, context: dict[str, Any] | None = None) -> Iterator[str]:
     """Yield the JSON document (output-simulate.schema.json) in pieces, newline included.
 
     A sweep can list tens of thousands of configurations that share a few hundred loops, so
@@ -101,10 +102,11 @@ def document(result: Sweep) -> Iterator[str]:
     pieces are yielded one configuration at a time for the caller to write as they come: the
     document as one string (and the list of its configurations before the join) held it
     three times over, 2.1 GB for ``--limit 10000`` of 1,000 roles, and ``--limit 30000`` ran
-    out of memory in the join.
+    out of memory in the join. ``context`` is the ``context`` member (``reports.context``).
     """
     failed = _dumps(list(result.failed))
-    yield f'{{"failed": {failed}, "schemas": ['
+    said = "" if context is None else f'"context": {_dumps(context)}, '
+    yield f'{{{said}"failed": {failed}, "schemas": ['
     for n, report in enumerate(result.reports):
         sim = report.schema.simulation
         assert sim is not None

@@ -7,6 +7,7 @@ both are built here from the ``SchemaReport``s, so the CLI only picks one and wr
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 from rich.table import Table
 
@@ -34,8 +35,12 @@ def table(report: SchemaReport, title: str, k: int) -> Table:
     return table
 
 
-def document(reports: Sequence[SchemaReport], k: int) -> str:
-    """Return the JSON document (output-whatif.schema.json), newline included."""
+def document(reports: Sequence[SchemaReport], k: int, context: dict[str, Any] | None = None) -> str:
+    """Return the JSON document (output-whatif.schema.json), newline included.
+
+    ``context`` is the ``context`` member (``reports.context``): its ruled-out components are
+    unusable in every failure set, and in none of the sets swept.
+    """
     out = []
     for r in reports:
         shares = []
@@ -62,4 +67,7 @@ def document(reports: Sequence[SchemaReport], k: int) -> str:
                 "failure_sets_complete": r.listed_all,
             }
         )
-    return jsonout.dumps({"max_failures": k, "schemas": out}) + "\n"
+    doc: dict[str, Any] = {"max_failures": k, "schemas": out}
+    if context is not None:
+        doc["context"] = context
+    return jsonout.dumps(doc) + "\n"
