@@ -86,13 +86,11 @@ class OwnExits:
         for own in stopping:
             self.forget(own.component)
         pids = {own.node: own.pid for own in stopping}
-        self.hide(
-            {
-                g
-                for g, nodes in self.alive().items()
-                if any(n in pids and may_be_of(g, pids[n]) for n in nodes)
-            }
-        )
+        self.hidden |= {
+            g
+            for g, nodes in self.alive().items()
+            if any(n in pids and may_be_of(g, pids[n]) for n in nodes)
+        }
 
     def ended(self, only: Collection[str] | None = None) -> list[tuple[OwnNode, int]]:
         """Return each own process (of ``only``'s components) that ended since last asked."""
