@@ -109,6 +109,8 @@ class LiveNode:
         lifecycle_state: ROS 2: a managed node's state (``unconfigured``, ``inactive``,
             ``active``, ``finalized``, or ``unknown`` when it did not answer); None for a
             node that is not managed, or when states were not read.
+        participant: ROS 2: its DDS participant's 16-byte GUID in hex (one per process: two
+            nodes of one name are told apart by it); empty for ROS 1.
     """
 
     name: str
@@ -124,6 +126,7 @@ class LiveNode:
     topic_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     service_types: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     lifecycle_state: str | None = None
+    participant: str = ""
 
     @property
     def answered(self) -> bool:
@@ -283,6 +286,8 @@ def _node_json(n: LiveNode, ros_version: int) -> dict[str, Any]:
             "subscribes": {t: q.to_dict() for t, q in sorted(n.subscribe_qos.items())},
         }
         doc["lifecycle_state"] = n.lifecycle_state
+        if n.participant:  # a graph built by hand, or an older snapshot, has none
+            doc["participant"] = n.participant
         doc["types"] = {
             "topics": dict(sorted(n.topic_types.items())),
             "services": dict(sorted(n.service_types.items())),
@@ -359,6 +364,7 @@ def _node_from_json(n: dict[str, Any]) -> LiveNode:
         topic_types=dict(types.get("topics", {})),
         service_types=dict(types.get("services", {})),
         lifecycle_state=n.get("lifecycle_state"),
+        participant=n.get("participant", ""),
     )
 
 

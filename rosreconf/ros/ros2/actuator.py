@@ -24,7 +24,8 @@ takes a replaced node's name waits until it is gone (break before make: ``onenam
 advance (they show in the graph as parked, not as extra nodes), so a failover is one
 ``activate``. A node process rosreconf started that exits is known dead at once: ``exits``
 says so, and ``visible`` hides its node from the live graph until DDS notices (a lease;
-``exits.OwnExits``).
+``exits.OwnExits``), as it hides the participants of every process known dead: the source
+only reads, the filter is the actuator's.
 
 ``Ros2Actuator`` is the one class that implements ``rosreconf.ros.actuator.Actuator`` this
 way, as a ros2_control hardware interface implements its one interface: it owns its parts,
@@ -79,9 +80,8 @@ class Ros2Actuator(Actuator):
     Attributes:
         acting: the watcher's options.
         participants: the source's participants -> their nodes, as last read: the nodes
-            rosreconf did not start are watched by their processes (``supervisor``).
-        hide: leaves participants out of the source's later reads: those of processes seen
-            to end, so that a node restarted under its name is only its new process.
+            rosreconf did not start are watched by their processes (``supervisor``). Its
+            parts see them without those of processes known dead (``own_exits.alive``).
         launched: the components started (not started again on every poll).
         read_states: node -> the lifecycle state of the graph last read (``visible``).
         nodes, lifecycle, own_exits, bringup, standbys, supervisor, retries, names, squatting:
@@ -90,7 +90,6 @@ class Ros2Actuator(Actuator):
 
     acting: Acting
     participants: Participants = dict
-    hide: Callable[[Collection[bytes]], None] = lambda _: None
     launched: set[str] = field(default_factory=set)
     read_states: dict[str, str | None] = field(default_factory=dict)
     nodes: NodeProcesses = field(init=False)
@@ -111,7 +110,7 @@ class Ros2Actuator(Actuator):
         )
         self.lifecycle = Transitions(a.env, a.directory, a.say, self._node)
         forget = self.lifecycle.forget
-        self.own_exits = OwnExits(self.nodes, self.participants, self.hide, forget, a.say)
+        self.own_exits = exits = OwnExits(self.nodes, self.participants, forget, a.say)
         self.nodes.stopping = self.own_exits.stopping
         self.standbys = Standbys(a.library, a.schema, self.nodes, self.lifecycle, a.say)
         self.bringup = Bringup(
@@ -126,9 +125,9 @@ class Ros2Actuator(Actuator):
         )
         self.retries = Retries(a.library, self.lifecycle, a.say)
         self.names = OneName(
-            a.library, self.nodes, self.participants, lambda: self.supervisor.outside, a.say
+            a.library, self.nodes, exits.alive, lambda: self.supervisor.outside, a.say
         )
-        self.squatting = Squatting(self.nodes, self.supervisor, self.participants, self.hide)
+        self.squatting = Squatting(self.nodes, self.supervisor, exits.alive, exits.hide)
 
     def _node(self, component: str) -> str:
         return node_live_name(self.acting.library[component])
@@ -263,7 +262,7 @@ class Ros2Actuator(Actuator):
         back for its node name is started once the name is free; on a poll it is started as
         a missing component is, which the watcher then confirms.
         """
-        participants = self.participants()
+        participants = self.own_exits.alive()
         own = {self._node(c) for c in self.nodes.nodes}
         wanted = {self._node(c) for c in current.components}
         # an own node whose process was seen to end is hidden by name until a new participant
@@ -278,7 +277,7 @@ class Ros2Actuator(Actuator):
         ended = self.own_exits.take_newly(participants)
         ended |= self.supervisor.take_ended()  # outside processes: exactly theirs
         ended |= self.lifecycle.ghosts(participants)  # a dead agent's
-        self.hide(ended)
+        self.own_exits.hide(ended)
         if not now:  # a failure's repair first: neither retries nor standby upkeep delay it
             self.retries.tend(current, self.standbys.held())
         if not now and not tend:  # while confirming; a poll starts them as missing ones
@@ -294,11 +293,13 @@ class Ros2Actuator(Actuator):
         return self.supervisor.poll() or self.nodes.any_exited()
 
     def visible(self, graph: LiveGraph) -> LiveGraph:
-        """Return ``graph`` without the nodes whose process rosreconf saw exit.
+        """Return ``graph`` without the nodes of processes known dead (``exits.OwnExits``).
 
-        The lifecycle states and names read are kept for ``exits``: parked standbys' too, and
-        what a timed-out transition is judged on (``retrying``).
+        The lifecycle states and names read, those of dead participants left out, are kept
+        for ``exits``: parked standbys' too, and what a timed-out transition is judged on
+        (``retrying``).
         """
+        graph = self.own_exits.unhidden(graph)
         self.read_states = {n.name: n.lifecycle_state for n in graph.nodes}
         self.standbys.saw(self.read_states)
         self.bringup.saw(self.read_states)

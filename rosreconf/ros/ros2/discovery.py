@@ -126,10 +126,6 @@ class Ros2Discovery:
     """How many ROS endpoints (rt/, rq/, rr/ topics) the last read saw."""
     ros_participants: int = 0
     """How many ROS participants (``enclave=`` user data) the last read saw."""
-    hidden: set[bytes] = field(default_factory=set)
-    """Participants left out of the graph: processes known dead (seen to exit, or hung) whose
-    participant DDS still announces until its lease ends. A node restarted under the same
-    name then is its new process only, never the dead one's lingering endpoints."""
 
     def __post_init__(self) -> None:
         check_domain(self.domain)
@@ -185,7 +181,7 @@ class Ros2Discovery:
     @property
     def participant_nodes(self) -> dict[bytes, tuple[str, ...]]:
         """Return each alive participant's GUID -> its nodes (last read): one process each."""
-        alive = {e.participant for e in self._last_endpoints.values()} - self.hidden
+        alive = {e.participant for e in self._last_endpoints.values()}
         return {k: tuple(n.full_name for n in v[1]) for k, v in self._infos.items() if k in alive}
 
     @property
@@ -349,8 +345,7 @@ class Ros2Discovery:
         self.participants = len(participants)
         self.ros_participants = len(ros)
         self.endpoints = sum(1 for e in endpoints.values() if ros_name(e.topic) is not None)
-        self.hidden &= set(participants)  # gone from DDS: nothing left to hide
-        return build_graph(self.domain, taken_at, ros - self.hidden, self._infos, endpoints)
+        return build_graph(self.domain, taken_at, ros, self._infos, endpoints)
 
     def _renew_if_stale(self, stale: Collection[bytes], now: float, *, still: bool) -> None:
         """Make fresh info readers when participants stay stale or silent (transient local

@@ -3,7 +3,9 @@
 rosreconf is the parent of every node process it starts (``nodes``), so it sees one end at
 once, long before DDS would: the node's participant is announced until its lease ends, and a
 node started anew under the same name would then be two. So each process that ends, or that
-rosreconf stops, is kept here until the graph no longer needs telling:
+rosreconf stops, is kept here until the graph no longer needs telling. The source only reads
+(each node carries its participant, ``LiveNode.participant``): leaving these out is a filter
+the actuator owns (``unhidden``, ``visible``, ``alive``) on each graph and participant list:
 
     what                                        how long it is left out of the graph
     ------------------------------------------  --------------------------------------------
@@ -13,6 +15,8 @@ rosreconf stops, is kept here until the graph no longer needs telling:
     the participants of those processes          from the next read on (``take_newly``)
     the participants of a process being stopped  from the read before any restart
                                                  (``stopping``)
+    outside processes ended or hung, squatters   from the next read on (``hide``); each
+    stopped: their participants                  participant until no node of it is left
 
 An end is said once: event ``failed`` for a component in service (``bringup.exit_news``: the
 last lines of its log when it exited before it was ready), ``exited`` for one out of service.
@@ -21,12 +25,11 @@ Nothing here prints.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from rosreconf.model import Configuration
-from rosreconf.ros.livegraph import LiveGraph
+from rosreconf.ros.livegraph import LiveGraph, LiveNode
 from rosreconf.ros.ros2.bringup import exit_news
 from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.nodes import NodeProcesses, OwnNode
@@ -40,23 +43,32 @@ class OwnExits:
 
     Attributes:
         nodes: the node processes rosreconf started.
-        participants: each alive participant's GUID -> its nodes (the last read).
-        hide: leaves participants out of the source's later reads.
+        participants: the source's: each alive participant's GUID -> its nodes (last read).
         forget: told of each component whose process ended or is being stopped: a process
             started anew for it is unconfigured (the lifecycle state read back is stale).
         say: receives every event.
         dead: live names of nodes whose process rosreconf saw exit (kept here alone).
         newly_dead: those of ``dead`` not yet taken by ``take_newly``: their processes'
             participants are to be left out of later reads.
+        hidden: the participants left out (processes known dead, announced until their
+            lease ends): a node restarted under its name is then its new process only.
     """
 
     nodes: NodeProcesses
     participants: Callable[[], Mapping[bytes, tuple[str, ...]]]
-    hide: Callable[[Collection[bytes]], None]
     forget: Callable[[str], None]
     say: Say
     dead: set[str] = field(default_factory=set)
     newly_dead: set[str] = field(default_factory=set)
+    hidden: set[bytes] = field(default_factory=set)
+
+    def hide(self, participants: Collection[bytes]) -> None:
+        """Leave ``participants`` out of every later graph and participant list."""
+        self.hidden |= set(participants)
+
+    def alive(self) -> dict[bytes, tuple[str, ...]]:
+        """Return the source's participants -> their nodes, the hidden ones left out."""
+        return {g: ns for g, ns in self.participants().items() if g not in self.hidden}
 
     def stopping(self, stopping: list[OwnNode]) -> None:
         """Leave out of later reads the participants of processes rosreconf is stopping.
@@ -74,13 +86,11 @@ class OwnExits:
         for own in stopping:
             self.forget(own.component)
         pids = {own.node: own.pid for own in stopping}
-        self.hide(
-            {
-                g
-                for g, nodes in self.participants().items()
-                if any(n in pids and may_be_of(g, pids[n]) for n in nodes)
-            }
-        )
+        self.hidden |= {
+            g
+            for g, nodes in self.alive().items()
+            if any(n in pids and may_be_of(g, pids[n]) for n in nodes)
+        }
 
     def ended(self, only: Collection[str] | None = None) -> list[tuple[OwnNode, int]]:
         """Return each own process (of ``only``'s components) that ended since last asked."""
@@ -127,10 +137,20 @@ class OwnExits:
         newly, self.newly_dead = self.newly_dead, set()
         return {g for g, nodes in participants.items() if newly & set(nodes)}
 
+    def unhidden(self, graph: LiveGraph) -> LiveGraph:
+        """Return ``graph`` without the nodes of hidden participants; stop hiding those with no
+        node left in it (gone from DDS: nothing left to hide)."""
+        shown = {n.participant for n in graph.nodes}
+        self.hidden = {g for g in self.hidden if g.hex() in shown}
+        hidden = {g.hex() for g in self.hidden}
+        return _without(graph, lambda n: n.participant in hidden)
+
     def visible(self, graph: LiveGraph) -> LiveGraph:
         """Return ``graph`` without the nodes whose process rosreconf saw exit."""
-        if not self.dead & set(graph.names):
-            return graph
-        return dataclasses.replace(
-            graph, nodes=tuple(n for n in graph.nodes if n.name not in self.dead)
-        )
+        return _without(graph, lambda n: n.name in self.dead)
+
+
+def _without(graph: LiveGraph, drop: Callable[[LiveNode], bool]) -> LiveGraph:
+    """Return ``graph`` without the nodes ``drop`` tells (the same graph when none is)."""
+    kept = tuple(n for n in graph.nodes if not drop(n))
+    return graph if len(kept) == len(graph.nodes) else replace(graph, nodes=kept)

@@ -145,7 +145,7 @@ def build_graph(
     for participant in sorted(ros_participants):
         if participant not in infos:
             continue
-        nodes += (_node(info, endpoints) for info in infos[participant][1])
+        nodes += (_node(info, endpoints, participant) for info in infos[participant][1])
     for node in sorted(nodes, key=lambda n: n.name):
         for name, typ in node.topic_types.items():
             topic_types.setdefault(name, typ)
@@ -161,8 +161,8 @@ def build_graph(
     )
 
 
-def _node(info: NodeInfo, endpoints: dict[bytes, Endpoint]) -> LiveNode:
-    """Build one live node from its discovery entry and the endpoints its GIDs name."""
+def _node(info: NodeInfo, endpoints: dict[bytes, Endpoint], participant: bytes) -> LiveNode:
+    """Build one live node of ``participant`` from its discovery entry and its endpoints."""
     pubs: dict[str, QosProfile] = {}
     subs: dict[str, QosProfile] = {}
     serves: set[str] = set()
@@ -197,4 +197,5 @@ def _node(info: NodeInfo, endpoints: dict[bytes, Endpoint]) -> LiveNode:
         subscribe_qos=subs,
         topic_types=topic_types,
         service_types=service_types,
+        participant=participant.hex(),
     )

@@ -40,8 +40,8 @@ from rosreconf.ros.ros2.names import Channel, ros_name
 
 _GET_STATE = "/get_state"
 
-EPROSIMA = b"\x01\x0f"
-"""The vendor id Fast DDS puts at the start of every GUID prefix."""
+EPROSIMA = "010f"
+"""The vendor id Fast DDS puts at the start of every GUID prefix (in hex, as nodes carry it)."""
 STATES = {1: "unconfigured", 2: "inactive", 3: "active", 4: "finalized"}
 """lifecycle_msgs/msg/State's primary state ids."""
 RESEND = 0.25
@@ -59,6 +59,11 @@ UNSEEN_AFTER = 5.0
 """Seconds a node seen managed keeps being managed while discovery shows no ``get_state``
 server of its, on the participant that still runs it: more than Fast DDS's 3 s heartbeat,
 after which an endpoint announcement lost on the way is sent again."""
+
+Key = tuple[str, str]
+"""A node as states are read for it: its name and its participant (``LiveNode.participant``).
+A node restarted under its name is another process, so another key: it is never paired with
+the dead one's ``get_state`` server, nor given the state that one answered."""
 
 
 def _types(dds: Any) -> tuple[Any, Any]:
@@ -79,85 +84,83 @@ def _types(dds: Any) -> tuple[Any, Any]:
 class StateReader:
     """Ask managed nodes their state, poll after poll, with one request/reply pair per node.
 
-    A pair (a request writer, a reply reader) is made once per node and kept while the node
-    stays on the same participant: making them on every poll would wait for DDS to match
-    them again (hundreds of ms). Each read drains replies, asks once more, and waits at most
-    ``timeout`` s for the answers; a node that does not answer in time keeps the state it
-    last answered on the same participant, else it is ``unknown``; one that answered on
-    this participant before and has left a request unanswered for ``UNANSWERED_AFTER`` s
+    Everything is kept per node and participant (``Key``). A pair (a request writer, a reply
+    reader) is made once per key and kept while the node stays on that participant: making
+    them on every poll would wait for DDS to match them again (hundreds of ms). Each read
+    drains replies, asks once more, and waits at most ``timeout`` s for the answers; a node
+    that does not answer in time keeps the state it last answered, else it is ``unknown``;
+    one that answered before and has left a request unanswered for ``UNANSWERED_AFTER`` s
     is ``unanswered`` (hung), whatever it answered last.
     """
 
-    _pairs: dict[str, tuple[bytes, Any, Any]] = field(default_factory=dict)
-    _known: dict[str, tuple[bytes, str]] = field(default_factory=dict)
-    _waiting: dict[str, float] = field(default_factory=dict)
+    _pairs: dict[Key, tuple[Any, Any]] = field(default_factory=dict)
+    _known: dict[Key, str] = field(default_factory=dict)
+    _waiting: dict[Key, float] = field(default_factory=dict)
     """node -> when its oldest request still unanswered was written (answered nodes only)."""
-    _managed: dict[str, tuple[bytes, float | None]] = field(default_factory=dict)
-    """node -> the participant it was seen serving ``get_state`` on, and since when that
-    server is unseen (None: seen in the last read)."""
+    _managed: dict[Key, float | None] = field(default_factory=dict)
+    """node -> since when its ``get_state`` server, once seen on its participant, is unseen
+    (None: seen in the last read)."""
     _types: tuple[Any, Any] | None = None
 
-    def servers(self, session: Ros2Discovery, graph: LiveGraph) -> dict[str, bytes]:
-        """Return node -> participant of each managed node of ``graph``, as ``read`` takes them.
+    def servers(self, session: Ros2Discovery, graph: LiveGraph) -> set[Key]:
+        """Return the managed nodes of ``graph``, as ``read`` takes them.
 
-        The nodes serving ``<node>/get_state`` now (``managed_servers``), and each node seen
-        so before that still runs on the same participant, until its ``get_state`` server
-        has been gone from discovery for ``UNSEEN_AFTER`` s. A process cannot make its
-        managed node plain (rclpy and rclcpp make the state services with the node and drop
-        them with it), but a loaded host can leave an endpoint's announcement out of a read,
-        or a read out of the node's endpoints: one such read must not call the node plain.
+        The nodes whose own participant serves ``<node>/get_state`` now (``managed_servers``),
+        and each node seen so before that the graph still shows on that participant, until
+        its ``get_state`` server has been gone from discovery for ``UNSEEN_AFTER`` s. A
+        process cannot make its managed node plain (rclpy and rclcpp make the state services
+        with the node and drop them with it), but a loaded host can leave an endpoint's
+        announcement out of a read, or a read out of the node's endpoints: one such read
+        must not call the node plain.
         Its state is then what ``read`` says of a node that did not answer (the state last
         answered there, ``unknown``, or ``unanswered``: hung), never "not managed". A node
         started anew (another participant) is judged afresh.
         """
         now, serving = time.monotonic(), managed_servers(session, graph)
-        found, runs, names = dict(serving), session.participant_nodes, set(graph.names)
-        for node, (participant, unseen) in list(self._managed.items()):
-            if node in serving or node not in names or node not in runs.get(participant, ()):
+        shown = {(n.name, n.participant) for n in graph.nodes}
+        for node, unseen in list(self._managed.items()):
+            if node in serving or node not in shown:
                 del self._managed[node]  # seen again (below), or no longer run there
             elif unseen is not None and now - unseen >= UNSEEN_AFTER:
                 del self._managed[node]  # its get_state server is gone: plain now
             else:
-                self._managed[node] = (participant, now if unseen is None else unseen)
-                found[node] = participant
-        self._managed.update((node, (p, None)) for node, p in serving.items())
-        return found
+                self._managed[node] = now if unseen is None else unseen
+        self._managed.update(dict.fromkeys(serving))
+        self._known = {n: s for n, s in self._known.items() if n in shown}  # its process gone
+        return set(self._managed)
 
-    def read(
-        self, session: Ros2Discovery, nodes: dict[str, bytes], *, timeout: float
-    ) -> dict[str, str]:
-        """Return node -> state label for ``nodes`` (global name -> ``get_state`` participant)."""
-        for node in [n for n, (p, _, _) in self._pairs.items() if nodes.get(n) != p]:
-            del self._pairs[node]  # gone, or restarted in another process
+    def read(self, session: Ros2Discovery, nodes: set[Key], *, timeout: float) -> dict[Key, str]:
+        """Return (node, participant) -> state label for ``nodes`` (``servers``)."""
+        for node in [n for n in self._pairs if n not in nodes]:
+            del self._pairs[node]  # gone, or restarted in another process (another key)
             self._waiting.pop(node, None)
-        asked = {n: p for n, p in nodes.items() if p.startswith(EPROSIMA)}
+        asked = {n for n in nodes if n[1].startswith(EPROSIMA)}
         if asked:
             self._ask(session, asked, timeout)
         states, now = {}, time.monotonic()
-        for node, participant in nodes.items():
-            known = self._known.get(node)
-            states[node] = known[1] if known is not None and known[0] == participant else UNKNOWN
+        for node in nodes:
+            states[node] = self._known.get(node, UNKNOWN)
             if now - self._waiting.get(node, now) >= UNANSWERED_AFTER:
                 states[node] = UNANSWERED
         return states
 
-    def _ask(self, session: Ros2Discovery, asked: dict[str, bytes], timeout: float) -> None:
+    def _ask(self, session: Ros2Discovery, asked: set[Key], timeout: float) -> None:
         """Ask each node once more; record the answers that come within ``timeout`` s."""
         dds = load_dds()
         if self._types is None:
             self._types = _types(dds)
         request, response = self._types
         dp = session.participant
-        for node, participant in asked.items():
+        for node in asked:
             if node not in self._pairs:
-                topics = (f"rq{node}/get_stateRequest", f"rr{node}/get_stateReply")
+                topics = (f"rq{node[0]}/get_stateRequest", f"rr{node[0]}/get_stateReply")
                 writer = dds.pub.DataWriter(
                     dp, dds.topic.Topic(dp, topics[0], request), qos=_qos(dds, reliable=True)
                 )
                 reader = dds.sub.DataReader(
                     dp, dds.topic.Topic(dp, topics[1], response), qos=_qos(dds, reliable=False)
                 )
-                self._pairs[node] = (participant, writer, reader)
+                self._pairs[node] = (writer, reader)
         pending = dict.fromkeys(asked, -RESEND)
         for node in asked:
             self._answer(node, drain=True)  # a late answer to an older request: not now's
@@ -168,7 +171,7 @@ class StateReader:
                 if sent >= 0 and self._answer(node):
                     del pending[node]
                     continue
-                _, writer, reader = self._pairs[node]
+                writer, reader = self._pairs[node]
                 if not (
                     writer.get_publication_matched_status().current_count
                     and reader.get_subscription_matched_status().current_count
@@ -183,19 +186,19 @@ class StateReader:
                 # matched its endpoints, and then its answer reaches no one.
                 writer.write(request(structure_needs_at_least_one_member=0))
                 pending[node] = now
-                if node in self._known and self._known[node][0] == asked[node]:
-                    self._waiting.setdefault(node, now)  # it answered here before
+                if node in self._known:
+                    self._waiting.setdefault(node, now)  # it answered before
             time.sleep(0.005)
 
-    def _answer(self, node: str, *, drain: bool = False) -> bool:
+    def _answer(self, node: Key, *, drain: bool = False) -> bool:
         """Take ``node``'s replies; record the newest state; tell whether one came."""
-        participant, _, reader = self._pairs[node]
+        _, reader = self._pairs[node]
         got = False
         for sample in reader.take(N=16):
             if hasattr(sample, "current_state"):
                 state = sample.current_state
                 label = STATES.get(int(state.id), str(state.label) or UNKNOWN)
-                self._known[node] = (participant, label)
+                self._known[node] = label
                 got = True
         if got:
             self._waiting.pop(node, None)  # alive: a late answer counts
@@ -232,24 +235,22 @@ def _qos(dds: Any, *, reliable: bool) -> Any:
     )
 
 
-def managed_servers(session: Ros2Discovery, graph: LiveGraph) -> dict[str, bytes]:
-    """Return node -> participant GUID of each node of ``graph`` serving ``<node>/get_state``.
+def managed_servers(session: Ros2Discovery, graph: LiveGraph) -> set[Key]:
+    """Return the nodes of ``graph`` whose own participant serves ``<node>/get_state``.
 
     Read from the request readers the session's last read saw (``rq<node>/get_stateRequest``),
-    never a hidden participant's: a process known dead is announced until its lease ends, and
-    its unanswered query would be read as the state of the node started anew under its name.
+    each paired with the node of that name on the same participant only: a process known dead
+    is announced until its lease ends, and its unanswered query must never be read as the
+    state of the node started anew under its name (another participant, another process).
     """
-    servers: dict[str, bytes] = {}
+    servers: set[Key] = set()
     for e in session.last_endpoints.values():
         named = ros_name(e.topic)
         if e.writer or named is None or named[0] is not Channel.REQUEST:
             continue
-        if e.participant in session.hidden:
-            continue
         if named[1].endswith(_GET_STATE):
-            servers[named[1][: -len(_GET_STATE)]] = e.participant
-    names = {n.name for n in graph.nodes}
-    return {n: p for n, p in servers.items() if n in names}
+            servers.add((named[1][: -len(_GET_STATE)], e.participant.hex()))
+    return servers & {(n.name, n.participant) for n in graph.nodes}
 
 
 def with_states(
@@ -267,5 +268,5 @@ def with_states(
     """
     reader = reader or StateReader()
     states = reader.read(session, reader.servers(session, graph), timeout=timeout)
-    nodes = tuple(replace(n, lifecycle_state=states.get(n.name)) for n in graph.nodes)
-    return replace(graph, nodes=nodes)
+    nodes = (replace(n, lifecycle_state=states.get((n.name, n.participant))) for n in graph.nodes)
+    return replace(graph, nodes=tuple(nodes))

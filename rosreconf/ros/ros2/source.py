@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Collection
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -155,15 +155,10 @@ class Ros2Source:
         """
         return {} if self._session is None else self._session.participant_nodes
 
-    def hide(self, participants: Collection[bytes]) -> None:
-        """Leave these participants out of every later read (processes known dead)."""
-        if self._session is not None:
-            self._session.hidden |= set(participants)
-
     def actuator(self, acting: Acting) -> Actuator:
         """Return the actuator ``acting`` asks for: each node's own process, or ``ros2 launch``."""
         if acting.options.apply and not acting.options.ros2.launch:
-            return Ros2Actuator(acting, self.participants, self.hide)
+            return Ros2Actuator(acting, self.participants)
         return Ros2Launch(Ros2LaunchPort(), acting, participants=self.participants)
 
     def close(self) -> None:
