@@ -42,7 +42,7 @@ class JsonReporter:
             "files": sel.loaded.files,
             "failed": list(sel.failed),
             "planner": planner.label,
-            "schemas": [_schema_doc(r) for r in results],
+            "schemas": [schema_doc(r) for r in results],
         }
         return jsonout.dumps(doc, indent=2) + "\n"
 
@@ -73,7 +73,7 @@ def _text(r: ReplanResult) -> str:
     return "\n".join(out) + "\n\n"
 
 
-def _schema_doc(r: ReplanResult) -> dict[str, Any]:
+def schema_doc(r: ReplanResult) -> dict[str, Any]:
     run = r.planner
     configs = [] if r.configuration is None else [{"assignment": r.configuration.shown}]
     return {
