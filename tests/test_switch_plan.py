@@ -203,3 +203,17 @@ def test_bad_switch_input_is_a_usage_error(runner: CliRunner, args: list[str], s
     assert result.exit_code == 2
     assert said in result.stderr
     assert "Traceback" not in result.stderr + result.stdout
+
+
+def test_a_switch_to_the_running_schema_is_its_re_plan(runner: CliRunner) -> None:
+    """One objective for both: switching Object Repositioning to itself under --fail NSM3
+    chooses what ``plan --fail NSM3`` chooses, with the same number of changes."""
+    only = ["--only", "object_repositioning", "--fail", "NSM3", "--json"]
+    switched = runner.invoke(app, ["plan", "--switch-to", "object_repositioning", *only])
+    replanned = runner.invoke(app, ["plan", *only])
+    assert switched.exit_code == replanned.exit_code == 0, switched.stderr + replanned.stderr
+    a, b = json.loads(switched.stdout), json.loads(replanned.stdout)
+    assert a["schemas"][0]["configurations"] == b["schemas"][0]["configurations"]
+    assert (
+        a["switch"]["count"] == a["switch"]["fewest_changes"] == b["schemas"][0]["fewest_changes"]
+    )
