@@ -158,10 +158,13 @@ def switch_changes(
             why = f"{target.name} needs it as {role.name}"
             out.append(ComponentChange(comp, "start", role.name, True, old, why))
     standing = set(carried.values())
+    abstractions = {r.abstraction for r in target.graph.roles}
     for r1 in source.graph.roles:
         comp = before.get(r1.name, EMPTY)
         if comp != EMPTY and comp not in standing:
             why = f"{target.name} has no role of its abstraction"
+            if r1.abstraction in abstractions:
+                why = f"each {target.name} role of its abstraction stands for another"
             out.append(ComponentChange(comp, "stop", r1.name, True, why=why))
     return out
 
