@@ -87,3 +87,19 @@ def test_plan_output_matches_schema(runner: CliRunner, tmp_path: Path) -> None:
     statuses = {s["name"]: s["status"] for s in doc["schemas"]}
     assert statuses["object_repositioning"] == "solved"
     assert statuses["disc_loading"] == "unsolvable-proven"
+
+
+@pytest.mark.planner
+@pytest.mark.parametrize(("fail", "code"), [([], 0), (["--fail", "NSM3"], 1)])
+def test_plan_switch_output_matches_schema(
+    runner: CliRunner, tmp_path: Path, fail: list[str], code: int
+) -> None:
+    args = ["plan", "--switch-to", "disc_loading", "--only", "object_repositioning", "--json"]
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(tmp_path)
+        result = runner.invoke(app, [*args, *fail])
+    assert result.exit_code == code, result.stderr
+    doc = json.loads(result.stdout)
+    jsonschema.validate(doc, schema_of("plan"))
+    assert [s["name"] for s in doc["schemas"]] == ["disc_loading"]
+    assert doc["switch"]["from"] == "object_repositioning"

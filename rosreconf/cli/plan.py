@@ -24,6 +24,7 @@ from rosreconf.cli.common import (
     weights_of,
 )
 from rosreconf.cli.console import stderr, write_stdout
+from rosreconf.cli.switch import switch_command
 from rosreconf.errors import ExitCode, UsageError
 from rosreconf.outfiles import output_target
 from rosreconf.planning.planners import DEFAULT_SEARCH, PlanStatus, planner_named
@@ -64,6 +65,17 @@ def plan_command(
     search_limit: SearchLimitOption = SEARCH_LIMIT,
     search_time: SearchTimeOption = SEARCH_TIME,
     as_json: JsonOption = False,
+    switch_to: Annotated[
+        str | None,
+        typer.Option(
+            "--switch-to",
+            metavar="SCHEMA",
+            help="Switch task: the configuration of SCHEMA reached from the running schema "
+            "(--only, or the one schema --current names) with the fewest changes; per "
+            "component keep, stop, start or restart, and why. --fail is then optional.",
+            show_default=False,
+        ),
+    ] = None,
     graph: Annotated[
         Path | None,
         typer.Option(
@@ -77,6 +89,10 @@ def plan_command(
 ) -> None:
     """Re-plan each schema after --fail with a PDDL planner: steps, new configuration, why.
 
+    With --switch-to, switch task instead: the configuration of that schema reached from
+    the running one with the fewest changes (docs/pddl.md, "Task switches"); exit 1 when the
+    switch is impossible, with the reason.
+
     Exit 0 when every schema has a new configuration, 1 when some schema has none (its
     task is no longer possible; the others are still planned and reported), 2 on usage
     errors, 3 when the planner is missing, fails or runs out of time, or when the search for
@@ -85,6 +101,20 @@ def plan_command(
 
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before planning
+    if switch_to is not None:
+        switch_command(
+            select(library, schema, fail, None, context or [], ignore_context=ignore_context),
+            switch_to,
+            only,
+            current,
+            planner_named(planner, search),
+            weights=weights_of(objective),
+            timeout=timeout,
+            keep_pddl=keep_pddl,
+            budget=Budget(search_limit, search_time),
+            as_json=as_json,
+            graph=graph,
+        )
     sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
     if not sel.failed:
         ruled = " (--context rules none out)" if sel.context else ""

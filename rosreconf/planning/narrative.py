@@ -98,7 +98,7 @@ def _names(names: list[str]) -> str:
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
-def _why_not_kept(
+def why_not_kept(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
     failed: Collection[str],
@@ -183,7 +183,7 @@ def explain_replan(
     replaced = [c for c in every if c.kind in ("replace", "stop")]
     for change in replaced:
         assert change.before is not None
-        why = _why_not_kept(library, schema, failed, new, change.role, change.before)
+        why = why_not_kept(library, schema, failed, new, change.role, change.before)
         after = f"{change.after} takes over" if change.after else "the role is left empty"
         if why:
             because = "; ".join(why)

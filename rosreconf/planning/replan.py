@@ -21,6 +21,7 @@ from pathlib import Path
 
 from rosreconf.model import EMPTY, ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
+from rosreconf.model.wiring import Wire
 from rosreconf.outfiles import output_folder, write_files_atomic
 from rosreconf.planning.narrative import Change, changes, explain_impossible, explain_replan
 from rosreconf.planning.pddl import PddlTask, render
@@ -83,13 +84,17 @@ def plan(
     memory_limit_mb: int = 2048,
     keep_pddl: Path | None = None,
     budget: Budget | None = None,
+    wired: Mapping[str, frozenset[Wire]] | None = None,
 ) -> ReplanResult:
     """Plan ``schema``'s new configuration after ``failed`` went down, from ``current``.
 
     A schema whose running configuration holds no failed component and is still valid keeps
     running as it is: no planner runs for it (a planner would only prove "change nothing").
+    ``wired`` (``change_objective``): what the running components are wired to now when they
+    run under another schema, for a task switch (``rosreconf.planning.switch``); then the
+    planner always runs, since a valid ``current`` may still need restarts.
     """
-    kept = unaffected(library, schema, failed, current)
+    kept = unaffected(library, schema, failed, current) if wired is None else None
     if kept is not None:
         config, reason = kept
         return ReplanResult(
@@ -104,7 +109,7 @@ def plan(
             unaffected=reason,
         )
     inst = compile_instance(library, schema, failed)
-    objective = change_objective(library, schema, current, weights)
+    objective = change_objective(library, schema, current, weights, wired)
     best = optimise(inst, objective).configuration if current else ClingoEngine().first(inst)
     if best is None:
         why = explain(inst)

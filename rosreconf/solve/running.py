@@ -32,7 +32,7 @@ from rosreconf.formats.configfile import read_configurations
 from rosreconf.formats.selection import Selection
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import violations
-from rosreconf.model.wiring import restart_table
+from rosreconf.model.wiring import RestartTable, Wire, restart_table
 from rosreconf.solve.objective import Objective
 from rosreconf.solve.solver import best_configuration, configurations, why_not
 
@@ -87,17 +87,20 @@ def change_objective(
     schema: InteroperabilitySchema,
     running: Mapping[str, str],
     weights: Mapping[str, float] | None = None,
+    wired: Mapping[str, frozenset[Wire]] | None = None,
 ) -> Objective:
     """Return the objective of a reconfiguration away from ``running``: fewest changes.
 
     Each role that changes component costs one, and so does each kept component that must
-    restart to be rewired (the wiring model); then the weighted metric sum.
+    restart to be rewired (the wiring model); then the weighted metric sum. ``wired``: role
+    -> what its running component is wired to now, when that is not its wiring under
+    ``schema`` (a task switch: it runs under another schema's edges,
+    ``rosreconf.model.switching.carried_wiring``); None: its wiring under ``schema``.
     """
-    return Objective(
-        current=dict(running),
-        weights=dict(weights or {}),
-        restarts=restart_table(library, schema, running),
-    )
+    table = restart_table(library, schema, running)
+    if wired is not None:
+        table = RestartTable(dict(wired), table.offers)
+    return Objective(current=dict(running), weights=dict(weights or {}), restarts=table)
 
 
 def should_run(

@@ -43,7 +43,7 @@ class JsonReporter:
             "files": sel.loaded.files,
             "failed": list(sel.failed),
             "planner": planner.label,
-            "schemas": [_schema_doc(r, sel) for r in results],
+            "schemas": [schema_doc(r, sel) for r in results],
         }
         if sel.has_context:
             doc["context"] = context_doc(sel)
@@ -76,7 +76,7 @@ def _text(r: ReplanResult, sel: Selection) -> str:
     return "\n".join(out) + "\n\n"
 
 
-def _schema_doc(r: ReplanResult, sel: Selection) -> dict[str, Any]:
+def schema_doc(r: ReplanResult, sel: Selection) -> dict[str, Any]:
     run = r.planner
     configs = [] if r.configuration is None else [{"assignment": r.configuration.shown}]
     return {
