@@ -40,6 +40,7 @@ from rosreconf.ros.launcher import launch_log_dir
 from rosreconf.ros.options import Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
+from rosreconf.ros.tasks import Tasks
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
@@ -171,6 +172,7 @@ def watch_command(
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
+    tasks = Tasks({s.name: s for s in select(library, schema).schemas})  # all it may switch to
     for name in fail or []:
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
@@ -233,6 +235,7 @@ def watch_command(
             replace(options, launch_dir=keep),
             failed=set(fail or []),
             stop_requested=signals.requested,
+            tasks=tasks,
         )
         stack.callback(watcher.close)
         what = (
