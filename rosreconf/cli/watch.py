@@ -31,12 +31,13 @@ from rosreconf.cli.common import (
 )
 from rosreconf.cli.console import stderr
 from rosreconf.cli.stopping import stop_on_signals
-from rosreconf.errors import ExitCode, UsageError
+from rosreconf.errors import ExitCode, ExternalToolError, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
-from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, watch_source
+from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, open_face, watch_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
+from rosreconf.ros.livegraph import FACE_NAME
 from rosreconf.ros.options import Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
@@ -118,6 +119,20 @@ def watch_command(
             "(SIGINT, SIGTERM, SIGKILL), when /proc confirms it runs that node alone.",
         ),
     ] = False,
+    face: Annotated[
+        bool,
+        typer.Option(
+            "--face/--no-face",
+            help="ROS 2: serve rosreconf's node (task parameter, /diagnostics, /rosout).",
+        ),
+    ] = True,
+    face_name: Annotated[
+        str,
+        typer.Option(
+            "--face-name",
+            help="ROS 2: the face node's name (base name rosreconf or rosreconf_*).",
+        ),
+    ] = FACE_NAME,
     ros2_launch: Annotated[
         bool,
         typer.Option(
@@ -186,7 +201,7 @@ def watch_command(
         hold=hold,
         prefer_after=prefer_after,
         budget=Budget(search_limit, search_time),
-        ros2=Ros2Options(standby, ros2_launch, stop_outside, force),
+        ros2=Ros2Options(standby, ros2_launch, stop_outside, force, face, face_name),
     )
     timeout, max_bytes = master_timeout, max_answer_mb << 20
     source, release = watch_source(
@@ -238,6 +253,9 @@ def watch_command(
             tasks=tasks,
         )
         stack.callback(watcher.close)
+        if ros2 and face:
+            _open_face(options, env, work / "face.log", tasks)
+            stack.callback(tasks.close)
         what = (
             f"and repairing (launch files kept in {keep})"
             if apply
@@ -255,6 +273,14 @@ def watch_command(
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _open_face(options: WatchOptions, env: dict[str, str], log: Path, tasks: Tasks) -> None:
+    """Start the ROS 2 face; without it, say why and watch all the same."""
+    try:
+        tasks.faces.append(open_face(options, env, log, tasks))
+    except ExternalToolError as exc:
+        _note(f"note: no ROS 2 face: {exc}")
 
 
 def _note(text: str) -> None:
