@@ -159,5 +159,16 @@ def test_with_nsm3_failed_the_switch_is_refused_and_nothing_stops(
         kinds = {e["event"] for e in watch.events()[before:]}
         assert not kinds & {"task", "stop", "launch", "replanned"}, kinds
         assert _client(python, env, "get", "/rosreconf")["task"]["value"] == "object_repositioning"
+        # rosreconf task: the same refusal, as an exit code and the reason, with no ROS 2 tools
+        ask = [sys.executable, "-m", "rosreconf", "task", "--domain", str(ros2_domain)]
+        out = subprocess.run([*ask, "disc_loading"], env=watch.env, capture_output=True,
+                             text=True, timeout=120)  # fmt: skip
+        assert out.returncode == 1 and "NSM3" in out.stdout, (out.stdout, out.stderr)
+        out = subprocess.run([*ask, "--face-name", "/rosreconf_none", "--timeout", "2",
+                              "disc_loading"], env=watch.env, capture_output=True, text=True,
+                             timeout=120)  # fmt: skip
+        assert out.returncode == 3 and "/rosreconf_none" in out.stderr, (out.stdout, out.stderr)
+        kinds = {e["event"] for e in watch.events()[before:]}
+        assert not kinds & {"task", "stop", "launch", "replanned"}, kinds
     finally:
         watch.stop(signal.SIGKILL)
