@@ -245,7 +245,10 @@ class Tasks:
                 failed = {*failed, str(event.data.get("component", ""))} - {""}
         if not self.faces:
             return
-        verdicts = self.table(library, schema, current, failed)
+        # on a decision's path (a failure's replan) the last table serves: the next read
+        # renews it, so a repair never waits on the other tasks' optimisations
+        cached = self._table[1] if event is not None and self._table is not None else None
+        verdicts = cached if cached is not None else self.table(library, schema, current, failed)
         doc = snapshot(
             library, schema, current, failed, running, self.health, verdicts, self.switching
         )
