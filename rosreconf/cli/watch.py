@@ -252,10 +252,10 @@ def watch_command(
             stop_requested=signals.requested,
             tasks=tasks,
         )
+        stack.callback(tasks.close)  # after the watcher's close: the face says its last words
         stack.callback(watcher.close)
         if ros2 and face:
             _open_face(options, env, work / "face.log", tasks)
-            stack.callback(tasks.close)
         what = (
             f"and repairing (launch files kept in {keep})"
             if apply

@@ -11,9 +11,12 @@ was sent is dropped, said once in its log. Nothing here prints.
 
 from __future__ import annotations
 
+import contextlib
 import json
+import queue
 import subprocess
 import threading
+import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
@@ -25,7 +28,8 @@ from rosreconf.ros.ros2.helper import Helper
 from rosreconf.ros.ros2.runtime import ros2_python
 
 FACE_SCRIPT = Path(__file__).parent / "scripts" / "face_node.py"
-DEFAULT_NAME = "/rosreconf"
+QUEUED = 256
+"""Lines waiting for the face at most; more are dropped (it is hung)."""
 
 
 class FaceNode(Helper):
@@ -44,10 +48,11 @@ class FaceNode(Helper):
             ExternalToolError: no ROS 2 Python with rclpy, or the node did not start.
         """
         self.asked = asked  # before the reader thread starts
-        self._lock = threading.Lock()
         self.gone = False
+        self._out: queue.Queue[dict[str, Any]] = queue.Queue(maxsize=QUEUED)
         python = ros2_python(env)
         super().__init__([python, str(FACE_SCRIPT), name], env, log, f"the face {name}")
+        threading.Thread(target=self._write, name="rosreconf-face", daemon=True).start()
 
     def heard(self, said: dict[str, Any]) -> bool:
         """Hand on a switch request or a refusal (on the reader thread)."""
@@ -61,14 +66,30 @@ class FaceNode(Helper):
         return True
 
     def _push(self, line: dict[str, Any]) -> None:
-        """Send one line; a face that has exited is written to no more (its log says why)."""
-        if self.gone:
-            return
-        with self._lock:
+        """Queue one line for the writer thread: a face that hangs (its pipe full) never
+        holds the watcher up; what it cannot take is dropped, and the next state renews it."""
+        if not self.gone:
+            with contextlib.suppress(queue.Full):
+                self._out.put_nowait(line)
+
+    def _write(self) -> None:
+        """Send the queued lines (a thread); a face that has exited is written to no more."""
+        while not self.gone:
+            line = self._out.get()
             try:
                 self.send([line])
-            except ExternalToolError:
+            except (ExternalToolError, ValueError):  # ValueError: its stdin closed already
                 self.gone = True
+
+    def close(self) -> None:
+        """End the face, once it has taken the watcher's last words (0.5 s at most)."""
+        deadline = time.monotonic() + 0.5
+        while self._out.qsize() and not self.gone and time.monotonic() < deadline:
+            time.sleep(0.01)
+        self.gone = True
+        with contextlib.suppress(queue.Full):
+            self._out.put_nowait({"op": "end"})  # wakes the writer, which then ends
+        super().close()
 
     def state(self, doc: dict[str, Any]) -> None:
         """Show the watch's state (``facestate.snapshot``)."""
