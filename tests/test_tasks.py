@@ -160,6 +160,20 @@ def test_the_role_rows_say_ok_warn_error(
     assert set(others) == {OK}
 
 
+def test_a_missing_standby_warns_on_its_role_until_it_is_configured() -> None:
+    health = Health()
+    health.saw(Event("no-standby", "NSM3 cannot wait as a standby", {"component": "NSM3"}))
+    running = set(DC_ARM.values())
+    rows = {r["name"]: r for r in role_rows(LIBRARY, OR, _on_dc_arm(), set(), running,
+                                            health.no_standby)}  # fmt: skip
+    assert rows["rosreconf: role/elbow_joint"]["level"] == WARN
+    assert "standby missing" in rows["rosreconf: role/elbow_joint"]["message"]
+    assert rows["rosreconf: role/base_joint"]["level"] == OK
+    health.saw(Event("lifecycle", "configured", {"component": "NSM3", "transition": "configure",
+                                                 "ok": True}))  # fmt: skip
+    assert health.no_standby == {}
+
+
 def test_the_conformance_row_follows_the_events() -> None:
     health = Health()
     doc = snapshot(LIBRARY, OR, _on_dc_arm(), set(), set(), health, [], None)

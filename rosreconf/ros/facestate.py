@@ -10,7 +10,7 @@ level of each event kind. Names are grouped by prefix (``rosreconf: role/<role>`
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -62,9 +62,16 @@ class Health:
     level: int = WARN
     message: str = "not checked yet"
     findings: list[str] = field(default_factory=list)
+    no_standby: dict[str, str] = field(default_factory=dict)
+    """Standbys missing (``--standby``): component -> why, until it is configured."""
 
     def saw(self, event: Event) -> None:
         """Follow the events that change it."""
+        comp = str(event.data.get("component", ""))
+        if event.kind in ("no-standby", "standby-hung"):
+            self.no_standby[comp] = event.message
+        elif event.data.get("transition") == "configure" and event.data.get("ok"):
+            self.no_standby.pop(comp, None)
         if event.kind == "conformant":
             self.level, self.message, self.findings = OK, event.message, []
         elif event.kind == "not-conformant":
@@ -80,10 +87,13 @@ def role_rows(
     current: Configuration,
     failed: Collection[str],
     running: Collection[str],
+    no_standby: Mapping[str, str] | None = None,
 ) -> list[dict[str, Any]]:
-    """Return one row per role: OK running; WARN not running yet (degraded); ERROR failed,
-    or empty when required. Values: the component and its node."""
+    """Return one row per role: OK running; WARN not running yet (degraded), or a standby of
+    its missing (``no_standby``: component -> why); ERROR failed, or empty when required.
+    Values: the component and its node."""
     now = current.mapping
+    missing = no_standby or {}
     rows = []
     for role in schema.graph.roles:
         comp = now.get(role.name, "")
@@ -97,6 +107,10 @@ def role_rows(
             level, text = WARN, f"{comp} not running yet (degraded)"
         else:
             level, text = OK, f"{comp} running"
+        gone = [c for c in missing if c in library.by_name and c != comp
+                and library.by_name[c].abstraction == role.abstraction]  # fmt: skip
+        if level == OK and gone:
+            level, text = WARN, f"{text}; standby missing: {missing[gone[0]]}"
         rows.append(
             {
                 "name": f"{PREFIX}role/{role.name}",
@@ -144,7 +158,7 @@ def snapshot(
             for v in verdicts
         ],
         "diagnostics": [
-            *role_rows(library, schema, current, failed, running),
+            *role_rows(library, schema, current, failed, running, health.no_standby),
             conformance_row(schema, health),
         ],
     }
