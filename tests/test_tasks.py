@@ -134,8 +134,8 @@ def test_a_watcher_switches_task_on_request_and_says_it(tmp_path: Path) -> None:
     assert watcher.schema is DL and watcher.current.schema == DL.name
     (said,) = [e for e in events if e.kind == "task"]
     assert said.data["task"] == "disc_loading" and len(said.data["changes"]) == 10
+    assert tasks.switching is None  # without --apply a switch is over once said
     tasks.ask("disc_loading")  # the task running now
-    watcher.tasks.switching = None
     assert not watcher._retask()
     assert events[-1].kind == "task-refused" and "running now" in events[-1].message
 

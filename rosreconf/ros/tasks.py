@@ -180,9 +180,11 @@ class Tasks:
         schema: InteroperabilitySchema,
         failed: Collection[str],
         say: Say,
+        acting: bool = True,
     ) -> tuple[InteroperabilitySchema, Configuration, list[Change]] | None:
         """Decide a switch to ``task``: the target (said as a ``task`` event), or None (said
-        as ``task-refused`` with the reason; nothing changes)."""
+        as ``task-refused`` with the reason; nothing changes). With ``acting`` (``--apply``)
+        the switch is under way until its check; else it is over once said."""
         s2 = self.schemas.get(task)
         found = None if s2 is None else switch_target(library, current, s2, failed)
         if s2 is None or task == schema.name or found is None:
@@ -195,7 +197,7 @@ class Tasks:
             say("task-refused", f"switch to {task} refused: {why}", task=task, reason=why)
             return None
         new, changes = found
-        self.switching = task
+        self.switching = task if acting else None
         say(
             "task",
             f"switching from {schema.display_name} to {s2.display_name}: {len(changes)} "
@@ -243,6 +245,8 @@ class Tasks:
                 face.line(event)
             if event.kind == "failed":
                 failed = {*failed, str(event.data.get("component", ""))} - {""}
+            if event.kind == "task-refused":  # a face that took it shows the task again
+                self._shown = None
         if not self.faces:
             return
         # on a decision's path (a failure's replan) the last table serves: the next read

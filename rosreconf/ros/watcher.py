@@ -265,7 +265,7 @@ class Watcher:
         if task is None:
             return False
         args = self.library, task, self.current, self.schema, self.failed, self._say
-        found = self.tasks.decide(*args)
+        found = self.tasks.decide(*args, self.options.apply)
         if found is None:
             return False
         self.schema, new, changes = found
