@@ -150,6 +150,11 @@ class Tasks:
         by a face (said in the log at the next step)."""
         self._asked.put((task, refused))
 
+    def waiting(self) -> bool:
+        """Tell whether a request waits (the poll loop then steps at once, not after its
+        interval)."""
+        return not self._asked.empty()
+
     def take(self, say: Say) -> str | None:
         """Return the task of the first switch request waiting; refuse the others (said)."""
         first = None

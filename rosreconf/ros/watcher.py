@@ -390,8 +390,8 @@ class Watcher:
         return bool(failing or self._clashes.freed)
 
     def exited(self) -> bool:
-        """Tell whether a watched node process ended or hung since the last step."""
-        return self._actuator.exited()
+        """Tell whether a watched process ended or hung, or a task switch waits: step now."""
+        return self._actuator.exited() or self.tasks.waiting()
 
     def due_at(self) -> float | None:
         """Return when a restart waiting out its backoff is due (monotonic seconds), if any."""
