@@ -193,3 +193,23 @@ def test_the_conformance_row_follows_the_events() -> None:
 )  # fmt: skip
 def test_every_decision_has_a_rosout_level(kind: str, level: str) -> None:
     assert level_of(kind) == level
+
+
+def test_a_failure_after_a_switch_is_replanned_within_the_new_task(tmp_path: Path) -> None:
+    events: list[Event] = []
+    tasks = Tasks(SCHEMAS)
+    watcher = Watcher(MasterSource("http://127.0.0.1:9"), LIBRARY, OR, _on_dc_arm(), tmp_path,
+                      {}, events.append, tasks=tasks)  # fmt: skip
+    tasks.ask("disc_loading")
+    watcher._retask()
+    watcher.failed = {"NCA1"}
+    watcher._replan()
+    (replanned,) = [e for e in events if e.kind == "replanned"]
+    assert watcher.current.schema == "disc_loading"
+    assert replanned.data["configuration"]["camera"] == "NCA2"
+    assert replanned.data["configuration"]["elbow_joint"] == "NSM3"  # Disc Loading's arm
+    watcher.failed = {"NCA1", "NSM3"}  # Disc Loading cannot do without it: said, not left
+    watcher._hopeless = None
+    watcher._replan()
+    (none,) = [e for e in events if e.kind == "no-configuration"]
+    assert "NSM3" in none.message
