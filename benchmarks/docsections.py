@@ -29,6 +29,7 @@ sys.path.insert(0, str(HERE))  # run as a script or imported by the tests: its s
 from largest import table as largest_table  # noqa: E402
 from loading import markdown as loading_markdown  # noqa: E402
 from recovery import table as recovery_table  # noqa: E402
+from switching import table as switching_table  # noqa: E402
 
 RESULTS = HERE / "results.json"
 PAGE = HERE.parent / "docs" / "PERFORMANCE.md"
@@ -175,6 +176,7 @@ SECTIONS: dict[str, Callable[[dict[str, Any]], str]] = {
     "largest": lambda doc: largest_table(doc["largest"]),
     "watch": watch,
     "recovery": lambda doc: recovery_table(doc["recovery"]),
+    "switching": lambda doc: switching_table(doc["switching"]),
     "grid": grid,
     "streaming": streaming,
     "soak": soak,

@@ -13,6 +13,8 @@ Seven parts, all written to benchmarks/results.json and printed as tables:
 * ``watch``: in-process, what the watcher does between detecting a failure and having the
   new configuration, against Fast Downward's own time on the same task.
 * ``recovery`` (``recovery.py``): whole process, real nodes: ``kill -9`` to ``conformant``.
+* ``switching`` (``switching.py``): whole process, real nodes: a task switch, request to
+  ``conformant``, and the parameter's answer.
 * ``simulate`` (``sweep.py``): the M-solution sweep with 1 and 2 workers.
 * ``soak`` (``soak.py``): whole process, real nodes: watch's RSS over 40 repairs.
 
@@ -43,6 +45,8 @@ from recovery import table as recovery_table
 from rows import OK, GridRow, GrowthRow, Measured, machine
 from soak import soak
 from sweep import SIMULATE_SIZE, simulate_sweep, update_simulate
+from switching import switching
+from switching import table as switching_table
 from tables import grid_table, growth_table, whole_table
 from whole import import_floor, whole_process
 
@@ -210,6 +214,11 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
             if quick
             else recovery(5)
         )
+        switched = (
+            {"status": "skipped in --quick (real nodes, minutes: make bench)"}
+            if quick
+            else switching(3)
+        )
         soaked = (
             {"status": "skipped in --quick (real nodes, minutes: make bench)"}
             if quick
@@ -233,6 +242,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
         "growth": grown,
         "watch": watched,
         "recovery": recovered,
+        "switching": switched,
         "soak": soaked,
         "grid_scope": "in-process (YAML loading excluded), fresh child per cell",
         "grid": [row.to_json() for row in rows],
@@ -249,6 +259,8 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
     console.print(f"watch (in-process): {watched}")
     console.print("recovery (whole process, real nodes, median seconds):")
     console.print(recovery_table(recovered), markup=False)
+    console.print("task switch (whole process, real nodes, median seconds from the request):")
+    console.print(switching_table(switched), markup=False)
     shown = {k: v for k, v in soaked.items() if k != "samples_kib"}
     console.print(f"soak (whole process, real nodes): {shown}", markup=False)
     console.print(grid_table(rows, KINDS))

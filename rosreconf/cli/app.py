@@ -91,6 +91,10 @@ COMMANDS: dict[str, Verb] = {
         "rosreconf.cli.watch:watch_command",
         "Watch the live system; when a node fails, replan with the fewest changes (and apply).",
     ),
+    "task": Verb(
+        "rosreconf.cli.task:task_command",
+        "Ask a running watch --ros2 to switch task; exit 0 taken, 1 refused (why), 3 no answer.",
+    ),
     "render-pddl": Verb(
         "rosreconf.cli.render_pddl:render_pddl",
         "Write the PDDL task of each schema (pre-grounded STRIPS with action costs; docs/pddl.md).",

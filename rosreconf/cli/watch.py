@@ -31,15 +31,17 @@ from rosreconf.cli.common import (
 )
 from rosreconf.cli.console import stderr
 from rosreconf.cli.stopping import stop_on_signals
-from rosreconf.errors import ExitCode, UsageError
+from rosreconf.errors import ExitCode, ExternalToolError, UsageError
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
-from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, watch_source
+from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, open_face, watch_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
+from rosreconf.ros.livegraph import FACE_NAME
 from rosreconf.ros.options import Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
+from rosreconf.ros.tasks import Tasks
 from rosreconf.ros.watcher import Watcher
 from rosreconf.solve.running import one_target
 from rosreconf.solve.search import SEARCH_LIMIT, SEARCH_TIME, Budget
@@ -117,6 +119,20 @@ def watch_command(
             "(SIGINT, SIGTERM, SIGKILL), when /proc confirms it runs that node alone.",
         ),
     ] = False,
+    face: Annotated[
+        bool,
+        typer.Option(
+            "--face/--no-face",
+            help="ROS 2: serve rosreconf's node (task parameter, /diagnostics, /rosout).",
+        ),
+    ] = True,
+    face_name: Annotated[
+        str,
+        typer.Option(
+            "--face-name",
+            help="ROS 2: the face node's name (base name rosreconf or rosreconf_*).",
+        ),
+    ] = FACE_NAME,
     ros2_launch: Annotated[
         bool,
         typer.Option(
@@ -171,6 +187,7 @@ def watch_command(
 
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
+    tasks = Tasks({s.name: s for s in select(library, schema).schemas})  # all it may switch to
     for name in fail or []:
         if name not in sel.library:
             raise UsageError(f"--fail {name}: no such component")
@@ -184,7 +201,7 @@ def watch_command(
         hold=hold,
         prefer_after=prefer_after,
         budget=Budget(search_limit, search_time),
-        ros2=Ros2Options(standby, ros2_launch, stop_outside, force),
+        ros2=Ros2Options(standby, ros2_launch, stop_outside, force, face, face_name),
     )
     timeout, max_bytes = master_timeout, max_answer_mb << 20
     source, release = watch_source(
@@ -233,8 +250,12 @@ def watch_command(
             replace(options, launch_dir=keep),
             failed=set(fail or []),
             stop_requested=signals.requested,
+            tasks=tasks,
         )
+        stack.callback(tasks.close)  # after the watcher's close: the face says its last words
         stack.callback(watcher.close)
+        if ros2 and face:
+            _open_face(options, env, work / "face.log", tasks)
         what = (
             f"and repairing (launch files kept in {keep})"
             if apply
@@ -252,6 +273,14 @@ def watch_command(
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
+
+
+def _open_face(options: WatchOptions, env: dict[str, str], log: Path, tasks: Tasks) -> None:
+    """Start the ROS 2 face; without it, say why and watch all the same."""
+    try:
+        tasks.faces.append(open_face(options, env, log, tasks))
+    except ExternalToolError as exc:
+        _note(f"note: no ROS 2 face: {exc}")
 
 
 def _note(text: str) -> None:

@@ -174,6 +174,10 @@ class Actuator(Protocol):
         """
         return False
 
+    def retask(self, schema: InteroperabilitySchema) -> None:
+        """Act for ``schema`` from now on (a task switch): what starts is wired for it."""
+        return None
+
     def await_rewire(self, component: str, role: str, configuration: Configuration) -> None:
         """Ask a person to restart a node rosreconf did not start, wired for ``configuration``."""
         return None

@@ -9,7 +9,7 @@ stand-ins, the domain's claim, the options only ROS 2 has) is checked and taken 
 
 from __future__ import annotations
 
-from collections.abc import Callable, MutableMapping
+from collections.abc import Callable, Mapping, MutableMapping
 from pathlib import Path
 
 from rosreconf.errors import UsageError
@@ -18,12 +18,22 @@ from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros1.source import MasterSource
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
+from rosreconf.ros.ros2.face import FaceNode, ask_switch
 from rosreconf.ros.ros2.names import check_domain, gid_sizes
 from rosreconf.ros.ros2.runtime import ros2_python
 from rosreconf.ros.ros2.source import Ros2Source
 from rosreconf.ros.sources import LiveSource
+from rosreconf.ros.tasks import Face, Tasks
 
-__all__ = ["DEFAULT_MAX_BYTES", "DEFAULT_TIMEOUT", "open_source", "read_any", "watch_source"]
+__all__ = [
+    "DEFAULT_MAX_BYTES",
+    "DEFAULT_TIMEOUT",
+    "ask_switch",
+    "open_face",
+    "open_source",
+    "read_any",
+    "watch_source",
+]
 
 
 def open_source(
@@ -131,6 +141,15 @@ def watch_source(
         source.close()
         raise
     return source, None if claim is None else claim.release
+
+
+def open_face(options: WatchOptions, env: Mapping[str, str], log: Path, tasks: Tasks) -> Face:
+    """Start the ROS 2 face ``options`` name (``ros2.face``), its requests going to ``tasks``.
+
+    Raises:
+        ExternalToolError: no ROS 2 Python with rclpy and diagnostic_msgs, or it did not start.
+    """
+    return FaceNode(options.ros2.face_name, env, log, tasks.ask)
 
 
 def _claim(domain: int, force: bool, on_note: Callable[[str], None]) -> Claim | None:

@@ -21,7 +21,8 @@ class Event:
             ``not-conformant``, ``missing``, ``master-lost``, ``master-back``,
             ``master-restarted``, ``graph-unsettled``, ``graph-settled`` (ROS 2), ``kept``,
             ``standby-hung`` (ROS 2), ``restart``, ``hold``, ``release``, ``helper``,
-            ``watched``, ``exited``, ``passed-over``.
+            ``watched``, ``exited``, ``passed-over``, ``task`` (a switch of task decided: its
+            changes), ``task-refused`` (a switch asked for and refused, with the reason).
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).

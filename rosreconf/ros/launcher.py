@@ -17,12 +17,12 @@ import os
 import re
 import tempfile
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Protocol
 
-from rosreconf.model import Configuration
+from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
 from rosreconf.printable import printable
 from rosreconf.procs import Background, stop_all
@@ -211,6 +211,10 @@ class LaunchActuator(Actuator):
 
     def __post_init__(self) -> None:
         self.launcher = Launcher(self.port, self.acting)
+
+    def retask(self, schema: InteroperabilitySchema) -> None:
+        """Write the launch files of ``schema`` from now on (a task switch)."""
+        self.acting = self.launcher.acting = replace(self.acting, schema=schema)
 
     def start(self, current: Configuration, components: Collection[str], why: str) -> bool:
         """Start ``components`` with one launch process (or say what would run)."""

@@ -36,6 +36,7 @@ which is what a comparison with a configuration's ROS-graph wants.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from datetime import datetime
@@ -209,6 +210,20 @@ def is_lifecycle_service(node: str, service: str) -> bool:
     return any(service == node + suffix for suffix in LIFECYCLE_SERVICE_SUFFIXES)
 
 
+FACE_NAME = "/rosreconf"
+"""The default name of rosreconf's own ROS 2 node, its face (``ros2.face``)."""
+
+
+def is_own_face(name: str) -> bool:
+    """Tell whether ``name`` is one a face of rosreconf may have: an absolute ROS name whose
+    base name is ``rosreconf`` or starts with ``rosreconf_``. Such a node is plumbing: never
+    an extra node of a configuration."""
+    if not re.fullmatch(r"(/[A-Za-z_][A-Za-z0-9_]*)+", name):
+        return False
+    base = name.rsplit("/", 1)[-1]
+    return base == "rosreconf" or base.startswith("rosreconf_")
+
+
 def is_hidden_node(name: str) -> bool:
     """Tell whether a node is hidden in ROS 2 (a base name starting with ``_``, e.g. the CLI's).
 
@@ -228,8 +243,9 @@ def without_plumbing(graph: LiveGraph) -> LiveGraph:
     """Return ``graph`` without the client libraries' own nodes, topics and services.
 
     ROS 1: roscore's ``/rosout`` node, ``/rosout``/``/rosout_agg`` and the logger services.
-    ROS 2: hidden nodes (``_ros2cli_...``), ``/rosout``, ``/parameter_events``, every node's
-    parameter services and a lifecycle node's state services and ``transition_event`` topic.
+    ROS 2: hidden nodes (``_ros2cli_...``), rosreconf's face (``is_own_face``), ``/rosout``,
+    ``/parameter_events``, every node's parameter services and a lifecycle node's state
+    services and ``transition_event`` topic.
     """
     if graph.ros_version == 2:
         topics = ROS2_PLUMBING_TOPICS
@@ -256,7 +272,9 @@ def without_plumbing(graph: LiveGraph) -> LiveGraph:
             },
         )
         for n in graph.nodes
-        if n.name not in PLUMBING_NODES and not is_hidden_node(n.name)
+        if n.name not in PLUMBING_NODES
+        and not is_hidden_node(n.name)
+        and not (graph.ros_version == 2 and is_own_face(n.name))
     )
     types = {t: ty for t, ty in graph.topic_types.items() if t not in topics}
     services = dict(graph.service_types)

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rosreconf.errors import UsageError
+from rosreconf.ros.livegraph import FACE_NAME, is_own_face
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.solve.search import Budget
 
@@ -25,12 +26,18 @@ class Ros2Options:
         stop_outside: stop the process of a replaced node rosreconf did not start, when it
             runs only that node (``ros2.byhand``).
         force: supervise the domain though another watch supervises it (``ros2.domainclaim``).
+        face: serve the watch's ROS 2 face (``ros2.face``: task parameter, /diagnostics,
+            /rosout); ROS 2 only, with or without ``apply``.
+        face_name: the face node's name; its base name is ``rosreconf`` or starts with
+            ``rosreconf_``, so that ``inspect`` and ``watch`` know it for rosreconf's own.
     """
 
     standby: bool = False
     launch: bool = False
     stop_outside: bool = False
     force: bool = False
+    face: bool = True
+    face_name: str = FACE_NAME
 
 
 @dataclass(frozen=True)
@@ -74,3 +81,10 @@ class WatchOptions:
             raise UsageError("--standby, --ros2-launch and --stop-outside are for --ros2 --apply")
         if self.stand_ins and r.launch:
             raise UsageError("--stand-ins start rclpy processes of their own: drop --ros2-launch")
+        if r.face_name != FACE_NAME and not (ros2 and r.face):
+            raise UsageError("--face-name is for --ros2 with its face (no --no-face)")
+        if not is_own_face(r.face_name):
+            raise UsageError(
+                f"--face-name {r.face_name}: an absolute ROS name whose base name is rosreconf "
+                "or starts with rosreconf_ (/robot1/rosreconf), so that inspect knows it"
+            )

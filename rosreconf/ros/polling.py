@@ -2,14 +2,14 @@
 
 The watcher decides what one look at the system means (``Watcher.step``); this loop decides
 when to look. Between steps it sleeps ``interval`` seconds, but wakes at once when a watched
-node process exits or hangs, when a failure seen while confirming waits for its replan, when
-a restart's backoff is over, or when a stop is asked (``stop_requested``, polled every
-20 ms). A read that fails before any has succeeded is an error (a wrong master URI or domain
-fails fast); after one, a failed read is retried: a restarting master with one event when
-it goes (``master-lost``) and one when it is back (``master-back``); a graph caught
-half-announced (ROS 2 nodes starting: ``UnsettledGraphError``) is no lost source, and is
-said only when it lasts ``UNSETTLED_SAID_AFTER`` s (``graph-unsettled``, then
-``graph-settled``).
+node process exits or hangs (or a switch of task is asked: ``Watcher.exited``), when a
+failure seen while confirming waits for its replan, when a restart's backoff is over, or
+when a stop is asked (``stop_requested``, polled every 20 ms). A read that fails before any
+has succeeded is an error (a wrong master URI or domain fails fast); after one, a failed
+read is retried: a restarting master with one event when it goes (``master-lost``) and one
+when it is back (``master-back``); a graph caught half-announced (ROS 2 nodes starting:
+``UnsettledGraphError``) is no lost source, and is said only when it lasts
+``UNSETTLED_SAID_AFTER`` s (``graph-unsettled``, then ``graph-settled``).
 """
 
 from __future__ import annotations

@@ -29,6 +29,10 @@ stops the watcher within one poll slice). A failed component is restarted in pla
 (``rosreconf.ros.restarts``); with ``prefer_after`` the configuration a failure left is
 returned to once it is whole again (``rosreconf.ros.preference``).
 
+A switch of task (``rosreconf.ros.tasks``) is asked from any thread and taken at the start
+of a step: the fewest changes to the new schema's configuration, applied as a replan's are.
+Its faces (``tasks.Face``) are shown every decision and the state after each read.
+
 Launch errors are handed on (``rosreconf.ros.launcher``); a component that was launched
 and never came up is not launched again on every poll. Every decision is an ``Event``
 (``rosreconf.ros.events``) handed to the ``log`` callback; nothing here prints.
@@ -55,6 +59,7 @@ from rosreconf.ros.preference import Preference
 from rosreconf.ros.replanning import Change, replan
 from rosreconf.ros.restarts import Restarts
 from rosreconf.ros.sources import LiveSource
+from rosreconf.ros.tasks import Tasks
 from rosreconf.ros.verdicts import Missing, judge
 
 __all__ = ["Event", "Watcher"]
@@ -76,6 +81,7 @@ class Watcher:
             whole).
         failed: components known to have failed, until restarted in place or released.
         stop_requested: polled between steps and while waiting; True ends ``run``.
+        tasks: the tasks it may be switched to, the requests waiting, its faces.
     """
 
     source: LiveSource
@@ -88,6 +94,7 @@ class Watcher:
     options: WatchOptions = field(default_factory=WatchOptions)
     failed: set[str] = field(default_factory=set)
     stop_requested: Callable[[], bool] = lambda: False
+    tasks: Tasks = field(default_factory=Tasks)
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: Missing = field(default_factory=Missing)
@@ -118,6 +125,7 @@ class Watcher:
             self._outsiders.note(self.failed)
         self._graph = self._actuator.visible(self.source.read())
         self._outsiders.note(self.failed)
+        self._show()
         return self._graph
 
     def _live(self, fresh: bool) -> LiveGraph:
@@ -141,6 +149,8 @@ class Watcher:
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_restart()
+        if self._retask():
+            return self._confirm()
         if self._release():
             return self._confirm()
         if self._own_exits() and self._graph is not None and self._replan():
@@ -219,6 +229,7 @@ class Watcher:
             f"the live system conforms to the configuration ({took:.1f} s {since})",
             seconds=round(took, 3),
             configuration=self.current.shown,
+            task=self.schema.name,
             **checked(check),
         )
         self._actuator.settled(self.current, self.failed)
@@ -238,7 +249,31 @@ class Watcher:
         return next(r for r, c in self.current.assignment if c == comp)
 
     def _say(self, kind: str, message: str, **data: Any) -> None:
-        self.log(Event(kind, message, data))
+        event = Event(kind, message, data)
+        self.log(event)
+        self._show(event)
+
+    def _show(self, event: Event | None = None) -> None:
+        """Show the faces ``event`` and the state now (``tasks.Tasks.show``)."""
+        args = self.library, self.schema, self.current, self.failed, self._seen
+        self.tasks.show(*args, event)
+
+    def _retask(self) -> bool:
+        """Switch task when asked (``rosreconf.ros.tasks``): decided, said, then applied as
+        a replan is. True if something changed (to be confirmed)."""
+        task = self.tasks.take(self._say)
+        if task is None:
+            return False
+        args = self.library, task, self.current, self.schema, self.failed, self._say
+        found = self.tasks.decide(*args, self.options.apply)
+        if found is None:
+            return False
+        self.schema, new, changes = found
+        self._actuator.retask(self.schema)
+        self._outsiders.schema = self.schema
+        self._hopeless, self._prefer.preferred = None, None
+        self._pending = time.monotonic()
+        return self._switch(new, changes) or self.options.apply
 
     def _release(self) -> bool:
         """Restart the components whose backoff is over (``Restarts.last_resort``); make held
@@ -355,8 +390,8 @@ class Watcher:
         return bool(failing or self._clashes.freed)
 
     def exited(self) -> bool:
-        """Tell whether a watched node process ended or hung since the last step."""
-        return self._actuator.exited()
+        """Tell whether a watched process ended or hung, or a task switch waits: step now."""
+        return self._actuator.exited() or self.tasks.waiting()
 
     def due_at(self) -> float | None:
         """Return when a restart waiting out its backoff is due (monotonic seconds), if any."""

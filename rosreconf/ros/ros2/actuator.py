@@ -53,7 +53,7 @@ import dataclasses
 from collections.abc import Callable, Collection
 from dataclasses import dataclass, field
 
-from rosreconf.model import Configuration
+from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.conformance import Conformance
@@ -163,6 +163,12 @@ class Ros2Actuator(Actuator):
         if free:
             self.bringup.start(current, free, why, self.read_states)
         return bool(free) or not components
+
+    def retask(self, schema: InteroperabilitySchema) -> None:
+        """Wire, prepare and name what starts for ``schema`` from now on (a task switch)."""
+        self.acting = dataclasses.replace(self.acting, schema=schema)
+        for part in (self.supervisor, self.supervisor.by_hand, self.standbys, self.bringup):
+            part.schema = schema
 
     def _admit_waiting(self, current: Configuration) -> bool:
         """Start the newcomers whose node name has come free since they were held back."""

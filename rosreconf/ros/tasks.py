@@ -1,0 +1,272 @@
+"""Switch a running ``watch`` to another task, with the fewest changes, when asked (issue 46).
+
+A task is one interoperability schema of watch's files; the paper's robot has two,
+Object Repositioning and Disc Loading, and its agent picks the one for the work at hand.
+A request (``Tasks.ask``, from any thread: the ROS 2 face's parameter, a test) waits in a
+queue that the watcher drains at the start of its next step (``Tasks.take``), so a switch
+never runs beside a repair. One switch at a time: a request that comes while a switch is
+under way (from its ``task`` event until ``conformant`` or ``not-conformant``) is refused
+with that reason, never queued behind it, because the task asked for may no longer make sense
+once the first switch is done.
+
+The target is ``switch_target``: the running configuration projected onto the new task's
+roles (a role whose abstraction a running component has keeps that component), then the
+exact optimiser of the fewest changes (``rosreconf.solve.running.change_objective``) over
+the new task's valid configurations without the failed components. Every running component
+the new configuration does not use is stopped. ONE function, so that the design-time
+``plan --switch-to`` can replace it. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.wiring import rewiring
+from rosreconf.ros.events import Event
+from rosreconf.ros.facestate import Health, Verdict, snapshot
+from rosreconf.ros.replanning import Change, changes_data, changes_text
+from rosreconf.solve.running import change_objective
+from rosreconf.solve.solver import best_configuration, why_not
+
+Say = Callable[..., None]
+
+
+def project(
+    library: ComponentLibrary, running: Configuration, s2: InteroperabilitySchema
+) -> dict[str, str]:
+    """Return role -> running component for each role of ``s2`` a running component can keep.
+
+    A role of the same name whose abstraction the component has keeps it first; any other
+    role takes a running component of its abstraction not placed yet (schemas that name their
+    roles differently still share components).
+    """
+    known = library.by_name
+    free = [c for _, c in running.assignment if c and c in known]
+    out: dict[str, str] = {}
+    now = running.mapping
+    for role in s2.graph.roles:
+        comp = now.get(role.name, "")
+        if comp in free and known[comp].abstraction == role.abstraction:
+            out[role.name] = comp
+            free.remove(comp)
+    for role in s2.graph.roles:
+        if role.name not in out:
+            comp = next((c for c in free if known[c].abstraction == role.abstraction), "")
+            if comp:
+                out[role.name] = comp
+                free.remove(comp)
+    return out
+
+
+def switch_target(
+    library: ComponentLibrary,
+    running: Configuration,
+    s2: InteroperabilitySchema,
+    failed: Collection[str],
+) -> tuple[Configuration, list[Change]] | None:
+    """Return ``s2``'s configuration reached from ``running`` with the fewest changes, and them.
+
+    Changes are ``replanning.Change`` tuples: a role of ``s2`` whose component changes (from
+    the projected one, ``project``), a kept component restarted to be rewired, and
+    (``role``, component, "") for each running component ``s2``'s configuration does not use
+    (``role`` is then its role in ``running``). None when ``s2`` has no valid configuration
+    without ``failed``.
+    """
+    kept = project(library, running, s2)
+    objective = change_objective(library, s2, kept)
+    new = best_configuration(library, s2, objective, failed)
+    if new is None:
+        return None
+    rewired = rewiring(library, s2, kept, new.mapping)
+    changes = [
+        (r, kept.get(r, ""), c) for r, c in new.assignment if kept.get(r, "") != c or r in rewired
+    ]
+    placed, used = set(kept.values()), set(new.components)
+    changes += [(r, c, "") for r, c in running.assignment if c and c not in placed | used]
+    return new, changes
+
+
+def feasibility(
+    library: ComponentLibrary,
+    schemas: Mapping[str, InteroperabilitySchema],
+    current_task: str,
+    running: Configuration,
+    failed: Collection[str],
+) -> list[Verdict]:
+    """Return a verdict per task: the one running, those reachable, those that are not."""
+    out = []
+    for name, s in schemas.items():
+        if name == current_task:
+            out.append(Verdict(name, s.display_name, True, "the task running now", 0))
+            continue
+        found = switch_target(library, running, s, failed)
+        if found is None:
+            why = why_not(library, s, failed)
+            out.append(Verdict(name, s.display_name, False, f"{s.display_name}: {why}"))
+        else:
+            out.append(Verdict(name, s.display_name, True, "", len(found[1])))
+    return out
+
+
+class Face(Protocol):
+    """What shows a watch to the rest of the robot (ROS 2: ``ros2.face.FaceNode``)."""
+
+    def state(self, doc: dict[str, Any]) -> None:
+        """Show the watch's state (``rosreconf.ros.facestate.snapshot``)."""
+
+    def line(self, event: Event) -> None:
+        """Say one decision of the log."""
+
+    def close(self) -> None:
+        """End it."""
+
+
+@dataclass
+class Tasks:
+    """The tasks a watch knows, the switch requests waiting, and the faces that show it.
+
+    Attributes:
+        schemas: every schema of watch's files, by name.
+        faces: where state and decisions are shown (none: only the log).
+        switching: the task a switch under way goes to, until it is confirmed.
+    """
+
+    schemas: Mapping[str, InteroperabilitySchema] = field(default_factory=dict)
+    faces: list[Face] = field(default_factory=list)
+    switching: str | None = None
+    health: Health = field(default_factory=Health)
+    _shown: dict[str, Any] | None = None
+    _asked: queue.Queue[tuple[str, str]] = field(default_factory=queue.Queue)
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+    _table: tuple[Any, list[Verdict]] | None = None
+
+    def ask(self, task: str, refused: str = "") -> None:
+        """Ask for a switch to ``task`` (any thread); with ``refused``, note a refusal made
+        by a face (said in the log at the next step)."""
+        self._asked.put((task, refused))
+
+    def waiting(self) -> bool:
+        """Tell whether a request waits (the poll loop then steps at once, not after its
+        interval)."""
+        return not self._asked.empty()
+
+    def take(self, say: Say) -> str | None:
+        """Return the task of the first switch request waiting; refuse the others (said)."""
+        first = None
+        while True:
+            try:
+                task, refused = self._asked.get_nowait()
+            except queue.Empty:
+                return first
+            busy = self.switching or first
+            if refused:
+                say(
+                    "task-refused",
+                    f"switch to {task} refused: {refused}",
+                    task=task,
+                    reason=refused,
+                )
+            elif busy:
+                why = f"a switch to {busy} is under way; ask again once it is conformant"
+                say("task-refused", f"switch to {task} refused: {why}", task=task, reason=why)
+            else:
+                first = task
+
+    def decide(
+        self,
+        library: ComponentLibrary,
+        task: str,
+        current: Configuration,
+        schema: InteroperabilitySchema,
+        failed: Collection[str],
+        say: Say,
+        acting: bool = True,
+    ) -> tuple[InteroperabilitySchema, Configuration, list[Change]] | None:
+        """Decide a switch to ``task``: the target (said as a ``task`` event), or None (said
+        as ``task-refused`` with the reason; nothing changes). With ``acting`` (``--apply``)
+        the switch is under way until its check; else it is over once said."""
+        s2 = self.schemas.get(task)
+        found = None if s2 is None else switch_target(library, current, s2, failed)
+        if s2 is None or task == schema.name or found is None:
+            if s2 is None:
+                why = f"no task {task}: the tasks are {', '.join(sorted(self.schemas))}"
+            elif task == schema.name:
+                why = f"{s2.display_name} is the task running now"
+            else:
+                why = f"{s2.display_name} has no configuration now: {why_not(library, s2, failed)}"
+            say("task-refused", f"switch to {task} refused: {why}", task=task, reason=why)
+            return None
+        new, changes = found
+        self.switching = task if acting else None
+        say(
+            "task",
+            f"switching from {schema.display_name} to {s2.display_name}: {len(changes)} "
+            f"change(s), the fewest possible (exact optimum): {changes_text(changes) or 'none'}",
+            task=task,
+            previous=schema.name,
+            configuration=new.shown,
+            changes=changes_data(changes),
+        )
+        return s2, new, changes
+
+    def table(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        current: Configuration,
+        failed: Collection[str],
+    ) -> list[Verdict]:
+        """Return ``feasibility`` now, computed again only when the configuration or the
+        failures changed (a face asks on every look)."""
+        key = (schema.name, current, frozenset(failed))
+        with self._lock:
+            if self._table is None or self._table[0] != key:
+                verdicts = feasibility(library, self.schemas, schema.name, current, failed)
+                self._table = (key, verdicts)
+            return self._table[1]
+
+    def show(
+        self,
+        library: ComponentLibrary,
+        schema: InteroperabilitySchema,
+        current: Configuration,
+        failed: Collection[str],
+        running: Collection[str],
+        event: Event | None = None,
+    ) -> None:
+        """Note a decision (a switch ends with its check), have every face say it, and show
+        them the state when it changed. A ``failed`` event comes before the watcher adds
+        the component to ``failed``: it counts as failed here already."""
+        if event is not None:
+            if event.kind in ("conformant", "not-conformant"):
+                self.switching = None
+            self.health.saw(event)
+            for face in self.faces:
+                face.line(event)
+            if event.kind == "failed":
+                failed = {*failed, str(event.data.get("component", ""))} - {""}
+            if event.kind == "task-refused":  # a face that took it shows the task again
+                self._shown = None
+        if not self.faces:
+            return
+        # on a decision's path (a failure's replan) the last table serves: the next read
+        # renews it, so a repair never waits on the other tasks' optimisations
+        cached = self._table[1] if event is not None and self._table is not None else None
+        verdicts = cached if cached is not None else self.table(library, schema, current, failed)
+        doc = snapshot(
+            library, schema, current, failed, running, self.health, verdicts, self.switching
+        )
+        if doc != self._shown:
+            self._shown = doc
+            for face in self.faces:
+                face.state(doc)
+
+    def close(self) -> None:
+        """End every face."""
+        for face in self.faces:
+            face.close()
