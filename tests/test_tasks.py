@@ -16,6 +16,8 @@ from rosreconf.formats.loader import load_bundled
 from rosreconf.model import Configuration, InteroperabilitySchema
 from rosreconf.model.validity import is_valid
 from rosreconf.model.wiring import wiring_of
+from rosreconf.planning.planners import planner_named
+from rosreconf.planning.switch import switch
 from rosreconf.ros.events import Event
 from rosreconf.ros.facestate import ERROR, OK, WARN, Health, level_of, role_rows, snapshot
 from rosreconf.ros.ros1.source import MasterSource
@@ -68,7 +70,7 @@ def _brute_force(running: Configuration, s1: InteroperabilitySchema, s2: Interop
 
 
 def test_the_switch_to_disc_loading_is_the_brute_force_minimum() -> None:
-    found = switch_target(LIBRARY, _on_dc_arm(), DL, frozenset())
+    found = switch_target(LIBRARY, OR, _on_dc_arm(), DL, frozenset())
     assert found is not None
     new, changes = found
     assert [new.mapping[r] for r in DC_ARM if r.endswith("_joint")] == SERVO[:5]
@@ -82,13 +84,13 @@ def test_the_switch_to_disc_loading_is_the_brute_force_minimum() -> None:
 @pytest.mark.parametrize("failed", [frozenset(), frozenset({"NCA1"}), frozenset({"NVP1"})])
 def test_back_to_object_repositioning_is_the_brute_force_minimum(failed: frozenset[str]) -> None:
     running = Configuration.of(DL.name, DL.nominal, DL.graph.roles)
-    found = switch_target(LIBRARY, running, OR, failed)
+    found = switch_target(LIBRARY, DL, running, OR, failed)
     assert found is not None
     assert len(found[1]) == _brute_force(running, DL, OR, failed)
 
 
 def test_with_nsm3_failed_disc_loading_is_refused_with_the_reason() -> None:
-    assert switch_target(LIBRARY, _on_dc_arm(), DL, {"NSM3"}) is None
+    assert switch_target(LIBRARY, OR, _on_dc_arm(), DL, {"NSM3"}) is None
     said: list[tuple[str, str, dict[str, object]]] = []
     tasks = Tasks(SCHEMAS)
     tasks.ask("disc_loading")
@@ -213,3 +215,18 @@ def test_a_failure_after_a_switch_is_replanned_within_the_new_task(tmp_path: Pat
     watcher._replan()
     (none,) = [e for e in events if e.kind == "no-configuration"]
     assert "NSM3" in none.message
+
+
+@pytest.mark.parametrize(
+    "failed", [frozenset(), frozenset({"NCA1"}), frozenset({"NVP1"}), frozenset({"NSM1"})]
+)
+def test_the_live_switch_and_plan_switch_to_agree(failed: frozenset[str]) -> None:
+    """The live watcher and ``plan --switch-to`` make the same switch, counted alike, or
+    both find none (NSM1 is Disc Loading's only base joint)."""
+    found = switch_target(LIBRARY, OR, _on_dc_arm(), DL, failed)
+    planned = switch(LIBRARY, OR, DC_ARM, DL, failed, planner_named("fd", None))
+    if found is None or planned.result.configuration is None:
+        assert found is None and planned.result.configuration is None and "NSM1" in failed
+        return
+    assert found[0].mapping == planned.result.configuration.mapping
+    assert len(found[1]) == planned.count == planned.result.fewest_changes

@@ -1,4 +1,4 @@
-"""Switch a running ``watch`` to another task, with the fewest changes, when asked (issue 46).
+"""Switch a running ``watch`` to another task, with the fewest changes, when asked.
 
 A task is one interoperability schema of watch's files; the paper's robot has two,
 Object Repositioning and Disc Loading, and its agent picks the one for the work at hand.
@@ -9,12 +9,12 @@ under way (from its ``task`` event until ``conformant`` or ``not-conformant``) i
 with that reason, never queued behind it, because the task asked for may no longer make sense
 once the first switch is done.
 
-The target is ``switch_target``: the running configuration projected onto the new task's
-roles (a role whose abstraction a running component has keeps that component), then the
-exact optimiser of the fewest changes (``rosreconf.solve.running.change_objective``) over
-the new task's valid configurations without the failed components. Every running component
-the new configuration does not use is stopped. ONE function, so that the design-time
-``plan --switch-to`` can replace it. Nothing here prints.
+The target is ``switch_target``, the same switch ``plan --switch-to`` plans
+(``rosreconf.model.switching``: what runs carried over into the new task's roles, kept
+components restarted where the new task wires them otherwise), found by the exact optimiser
+of the fewest changes over the new task's valid configurations without the failed
+components; every running component the new configuration does not use is stopped.
+Nothing here prints.
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
-from rosreconf.model.wiring import rewiring
+from rosreconf.model import EMPTY, ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.switching import carried_over, carried_wiring, switch_changes
 from rosreconf.ros.events import Event
 from rosreconf.ros.facestate import Health, Verdict, snapshot
 from rosreconf.ros.replanning import Change, changes_data, changes_text
@@ -36,58 +36,45 @@ from rosreconf.solve.solver import best_configuration, why_not
 Say = Callable[..., None]
 
 
-def project(
-    library: ComponentLibrary, running: Configuration, s2: InteroperabilitySchema
-) -> dict[str, str]:
-    """Return role -> running component for each role of ``s2`` a running component can keep.
-
-    A role of the same name whose abstraction the component has keeps it first; any other
-    role takes a running component of its abstraction not placed yet (schemas that name their
-    roles differently still share components).
-    """
-    known = library.by_name
-    free = [c for _, c in running.assignment if c and c in known]
-    out: dict[str, str] = {}
-    now = running.mapping
-    for role in s2.graph.roles:
-        comp = now.get(role.name, "")
-        if comp in free and known[comp].abstraction == role.abstraction:
-            out[role.name] = comp
-            free.remove(comp)
-    for role in s2.graph.roles:
-        if role.name not in out:
-            comp = next((c for c in free if known[c].abstraction == role.abstraction), "")
-            if comp:
-                out[role.name] = comp
-                free.remove(comp)
-    return out
-
-
 def switch_target(
     library: ComponentLibrary,
+    source: InteroperabilitySchema,
     running: Configuration,
     s2: InteroperabilitySchema,
     failed: Collection[str],
 ) -> tuple[Configuration, list[Change]] | None:
     """Return ``s2``'s configuration reached from ``running`` with the fewest changes, and them.
 
-    Changes are ``replanning.Change`` tuples: a role of ``s2`` whose component changes (from
-    the projected one, ``project``), a kept component restarted to be rewired, and
-    (``role``, component, "") for each running component ``s2``'s configuration does not use
-    (``role`` is then its role in ``running``). None when ``s2`` has no valid configuration
-    without ``failed``.
+    The same switch as ``plan --switch-to`` (``rosreconf.planning.switch``): what ``running``
+    (a configuration of ``source``) runs is carried over into ``s2``'s roles
+    (``rosreconf.model.switching.carried_over``), and a kept component restarts when ``s2``
+    wires it otherwise than ``source`` does now (``carried_wiring``); the exact optimiser
+    proves the fewest. Changes are ``replanning.Change`` tuples, one per change counted: a
+    role of ``s2`` whose component starts, is replaced or restarts rewired, and (``role``,
+    component, "") for each running component ``s2``'s configuration does not use (``role``
+    is then its role in ``running``). None when ``s2`` has no valid configuration without
+    ``failed``.
     """
-    kept = project(library, running, s2)
-    objective = change_objective(library, s2, kept)
+    before = running.mapping
+    kept = carried_over(source, before, s2)
+    wired = carried_wiring(library, source, before, s2)
+    objective = change_objective(library, s2, kept, wired=wired)
     new = best_configuration(library, s2, objective, failed)
     if new is None:
         return None
-    rewired = rewiring(library, s2, kept, new.mapping)
+    moves = switch_changes(library, source, before, s2, new.mapping, failed)
+    restarted = {m.role for m in moves if m.kind == "restart"}
     changes = [
-        (r, kept.get(r, ""), c) for r, c in new.assignment if kept.get(r, "") != c or r in rewired
+        (r, kept.get(r, EMPTY), c)
+        for r, c in new.assignment
+        if kept.get(r, EMPTY) != c or r in restarted
     ]
-    placed, used = set(kept.values()), set(new.components)
-    changes += [(r, c, "") for r, c in running.assignment if c and c not in placed | used]
+    standing = {c for c in kept.values() if c != EMPTY}
+    changes += [
+        (m.role, m.component, EMPTY)
+        for m in moves
+        if m.kind == "stop" and m.component not in standing
+    ]
     return new, changes
 
 
@@ -104,7 +91,7 @@ def feasibility(
         if name == current_task:
             out.append(Verdict(name, s.display_name, True, "the task running now", 0))
             continue
-        found = switch_target(library, running, s, failed)
+        found = switch_target(library, schemas[current_task], running, s, failed)
         if found is None:
             why = why_not(library, s, failed)
             out.append(Verdict(name, s.display_name, False, f"{s.display_name}: {why}"))
@@ -191,7 +178,7 @@ class Tasks:
         as ``task-refused`` with the reason; nothing changes). With ``acting`` (``--apply``)
         the switch is under way until its check; else it is over once said."""
         s2 = self.schemas.get(task)
-        found = None if s2 is None else switch_target(library, current, s2, failed)
+        found = None if s2 is None else switch_target(library, schema, current, s2, failed)
         if s2 is None or task == schema.name or found is None:
             if s2 is None:
                 why = f"no task {task}: the tasks are {', '.join(sorted(self.schemas))}"
