@@ -26,6 +26,7 @@ from typing import Any
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))  # run as a script or imported by the tests: its siblings
 
+from context_change import context_table  # noqa: E402
 from largest import table as largest_table  # noqa: E402
 from loading import markdown as loading_markdown  # noqa: E402
 from recovery import table as recovery_table  # noqa: E402
@@ -177,6 +178,7 @@ SECTIONS: dict[str, Callable[[dict[str, Any]], str]] = {
     "watch": watch,
     "recovery": lambda doc: recovery_table(doc["recovery"]),
     "switching": lambda doc: switching_table(doc["switching"]),
+    "context": lambda doc: context_table(doc.get("context", {"status": "not measured yet"})),
     "grid": grid,
     "streaming": streaming,
     "soak": soak,

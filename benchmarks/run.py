@@ -15,6 +15,8 @@ Seven parts, all written to benchmarks/results.json and printed as tables:
 * ``recovery`` (``recovery.py``): whole process, real nodes: ``kill -9`` to ``conformant``.
 * ``switching`` (``switching.py``): whole process, real nodes: a task switch, request to
   ``conformant``, and the parameter's answer.
+* ``context`` (``context_change.py``): whole process, real nodes: a context reading that rules
+  the chosen component out, to ``conformant`` without it (cold and with standbys).
 * ``simulate`` (``sweep.py``): the M-solution sweep with 1 and 2 workers.
 * ``soak`` (``soak.py``): whole process, real nodes: watch's RSS over 40 repairs.
 
@@ -36,6 +38,7 @@ from typing import Any
 
 # This folder is the script's sys.path[0]: its modules import each other by name.
 from children import FD_TIMEOUT, child_main, measure, run_child, write_in_child
+from context_change import context, context_table
 from docsections import markdown
 from largest import largest
 from largest import table as largest_table
@@ -219,6 +222,11 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
             if quick
             else switching(3)
         )
+        contexted = (
+            {"status": "skipped in --quick (real nodes, minutes: make bench)"}
+            if quick
+            else context(3)
+        )
         soaked = (
             {"status": "skipped in --quick (real nodes, minutes: make bench)"}
             if quick
@@ -243,6 +251,7 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
         "watch": watched,
         "recovery": recovered,
         "switching": switched,
+        "context": contexted,
         "soak": soaked,
         "grid_scope": "in-process (YAML loading excluded), fresh child per cell",
         "grid": [row.to_json() for row in rows],
@@ -261,6 +270,8 @@ def measure_all(quick: bool, out: Path, timeout: float, clingo_timeout: float) -
     console.print(recovery_table(recovered), markup=False)
     console.print("task switch (whole process, real nodes, median seconds from the request):")
     console.print(switching_table(switched), markup=False)
+    console.print("context change (whole process, real nodes, median seconds from the reading):")
+    console.print(context_table(contexted), markup=False)
     shown = {k: v for k, v in soaked.items() if k != "samples_kib"}
     console.print(f"soak (whole process, real nodes): {shown}", markup=False)
     console.print(grid_table(rows, KINDS))

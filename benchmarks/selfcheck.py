@@ -62,6 +62,7 @@ def check_quick_run(tmp_path: Path) -> None:
     assert doc["watch"]["replan_seconds"] > 0 and doc["watch"]["fast_downward_seconds"] > 0
     assert doc["import_floor"]["status"] == "ok"
     assert doc["soak"]["status"].startswith("skipped in --quick"), doc["soak"]
+    assert doc["context"]["status"].startswith("skipped in --quick"), doc["context"]
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -98,39 +99,52 @@ def _servo_parked(events: list[dict[str, Any]]) -> bool:
     return {e["component"] for e in events if e.get("transition") == "configure"} >= SERVO
 
 
-def switching(runs: int, kinds: tuple[str, ...] = KINDS) -> dict[str, Any]:
-    """Return, per row, every run's columns and their medians (seconds)."""
-    if not JAZZY.exists():
-        return {"status": "skipped: no .venv-ros2-jazzy (make ros2-venvs)"}
+def repeated(
+    kinds: tuple[str, ...],
+    runs: int,
+    one: Callable[[str, Path], dict[str, float]],
+    columns: tuple[str, ...],
+    goals: dict[str, tuple[str, float]],
+) -> dict[str, Any]:
+    """Run ``one(kind, tmp)`` ``runs`` times per kind, each in a fresh temporary directory;
+    return per kind every run's columns (or its error), their medians and the goal's verdict."""
     rows: dict[str, Any] = {}
     for kind in kinds:
         done = []
         for _ in range(runs):
             with tempfile.TemporaryDirectory(prefix="rosreconf-bench-") as tmp:
                 try:
-                    done.append(one_switch(kind, Path(tmp)))
+                    done.append(one(kind, Path(tmp)))
                 except (RuntimeError, subprocess.SubprocessError) as exc:
                     done.append({"error": str(exc)[:300]})
         good = [r for r in done if "error" not in r]
-        medians = {c: statistics.median(r[c] for r in good) for c in COLUMNS} if good else {}
-        column, goal = GOALS[kind]
+        medians = {c: statistics.median(r[c] for r in good) for c in columns} if good else {}
+        column, goal = goals[kind]
         met = None if not good else medians[column] <= goal
         rows[kind] = {"runs": done, "median": medians, "goal": [column, goal], "met": met}
+    return rows
+
+
+def switching(runs: int, kinds: tuple[str, ...] = KINDS) -> dict[str, Any]:
+    """Return, per row, every run's columns and their medians (seconds)."""
+    if not JAZZY.exists():
+        return {"status": "skipped: no .venv-ros2-jazzy (make ros2-venvs)"}
+    rows = repeated(kinds, runs, one_switch, COLUMNS, GOALS)
     return {"status": "ok", "scope": "whole process, real nodes, from the request", "rows": rows}
 
 
-def table(doc: dict[str, Any]) -> str:
+def table(doc: dict[str, Any], columns: tuple[str, ...] = COLUMNS) -> str:
     """Return the rows as a Markdown table (median seconds)."""
     if doc.get("status") != "ok":
-        return f"switching: {doc.get('status')}"
+        return f"rows: {doc.get('status')}"
     lines = [
-        "| path | runs | answer | decide | conformant | goal |",
-        "| --- | --- | --- | --- | --- | --- |",
+        f"| path | runs | {' | '.join(columns)} | goal |",
+        "| --- | --- | " + "--- | " * len(columns) + "--- |",
     ]
     for kind, row in doc["rows"].items():
         m = row["median"]
         ok = len([r for r in row["runs"] if "error" not in r])
-        cells = [f"{m[c]:.3f}" if m else "n/a" for c in COLUMNS]
+        cells = [f"{m[c]:.3f}" if m else "n/a" for c in columns]
         column, goal = row["goal"]
         verdict = f"{column} <= {goal:g} s: {'met' if row['met'] else 'not met'}"
         lines.append(f"| {kind} | {ok}/{len(row['runs'])} | {' | '.join(cells)} | {verdict} |")

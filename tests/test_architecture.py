@@ -20,10 +20,18 @@ DOC = REPO / "docs" / "architecture.md"
 COMMITTED_DOT = REPO / "docs" / "img" / "architecture.dot"
 MAX_LINES = 400
 """Every module under rosreconf/ has fewer lines than this, but those ``LONGER`` names."""
-LONGER: dict[str, str] = {}
+LONGER: dict[str, str] = {
+    "rosreconf/ros/watcher.py": (
+        "the one decide-act-confirm loop; context read live added its ruling (the unusable "
+        "set, the replan without ruled-out components, the wake at a dwell's end: 425 lines). "
+        "The seams looked at, the confirmation loop and restarts in place, each read and "
+        "write most of the watcher's state (failed, seen, pending, the actuator): splitting "
+        "either would pass that state around, not separate a concern"
+    ),
+}
 """Modules allowed past ``MAX_LINES``, each with the reason its review accepted: a module
 near the cap is split along a real seam, never trimmed (folded docstrings, abbreviated
-comments); one with no seam yet is named here, reviewed, instead. None is today."""
+comments); one with no seam yet is named here, reviewed, instead."""
 PAPER = [
     "Def. 1",
     "Def. 2",

@@ -28,17 +28,20 @@ from rosreconf.cli.common import (
     WatchSearchTimeOption,
     finite,
     select,
+    weights_of,
 )
 from rosreconf.cli.console import stderr
 from rosreconf.cli.stopping import stop_on_signals
 from rosreconf.errors import ExitCode, ExternalToolError, UsageError
+from rosreconf.model import ComponentLibrary
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
 from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, open_face, watch_source
 from rosreconf.ros.events import Event
 from rosreconf.ros.launcher import launch_log_dir
+from rosreconf.ros.livecontext import DWELL, SILENCE, LiveContext
 from rosreconf.ros.livegraph import FACE_NAME
-from rosreconf.ros.options import Ros2Options, WatchOptions
+from rosreconf.ros.options import ContextOptions, Ros2Options, WatchOptions
 from rosreconf.ros.polling import poll
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.ros.tasks import Tasks
@@ -111,6 +114,45 @@ def watch_command(
             "have been candidates this many seconds (held ones back twice as late). 0: never.",
         ),
     ] = 0.0,
+    prefer: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--prefer",
+            metavar="METRIC=WEIGHT",
+            help="Move to the best configuration by these weights (as --best --objective) "
+            "once failures and context allow it; never back and forth (repeatable).",
+            show_default=False,
+        ),
+    ] = None,
+    dwell: Annotated[
+        float,
+        typer.Option(
+            min=0.0,
+            max=3600,
+            callback=finite,
+            help="ROS 2: seconds a context condition must hold, or fail, without a break "
+            "before a component is ruled out or usable again.",
+        ),
+    ] = DWELL,
+    context_silence: Annotated[
+        float,
+        typer.Option(
+            "--context-silence",
+            min=0.1,
+            max=3600,
+            callback=finite,
+            help="ROS 2: seconds without a reading before a context topic is said silent.",
+        ),
+    ] = SILENCE,
+    context_lost: Annotated[
+        str,
+        typer.Option(
+            "--context-lost",
+            metavar="keep|fail",
+            help="ROS 2: a silent context topic keeps its last value (keep), or its "
+            "conditions fail (fail).",
+        ),
+    ] = "keep",
     stop_outside: Annotated[
         bool,
         typer.Option(
@@ -178,13 +220,18 @@ def watch_command(
     supervises is refused (exit 2, naming its pid), unless --force. A failed component is
     restarted in place up to --restarts times per --restart-window, else held failed for
     --hold seconds (twice as long each time it is held again), then a candidate again; with
-    --prefer-after, watch returns to the configuration it left once that one is whole again.
+    --prefer-after, watch returns to the configuration it left once that one is whole again;
+    with --prefer, to the best by those weights. On ROS 2 the library's context topics are
+    read (docs/context.md): a component whose 'when' conditions fail for --dwell seconds is
+    replanned away, as a failed one is; a topic silent for --context-silence is said.
     With --apply, a failed component without which no configuration is left is restarted in
     place at once whatever --restarts says (a hold would leave the robot down), then after
     1, 2, 4 ... s up to --hold while it keeps failing. A node process that exits before it
     is ready is logged as failed with its exit status and the last lines of its log (ROS 2).
     """
 
+    if context_lost not in ("keep", "fail"):
+        raise UsageError(f"--context-lost {context_lost}: write keep or fail")
     sel = select(library, schema, None, [only] if only else None)
     target = one_target(sel, configuration)
     tasks = Tasks({s.name: s for s in select(library, schema).schemas})  # all it may switch to
@@ -201,6 +248,8 @@ def watch_command(
         hold=hold,
         prefer_after=prefer_after,
         budget=Budget(search_limit, search_time),
+        prefer=tuple(weights_of(prefer).items()),
+        context=ContextOptions(dwell, context_silence, context_lost == "fail"),
         ros2=Ros2Options(standby, ros2_launch, stop_outside, force, face, face_name),
     )
     timeout, max_bytes = master_timeout, max_answer_mb << 20
@@ -239,6 +288,7 @@ def watch_command(
 
         work = stack.enter_context(private_workdir())
         sch, config = target.schema, target.configuration
+        context = _context(sel.library, options, ros2)
         watcher = Watcher(
             source,
             sel.library,
@@ -251,11 +301,12 @@ def watch_command(
             failed=set(fail or []),
             stop_requested=signals.requested,
             tasks=tasks,
+            context=context,
         )
         stack.callback(tasks.close)  # after the watcher's close: the face says its last words
         stack.callback(watcher.close)
-        if ros2 and face:
-            _open_face(options, env, work / "face.log", tasks)
+        if ros2 and (face or context is not None):
+            _open_face(options, env, work / "face.log", tasks, context, stack)
         what = (
             f"and repairing (launch files kept in {keep})"
             if apply
@@ -275,12 +326,39 @@ def watch_command(
         raise typer.Exit(ExitCode.OK if check.ok else ExitCode.FAILED)
 
 
-def _open_face(options: WatchOptions, env: dict[str, str], log: Path, tasks: Tasks) -> None:
-    """Start the ROS 2 face; without it, say why and watch all the same."""
+def _context(library: ComponentLibrary, options: WatchOptions, ros2: bool) -> LiveContext | None:
+    """Return the context to read live: ROS 2 only (its face node subscribes to the topics)."""
+    if not library.context:
+        return None
+    if not ros2:
+        _note("note: context is read live on ROS 2 only: its conditions are taken to hold")
+        return None
+    o = options.context
+    return LiveContext(library, o.dwell, o.silence, o.lost_fails)
+
+
+def _open_face(
+    options: WatchOptions,
+    env: dict[str, str],
+    log: Path,
+    tasks: Tasks,
+    context: LiveContext | None,
+    stack: ExitStack,
+) -> None:
+    """Start the ROS 2 face (or, with --no-face, a node reading context alone); without it,
+    say why and watch all the same."""
     try:
-        tasks.faces.append(open_face(options, env, log, tasks))
+        face = open_face(options, env, log, tasks, context)
     except ExternalToolError as exc:
-        _note(f"note: no ROS 2 face: {exc}")
+        lost = "; context is not read: its conditions are taken to hold" if context else ""
+        _note(f"note: no ROS 2 face: {exc}{lost}")
+        return
+    if context is not None:
+        context.listening()
+    if options.ros2.face:
+        tasks.faces.append(face)
+    else:
+        stack.callback(face.close)
 
 
 def _note(text: str) -> None:

@@ -7,7 +7,8 @@ names that rule (a requirement only other parts provide, a coupling, an edge).
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+import re
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 from rosreconf.model import (
@@ -223,3 +224,23 @@ def explain_impossible(
     lines = [f"{comp} ({role}) has failed." for role, comp in current.items() if comp in failed]
     lines.append(f"{schema.display_name} is no longer possible: {why_not}")
     return lines
+
+
+def ruled_out_wording(lines: Sequence[str], why: Mapping[str, str]) -> list[str]:
+    """Return an explanation with a ruled-out component's reason where it says "failed".
+
+    The explanation says "X has failed" of every unusable part; for one that context ruled
+    out (``why``: component -> its unmet condition, ``model.context.RuledOut.reason``), the
+    true reason is the condition: "X (role) is ruled out: X needs visibility >= 3.25; it is
+    2.0". Used by ``plan``'s reports and by ``watch``'s replans alike.
+    """
+    if not why:
+        return list(lines)
+    pattern = re.compile(
+        r"\b(" + "|".join(re.escape(n) for n in why) + r")( \([^)]*\))? has failed"
+    )
+
+    def say(m: re.Match[str]) -> str:
+        return f"{m.group(1)}{m.group(2) or ''} is ruled out: {why[m.group(1)]}"
+
+    return [pattern.sub(say, line) for line in lines]

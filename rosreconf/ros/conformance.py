@@ -31,7 +31,9 @@ live graph; its own name for L counts only when it is that name. Findings (``Fin
                                     linger in a ROS 1 master)
     extra-node                1, 2  alive, not plumbing, not in the configuration (a managed
                                     node of the library parked inactive or unconfigured is a
-                                    standby instead, listed: ``rosreconf.ros.parked``)
+                                    standby instead, listed: ``rosreconf.ros.parked``; a node
+                                    publishing a context topic the library declares is the
+                                    sensor context is read from, not an extra node)
     duplicate-node            2     two nodes announce one name (calls reach either; judged
                                     together)
     missing-service /         1, 2  a provider does not serve / publish / subscribe what its
@@ -195,7 +197,10 @@ def compare(
     comps = {c: library[c] for c in configuration.components}
     names = {c: node_live_name(comp) for c, comp in comps.items()}
     parked = standbys(library, set(names.values()), answering)
-    out_of_service = {s.node for s in parked}
+    sensors = {v.topic for v in library.context}
+    out_of_service = {s.node for s in parked} | {
+        name for name, n in answering.items() if sensors & set(n.publishes)
+    }
     found = [
         f
         for f in _node_findings(configuration, graph, answering, names)

@@ -13,6 +13,7 @@ from collections.abc import Callable, Mapping, MutableMapping
 from pathlib import Path
 
 from rosreconf.errors import UsageError
+from rosreconf.ros.livecontext import LiveContext
 from rosreconf.ros.livegraph import LiveGraph, from_json
 from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
@@ -143,13 +144,26 @@ def watch_source(
     return source, None if claim is None else claim.release
 
 
-def open_face(options: WatchOptions, env: Mapping[str, str], log: Path, tasks: Tasks) -> Face:
-    """Start the ROS 2 face ``options`` name (``ros2.face``), its requests going to ``tasks``.
+def open_face(
+    options: WatchOptions,
+    env: Mapping[str, str],
+    log: Path,
+    tasks: Tasks,
+    context: LiveContext | None = None,
+) -> Face:
+    """Start the ROS 2 face ``options`` name (``ros2.face``), its requests going to ``tasks``,
+    its context readings to ``context``. Without the face (``--no-face``) and with context
+    to read, a node ``<face name>_context`` only reads it.
 
     Raises:
         ExternalToolError: no ROS 2 Python with rclpy and diagnostic_msgs, or it did not start.
     """
-    return FaceNode(options.ros2.face_name, env, log, tasks.ask)
+    serve = options.ros2.face
+    name = options.ros2.face_name + ("" if serve else "_context")
+    if context is None:
+        return FaceNode(name, env, log, tasks.ask, serve=serve)
+    args = context.variables, context.heard, context.unreadable
+    return FaceNode(name, env, log, tasks.ask, *args, serve=serve)
 
 
 def _claim(domain: int, force: bool, on_note: Callable[[str], None]) -> Claim | None:

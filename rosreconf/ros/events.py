@@ -22,7 +22,10 @@ class Event:
             ``master-restarted``, ``graph-unsettled``, ``graph-settled`` (ROS 2), ``kept``,
             ``standby-hung`` (ROS 2), ``restart``, ``hold``, ``release``, ``helper``,
             ``watched``, ``exited``, ``passed-over``, ``task`` (a switch of task decided: its
-            changes), ``task-refused`` (a switch asked for and refused, with the reason).
+            changes), ``task-refused`` (a switch asked for and refused, with the reason),
+            ``prefer`` (a move to a better configuration), ``context`` (a component ruled out
+            by context, or usable again), ``context-lost``, ``context-back``,
+            ``context-error`` (ROS 2: a context topic silent, heard again, unreadable).
         message: what happened and why, in plain words.
         data: details for the JSON log (component names, configurations, seconds).
         time: when (UTC).

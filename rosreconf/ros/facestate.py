@@ -5,7 +5,8 @@ messages: ``diagnostics`` gives the rows of ``/diagnostics`` (one per role, one 
 configuration's conformance; levels as ``diagnostic_msgs/msg/DiagnosticStatus``'s OK, WARN,
 ERROR: 0, 1, 2, which the node sends as its byte constants), ``level_of`` the ``/rosout``
 level of each event kind. Names are grouped by prefix (``rosreconf: role/<role>``,
-``rosreconf: conformance``), as the diagnostic aggregator's ``AnalyzerGroup`` groups them.
+``rosreconf: conformance``, ``rosreconf: context/<name>``), as the diagnostic aggregator's
+``AnalyzerGroup`` groups them.
 """
 
 from __future__ import annotations
@@ -15,8 +16,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
+from rosreconf.model.context import show
 from rosreconf.model.wiring import node_live_name
 from rosreconf.ros.events import Event
+from rosreconf.ros.livecontext import VariableState
 
 OK, WARN, ERROR = 0, 1, 2
 """``DiagnosticStatus`` levels."""
@@ -25,11 +28,12 @@ PREFIX = "rosreconf: "
 
 ERROR_KINDS = frozenset(
     {"failed", "no-configuration", "not-conformant", "launch-error", "launch-exited",
-     "standby-hung", "master-lost"}
+     "standby-hung", "master-lost", "context-error"}
 )  # fmt: skip
 WARN_KINDS = frozenset(
     {"replanned", "passed-over", "task-refused", "restart", "hold", "stop-by-hand",
-     "left-running", "missing", "master-restarted", "graph-unsettled", "purged"}
+     "left-running", "missing", "master-restarted", "graph-unsettled", "purged", "context",
+     "context-lost", "prefer"}
 )  # fmt: skip
 DEBUG_KINDS = frozenset({"helper"})
 
@@ -88,12 +92,15 @@ def role_rows(
     failed: Collection[str],
     running: Collection[str],
     no_standby: Mapping[str, str] | None = None,
+    ruled: Mapping[str, str] | None = None,
 ) -> list[dict[str, Any]]:
     """Return one row per role: OK running; WARN not running yet (degraded), or a standby of
-    its missing (``no_standby``: component -> why); ERROR failed, or empty when required.
-    Values: the component and its node."""
+    its missing (``no_standby``: component -> why); ERROR failed or ruled out by context
+    (``ruled``: component -> why), or empty when required. Values: the component and its
+    node."""
     now = current.mapping
     missing = no_standby or {}
+    ruled = ruled or {}
     rows = []
     for role in schema.graph.roles:
         comp = now.get(role.name, "")
@@ -101,6 +108,8 @@ def role_rows(
         node = node_live_name(known) if known is not None else ""
         if not comp:
             level, text = (OK, "empty (optional)") if role.optional else (ERROR, "empty: required")
+        elif comp in ruled:
+            level, text = ERROR, f"ruled out: {ruled[comp]}"
         elif comp in failed:
             level, text = ERROR, f"{comp} failed"
         elif comp not in running:
@@ -137,6 +146,23 @@ def conformance_row(schema: InteroperabilitySchema, health: Health) -> dict[str,
     }
 
 
+def context_rows(states: Sequence[VariableState]) -> list[dict[str, Any]]:
+    """Return one row per context variable: OK heard; WARN never heard or silent. Its
+    message says the value and the components it rules out now, each with why."""
+    rows = []
+    for v in states:
+        value = "not heard yet" if v.value is None else show(v.value)
+        level = WARN if v.lost or v.value is None else OK
+        text = f"{v.name} = {value}" + (" (silent)" if v.lost else "")
+        if v.rules_out:
+            text += "; rules out " + ", ".join(c for c, _ in v.rules_out)
+        values = [["topic", v.topic], ["value", value]]
+        values += [[f"rules out {c}", why] for c, why in v.rules_out]
+        rows.append({"name": f"{PREFIX}context/{v.name}", "level": level, "message": text,
+                     "hardware_id": HARDWARE_ID, "values": values})  # fmt: skip
+    return rows
+
+
 def snapshot(
     library: ComponentLibrary,
     schema: InteroperabilitySchema,
@@ -146,8 +172,10 @@ def snapshot(
     health: Health,
     verdicts: Sequence[Verdict],
     switching: str | None,
+    context: Sequence[VariableState] = (),
 ) -> dict[str, Any]:
     """Return the state a face shows, as one JSON document (the face's ``state`` line)."""
+    ruled = {c: why for v in context for c, why in v.rules_out}
     return {
         "task": schema.name,
         "configuration": {r: c or None for r, c in current.assignment},
@@ -158,7 +186,8 @@ def snapshot(
             for v in verdicts
         ],
         "diagnostics": [
-            *role_rows(library, schema, current, failed, running, health.no_standby),
+            *role_rows(library, schema, current, failed, running, health.no_standby, ruled),
             conformance_row(schema, health),
+            *context_rows(context),
         ],
     }

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rosreconf.errors import UsageError
+from rosreconf.ros.livecontext import DWELL, SILENCE
 from rosreconf.ros.livegraph import FACE_NAME, is_own_face
 from rosreconf.ros.restarts import HOLD_SECONDS, RESTART_WINDOW
 from rosreconf.solve.search import Budget
@@ -41,6 +42,24 @@ class Ros2Options:
 
 
 @dataclass(frozen=True)
+class ContextOptions:
+    """How context read live rules components out (``livecontext.LiveContext``).
+
+    Attributes:
+        dwell: seconds a component's usability must be said without a break before it
+            changes (``--dwell``).
+        silence: seconds without a reading before a context topic is silent
+            (``--context-silence``).
+        lost_fails: a silent topic's conditions fail (``--context-lost fail``); else its
+            last value is kept (``keep``).
+    """
+
+    dwell: float = DWELL
+    silence: float = SILENCE
+    lost_fails: bool = False
+
+
+@dataclass(frozen=True)
 class WatchOptions:
     """How a watcher watches, and how its actuator acts.
 
@@ -55,6 +74,9 @@ class WatchOptions:
             been candidates this long (``preference``; 0: never).
         budget: how far to search for a configuration that meets the performance
             requirements when the fewest-change one does not (``analysis.choice``).
+        prefer: metric -> weight (``--prefer``): move to a configuration whose weighted
+            metric sum is less, once failures and context allow it (``preference``).
+        context: how context read live rules components out.
         ros2: what only ROS 2 acts on.
     """
 
@@ -67,6 +89,8 @@ class WatchOptions:
     hold: float = HOLD_SECONDS
     prefer_after: float = 0.0
     budget: Budget | None = None
+    prefer: tuple[tuple[str, float], ...] = ()
+    context: ContextOptions = field(default_factory=ContextOptions)
     ros2: Ros2Options = field(default_factory=Ros2Options)
 
     def check(self, ros2: bool) -> None:

@@ -10,11 +10,11 @@ is the watcher's.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.model.wiring import rewiring
-from rosreconf.planning.narrative import explain_replan
+from rosreconf.planning.narrative import explain_replan, ruled_out_wording
 from rosreconf.solve.running import nearest_valid
 from rosreconf.solve.search import Budget
 from rosreconf.solve.solver import why_not
@@ -34,11 +34,14 @@ def replan(
     failed: frozenset[str],
     say: Say,
     budget: Budget | None = None,
+    ruled: Mapping[str, str] | None = None,
 ) -> tuple[Configuration, list[Change]] | None:
     """Return the new configuration and its changes, or None when there is none (said).
 
     ``budget`` bounds the search for one that meets the performance requirements when the
-    fewest-change configuration does not (``rosreconf.analysis.choice``).
+    fewest-change configuration does not (``rosreconf.analysis.choice``). ``ruled``: the
+    components of ``failed`` that context ruled out, with why: the explanation gives that
+    reason where it would say "has failed" (``planning.narrative.ruled_out_wording``).
     """
     new = nearest_valid(library, schema, failed, current)
     why = why_not(library, schema, failed) if new is None else ""
@@ -67,7 +70,8 @@ def replan(
     )
     # best_configuration is the exact optimum of the change count, so it is the fewest by
     # proof; passing len(changes) as "fewest" would only compare a number with itself.
-    for line in explain_replan(library, schema, failed, old, new):
+    lines = explain_replan(library, schema, failed, old, new)
+    for line in ruled_out_wording(lines, ruled or {}):
         say("why", line)
     return new, changes
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import queue
 import threading
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -29,6 +29,7 @@ from rosreconf.model import EMPTY, ComponentLibrary, Configuration, Interoperabi
 from rosreconf.model.switching import carried_over, carried_wiring, switch_changes
 from rosreconf.ros.events import Event
 from rosreconf.ros.facestate import Health, Verdict, snapshot
+from rosreconf.ros.livecontext import VariableState
 from rosreconf.ros.replanning import Change, changes_data, changes_text
 from rosreconf.solve.running import change_objective
 from rosreconf.solve.solver import best_configuration, why_not
@@ -225,6 +226,7 @@ class Tasks:
         failed: Collection[str],
         running: Collection[str],
         event: Event | None = None,
+        context: Sequence[VariableState] = (),
     ) -> None:
         """Note a decision (a switch ends with its check), have every face say it, and show
         them the state when it changed. A ``failed`` event comes before the watcher adds
@@ -245,9 +247,8 @@ class Tasks:
         # renews it, so a repair never waits on the other tasks' optimisations
         cached = self._table[1] if event is not None and self._table is not None else None
         verdicts = cached if cached is not None else self.table(library, schema, current, failed)
-        doc = snapshot(
-            library, schema, current, failed, running, self.health, verdicts, self.switching
-        )
+        args = library, schema, current, failed, running, self.health, verdicts
+        doc = snapshot(*args, self.switching, context)
         if doc != self._shown:
             self._shown = doc
             for face in self.faces:

@@ -27,7 +27,12 @@ matches, with ``apply`` or after a person repaired it by hand. ``rosreconf.ros.p
 runs the steps (``stop_requested`` is polled between them and in every wait, so a signal
 stops the watcher within one poll slice). A failed component is restarted in place or held
 (``rosreconf.ros.restarts``); with ``prefer_after`` the configuration a failure left is
-returned to once it is whole again (``rosreconf.ros.preference``).
+returned to once it is whole again (``rosreconf.ros.preference``), and with ``prefer`` the
+best configuration by those metrics once failures and context allow it.
+
+Context read live (``rosreconf.ros.livecontext``, ``context``) rules components out after
+its dwell: a chosen one that is ruled out is replanned away as a failed one is, with the
+fewest changes, but never restarted in place; the reason is its unmet condition.
 
 A switch of task (``rosreconf.ros.tasks``) is asked from any thread and taken at the start
 of a step: the fewest changes to the new schema's configuration, applied as a replan's are.
@@ -52,6 +57,7 @@ from rosreconf.ros.clashes import NameClashes
 from rosreconf.ros.conformance import Conformance, compare
 from rosreconf.ros.events import Event
 from rosreconf.ros.lifecycle_faults import LifecycleFaults, checked
+from rosreconf.ros.livecontext import LiveContext
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.outsiders import Outsiders
@@ -82,6 +88,7 @@ class Watcher:
         failed: components known to have failed, until restarted in place or released.
         stop_requested: polled between steps and while waiting; True ends ``run``.
         tasks: the tasks it may be switched to, the requests waiting, its faces.
+        context: context read live, which rules components out (None: none read).
     """
 
     source: LiveSource
@@ -95,6 +102,8 @@ class Watcher:
     failed: set[str] = field(default_factory=set)
     stop_requested: Callable[[], bool] = lambda: False
     tasks: Tasks = field(default_factory=Tasks)
+    context: LiveContext | None = None
+    _ruled: dict[str, str] = field(default_factory=dict)
     _seen: set[str] = field(default_factory=set)
     _hopeless: frozenset[str] | None = None
     _missing: Missing = field(default_factory=Missing)
@@ -117,7 +126,17 @@ class Watcher:
         self._restarts = Restarts(self._say, self._role, o.restart_limit, o.restart_window, o.hold)
         parts = self._actuator, self._clashes, self._restarts
         self._outsiders = Outsiders(self.library, self.schema, self._say, self._role, *parts)
-        self._prefer = Preference(self._say, o.prefer_after if o.apply else 0.0)
+        self._prefer = Preference(self._say, o.prefer_after if o.apply else 0.0, weights=o.prefer)
+
+    @property
+    def unusable(self) -> set[str]:
+        """The components no configuration may use now: failed, or ruled out by context."""
+        return self.failed | set(self._ruled)
+
+    def _assess(self) -> None:
+        """Take what context rules out now (said as it changes, ``LiveContext.assess``)."""
+        if self.context is not None:
+            self._ruled = self.context.assess(self._say)
 
     def _read(self) -> LiveGraph:
         """Read the live graph; who announced a newly failed node is noted before and after."""
@@ -149,6 +168,7 @@ class Watcher:
     def step(self) -> Conformance:
         """Observe once, replan and apply if needed; return how the system conforms now."""
         self._check_restart()
+        self._assess()
         if self._retask():
             return self._confirm()
         if self._release():
@@ -187,7 +207,7 @@ class Watcher:
         # a managed node out of 'active' is a fault, re-activated with apply (lifecycle_faults)
         if self._lifecycle.check(check, self.failed, self._role) and self._pending is None:
             self._pending = time.monotonic()
-        if self.failed & set(self.current.components):
+        if self.unusable & set(self.current.components):
             if self._replan():
                 return self._confirm()
         elif missing:
@@ -203,8 +223,9 @@ class Watcher:
 
     def _return(self) -> bool:
         """Go back to the configuration a failure left, when ``preference`` says it is time."""
-        unavailable = self.failed | set(self._restarts.held)
-        found = self._prefer.returning(self.library, self.schema, self.current, unavailable)
+        unavailable = self.unusable | set(self._restarts.held)
+        args = self.library, self.schema, self.current, unavailable
+        found = self._prefer.returning(*args) or self._prefer.better(*args)
         if found is None:
             return False
         self._pending = time.monotonic()
@@ -255,8 +276,9 @@ class Watcher:
 
     def _show(self, event: Event | None = None) -> None:
         """Show the faces ``event`` and the state now (``tasks.Tasks.show``)."""
-        args = self.library, self.schema, self.current, self.failed, self._seen
-        self.tasks.show(*args, event)
+        args = self.library, self.schema, self.current, self.unusable, self._seen
+        states = self.context.states() if self.context is not None else []
+        self.tasks.show(*args, event, context=states)
 
     def _retask(self) -> bool:
         """Switch task when asked (``rosreconf.ros.tasks``): decided, said, then applied as
@@ -264,7 +286,7 @@ class Watcher:
         task = self.tasks.take(self._say)
         if task is None:
             return False
-        args = self.library, task, self.current, self.schema, self.failed, self._say
+        args = self.library, task, self.current, self.schema, self.unusable, self._say
         found = self.tasks.decide(*args, self.options.apply)
         if found is None:
             return False
@@ -299,20 +321,23 @@ class Watcher:
 
     def _replan(self) -> bool:
         """Restart failed components in place where allowed (``restarts``); else find the
-        minimal-change configuration without the failed components, and apply it. With none
-        left, restart them in place all the same, backing off (``Restarts.last_resort``).
+        minimal-change configuration without the failed and ruled-out components, and apply
+        it. With none left, restart the failed ones in place all the same, backing off
+        (``Restarts.last_resort``); ruled-out ones keep running (nothing better is left).
         """
-        failing = self.failed & set(self.current.components)
+        inside = set(self.current.components)
+        failing = self.failed & inside
         apply = self.options.apply
         again = self._restarts.restartable(failing, apply)
         started = self._restart(again, "restarted in place")
-        if not failing - again:
+        if not failing - again and not set(self._ruled) & inside:
             return started
-        failed = frozenset(self.failed)
+        failed = frozenset(self.unusable)
         found = None
         if failed != self._hopeless:  # the same failures: the same answer, said already
             budget = self.options.budget
-            found = replan(self.library, self.schema, self.current, failed, self._say, budget)
+            args = self.library, self.schema, self.current, failed, self._say
+            found = replan(*args, budget, self._ruled)
         if found is None:
             self._hopeless = failed
             now = self._restarts.last_resort(failing - again, apply, self._actuator.theirs())
@@ -394,5 +419,7 @@ class Watcher:
         return self._actuator.exited() or self.tasks.waiting()
 
     def due_at(self) -> float | None:
-        """Return when a restart waiting out its backoff is due (monotonic seconds), if any."""
-        return self._restarts.next_due()
+        """Return when a restart waiting out its backoff is due, or a context dwell ends or a
+        topic falls silent (monotonic seconds), if ever."""
+        dues = [self._restarts.next_due(), self.context.next_due() if self.context else None]
+        return min((d for d in dues if d is not None), default=None)

@@ -9,13 +9,13 @@ schema shares). Libraries without context get neither, so their reports are unch
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from typing import Any
 
 from rosreconf.analysis.thresholds import Interval, Thresholds
 from rosreconf.formats.selection import Selection
 from rosreconf.model.context import show
+from rosreconf.planning.narrative import ruled_out_wording
 
 
 def context_doc(sel: Selection) -> dict[str, Any] | None:
@@ -51,22 +51,9 @@ def context_text(sel: Selection) -> str:
 
 
 def reworded(lines: Sequence[str], sel: Selection) -> list[str]:
-    """Return the planner's explanation with a ruled-out component's reason for "failed".
-
-    The explanation (``planning.narrative``) says "X has failed" of every unusable part; for
-    one that context ruled out, the true reason is its unmet condition.
-    """
-    if not sel.ruled_out:
-        return list(lines)
-    why = {r.component: r.reason for r in sel.ruled_out}
-    pattern = re.compile(
-        r"\b(" + "|".join(re.escape(n) for n in why) + r")( \([^)]*\))? has failed"
-    )
-
-    def say(m: re.Match[str]) -> str:
-        return f"{m.group(1)}{m.group(2) or ''} is ruled out: {why[m.group(1)]}"
-
-    return [pattern.sub(say, line) for line in lines]
+    """Return the planner's explanation with a ruled-out component's reason for "failed"
+    (``planning.narrative.ruled_out_wording``)."""
+    return ruled_out_wording(lines, {r.component: r.reason for r in sel.ruled_out})
 
 
 def thresholds_text(tables: Sequence[Thresholds]) -> str:

@@ -5,8 +5,11 @@ The node (``scripts/face_node.py``, under the ROS 2 Python) needs rclpy and
 lifecycle agent does. rosreconf pushes it the watch's state (``rosreconf.ros.facestate``)
 and every decision; it pushes back, unasked, the switch requests its ``task`` parameter took
 and the ones it refused (``Helper.heard``), handed to ``asked`` (``tasks.Tasks.ask``: a queue
-the watcher drains at its next step). A face that dies takes nothing down with it: what it
-was sent is dropped, said once in its log. Nothing here prints.
+the watcher drains at its next step). It also reads the library's context topics
+(``livecontext``): each reading is handed to ``context`` (``LiveContext.heard``) as it
+comes. With ``serve`` False (``watch --no-face``) the node only reads context. A face that
+dies takes nothing down with it: what it was sent is dropped, said once in its log. Nothing
+here prints.
 """
 
 from __future__ import annotations
@@ -17,11 +20,12 @@ import queue
 import subprocess
 import threading
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 from rosreconf.errors import ExternalToolError
+from rosreconf.model.context import ContextValue, ContextVariable
 from rosreconf.ros.events import Event
 from rosreconf.ros.facestate import level_of
 from rosreconf.ros.ros2.helper import Helper
@@ -41,17 +45,27 @@ class FaceNode(Helper):
         env: Mapping[str, str],
         log: Path,
         asked: Callable[[str, str], None],
+        context: Sequence[ContextVariable] = (),
+        heard: Callable[[str, ContextValue], None] | None = None,
+        unreadable: Callable[[str, str], None] | None = None,
+        serve: bool = True,
     ) -> None:
         """``asked(task, refused)``: a switch request ("" refused) or a refusal, with why.
+        ``heard(name, value)``: a reading of a ``context`` variable; ``unreadable(name,
+        why)``: a context topic it cannot read. ``serve``: parameters and /diagnostics too.
 
         Raises:
             ExternalToolError: no ROS 2 Python with rclpy, or the node did not start.
         """
         self.asked = asked  # before the reader thread starts
+        self.context_heard, self.unreadable = heard, unreadable
         self.gone = False
         self._out: queue.Queue[dict[str, Any]] = queue.Queue(maxsize=QUEUED)
         python = ros2_python(env)
-        super().__init__([python, str(FACE_SCRIPT), name], env, log, f"the face {name}")
+        topics = [{"name": v.name, "topic": v.topic, "type": v.type, "field": v.field}
+                  for v in context]  # fmt: skip
+        argv = [python, str(FACE_SCRIPT), name, json.dumps(topics), *([] if serve else ["--quiet"])]
+        super().__init__(argv, env, log, f"the face {name}")
         threading.Thread(target=self._write, name="rosreconf-face", daemon=True).start()
 
     def heard(self, said: dict[str, Any]) -> bool:
@@ -61,6 +75,12 @@ class FaceNode(Helper):
             self.asked(str(said.get("task", "")), "")
         elif kind == "refused":
             self.asked(str(said.get("task", "")), str(said.get("reason", "")))
+        elif kind == "context" and self.context_heard is not None:
+            value = said.get("value")
+            if isinstance(value, bool | str | float | int):
+                self.context_heard(str(said.get("name", "")), value)
+        elif kind == "context-error" and self.unreadable is not None:
+            self.unreadable(str(said.get("name", "")), str(said.get("reason", "")))
         else:
             return False
         return True

@@ -1,7 +1,8 @@
 """rosreconf's face on a ROS 2 graph: a node that shows a running watch and takes task requests.
 
 Run by rosreconf (``rosreconf.ros.ros2.face``) under the ROS 2 Python, as the lifecycle
-agent is: ``face_node.py /rosreconf``. It speaks JSON lines on its own channel
+agent is: ``face_node.py /rosreconf [CONTEXT_JSON] [--quiet]``. It speaks JSON lines on its own
+channel
 (``helper_channel``). rosreconf pushes, one line each, never answered::
 
     {"op": "state", "state": {"task", "configuration", "failed", "switching", "tasks",
@@ -12,6 +13,16 @@ and the node says, unasked::
 
     {"event": "switch", "task": "disc_loading"}        the task parameter was set: switch
     {"event": "refused", "task": "...", "reason": "..."}   a request it refused
+    {"event": "context", "name": "visibility", "value": 2.0}   one reading of a context topic
+    {"event": "context-error", "name": "...", "reason": "..."}  a context topic it cannot read
+
+``CONTEXT_JSON`` lists the library's context variables (``[{"name", "topic", "type",
+"field"}]``): the node subscribes to each topic with the sensor-data QoS (best effort, so it
+matches reliable and best-effort publishers alike) and says the field's value of every
+message (nested fields as ``a.b``). A NaN or infinite reading is no reading
+(``sensor_msgs/BatteryState`` says an unmeasured percentage as NaN); a field that is no
+number, boolean or string is said once as an error. With ``--quiet`` (``watch --no-face``)
+the node only reads context: no parameters, no ``/diagnostics``, no ``/rosout`` lines.
 
 The node ``/rosreconf`` (its argument) has:
 
@@ -30,7 +41,10 @@ The node ``/rosreconf`` (its argument) has:
 from __future__ import annotations
 
 import faulthandler
+import functools
+import importlib
 import json
+import math
 import queue
 import sys
 import threading
@@ -42,6 +56,7 @@ from helper_channel import Channel, take_channel
 from rcl_interfaces.msg import ParameterDescriptor, ParameterType, SetParametersResult
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
+from rclpy.qos import qos_profile_sensor_data
 
 LEVELS = {0: DiagnosticStatus.OK, 1: DiagnosticStatus.WARN, 2: DiagnosticStatus.ERROR}
 PERIOD = 1.0
@@ -58,17 +73,20 @@ def split(name: str) -> tuple[str, str]:
 class Face:
     """The node, its parameters, its publisher and what it last heard from rosreconf."""
 
-    def __init__(self, name: str, answers: Channel) -> None:
+    def __init__(self, name: str, answers: Channel, serve: bool = True) -> None:
+        """``serve``: parameters, /diagnostics and /rosout (without: it only reads context)."""
         namespace, base = split(name)
         self.node = rclpy.create_node(base, namespace=namespace)
         self.answers = answers
+        self.serve = serve
         self.state: dict[str, Any] = {}
         self.outbox: list[dict[str, Any]] = []
         self.declared = False
         self.internal = False
-        self.publisher = self.node.create_publisher(DiagnosticArray, "/diagnostics", 10)
-        self.node.add_on_set_parameters_callback(self.asked)
-        self.node.create_timer(PERIOD, self.publish)
+        if serve:
+            self.publisher = self.node.create_publisher(DiagnosticArray, "/diagnostics", 10)
+            self.node.add_on_set_parameters_callback(self.asked)
+            self.node.create_timer(PERIOD, self.publish)
 
     def descriptors(self) -> dict[str, ParameterDescriptor]:
         tasks = ", ".join(t["task"] for t in self.state.get("tasks", []))
@@ -103,6 +121,8 @@ class Face:
 
     def take(self, state: dict[str, Any]) -> None:
         """Take a state line: parameters follow it; a change is published at once."""
+        if not self.serve:
+            return
         changed = state != self.state
         self.state = state
         descriptors, values = self.descriptors(), self.values()
@@ -183,6 +203,56 @@ class Face:
             self.answers.say(self.outbox.pop(0))
 
 
+def message_class(type_name: str) -> Any:
+    """Return the message class of ``pkg/msg/Name`` (or ``pkg/Name``)."""
+    parts = type_name.split("/")
+    if len(parts) not in (2, 3) or not all(parts):
+        raise ValueError(f"not a message type: {type_name}")
+    return getattr(importlib.import_module(f"{parts[0]}.msg"), parts[-1])
+
+
+class Readings:
+    """The subscriptions to the context topics; every reading is said on the channel."""
+
+    def __init__(self, node: Any, variables: list[dict[str, str]], answers: Channel) -> None:
+        self.answers = answers
+        self.subscriptions = []
+        self.bad: set[str] = set()
+        for v in variables:
+            try:
+                kind = message_class(v["type"])
+            except (ImportError, AttributeError, ValueError) as exc:
+                self.error(v["name"], f"cannot subscribe to {v['topic']} as {v['type']}: {exc}")
+                continue
+            take = functools.partial(self.read, v)
+            sub = node.create_subscription(kind, v["topic"], take, qos_profile_sensor_data)
+            self.subscriptions.append(sub)
+
+    def error(self, name: str, reason: str) -> None:
+        if name not in self.bad:
+            self.bad.add(name)
+            self.answers.say({"event": "context-error", "name": name, "reason": reason})
+
+    def read(self, v: dict[str, str], msg: Any) -> None:
+        value = msg
+        try:
+            for part in v["field"].split("."):
+                value = getattr(value, part)
+        except AttributeError:
+            self.error(v["name"], f"{v['type']} has no field {v['field']}")
+            return
+        if isinstance(value, bool | str):
+            pass
+        elif isinstance(value, int | float):
+            value = float(value)
+            if not math.isfinite(value):
+                return  # no reading (an unmeasured BatteryState percentage is NaN)
+        else:
+            self.error(v["name"], f"{v['field']} of {v['type']} is no number, boolean or text")
+            return
+        self.answers.say({"event": "context", "name": v["name"], "value": value})
+
+
 def read_lines(into: queue.Queue[dict[str, Any] | None]) -> None:
     """Hand every line of stdin to the loop; None when it closes (rosreconf ended)."""
     for line in sys.stdin:
@@ -195,8 +265,11 @@ def main() -> int:
     """Show the watch until stdin closes (rosreconf ended) or a signal stops it."""
     faulthandler.enable()
     answers = take_channel()  # before rclpy.init: Fast DDS prints on fd 1
+    args = [a for a in sys.argv[1:] if a != "--quiet"]
+    quiet = "--quiet" in sys.argv[1:]
     rclpy.init(args=sys.argv)
-    face = Face(sys.argv[1], answers)
+    face = Face(args[0], answers, serve=not quiet)
+    readings = Readings(face.node, json.loads(args[1]) if len(args) > 1 else [], answers)
     executor = SingleThreadedExecutor()
     executor.add_node(face.node)
     inbox: queue.Queue[dict[str, Any] | None] = queue.Queue()
@@ -220,6 +293,7 @@ def main() -> int:
     except KeyboardInterrupt:
         return 0
     finally:
+        del readings
         rclpy.try_shutdown()
 
 

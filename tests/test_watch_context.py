@@ -1,0 +1,161 @@
+"""A running ``watch --ros2`` follows what the robot measures (context read live).
+
+The SUAVE-like example (docs/examples/suave): spiral_high is usable only while the water
+visibility is at least 3.25, spiral_medium 2.25. The tests' own rclpy publisher
+(tests/ros2_context_publisher.py) sends ``/water_visibility``; real rclpy stand-ins under
+Jazzy and Kilted run the configuration; what watch did is read from its JSON log, the end
+state from rclpy's own graph (tests/ros2_probe.py).
+
+One run per distro goes through every live rule in turn, each against what the publisher
+sent and when: a noisy reading crossing the bound faster than the dwell changes nothing; a
+steady drop rules spiral_high out after the dwell (not before, and within a second after),
+and the fewest-change configuration replaces it, nothing dangling; with ``--prefer cost=1``
+the better configuration is taken back once the reading recovers, once, never back and
+forth; a topic gone silent is said.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import time
+from datetime import datetime
+from pathlib import Path
+from typing import IO, Any
+
+import pytest
+from test_watch_ros2 import Watch, probe
+from test_watch_tasks import CLIENT, _heard
+from test_watch_wiring import _python
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / "docs" / "examples" / "suave"
+PUBLISHER = Path(__file__).with_name("ros2_context_publisher.py")
+DWELL = 2.0  # watch's default
+SILENCE = 3.0
+
+
+class Publisher:
+    """The tests' publisher of /water_visibility; ``send`` returns when the value went out."""
+
+    def __init__(self, python: Path, env: dict[str, str]) -> None:
+        self.process = subprocess.Popen(
+            [str(python), str(PUBLISHER), "/water_visibility"], env=env, text=True,
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+        )  # fmt: skip
+        assert self._line()["ready"] == "/water_visibility"
+
+    def _line(self) -> dict[str, Any]:
+        out: IO[str] | None = self.process.stdout
+        assert out is not None
+        return dict(json.loads(out.readline()))
+
+    def send(self, value: float) -> float:
+        """Publish ``value`` from now on; return the wall time its first message went out."""
+        self._say(str(value))
+        return float(self._line()["at"])
+
+    def silent(self) -> None:
+        self._say("silent")
+
+    def _say(self, text: str) -> None:
+        assert self.process.stdin is not None
+        self.process.stdin.write(text + "\n")
+        self.process.stdin.flush()
+
+    def stop(self) -> None:
+        self.process.kill()
+        self.process.wait(timeout=10)
+
+
+def _at(event: dict[str, Any]) -> float:
+    return datetime.fromisoformat(event["time"]).timestamp()
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])
+def test_watch_follows_the_visibility_without_flapping(
+    ros2_domain: int, tmp_path: Path, distro: str
+) -> None:
+    python = _python(distro)
+    watch = Watch(tmp_path, ros2_domain, "--library", str(EXAMPLE / "library.yaml"),
+                  "--schema", str(EXAMPLE / "schema.yaml"), "--prefer", "cost=1",
+                  "--context-silence", str(SILENCE), python=python)  # fmt: skip
+    env = {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)}
+    publisher = Publisher(python, env)
+    heard = tmp_path / "heard.jsonl"
+    argv = [str(python), str(CLIENT), "listen", str(heard)]
+    listener = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, text=True)  # fmt: skip
+    try:
+        assert listener.stdout is not None and "listening" in listener.stdout.readline()
+        publisher.send(4.0)
+        first = watch.wait("conformant")
+        assert first["configuration"]["search"] == "spiral_high"
+
+        # noise across the bound, each side held 0.5 s (under the dwell): no switch
+        before = len(watch.events())
+        for value in (3.0, 4.0) * 4:
+            publisher.send(value)
+            time.sleep(0.5)
+        time.sleep(DWELL + 1.0)
+        noisy = watch.events()[before:]
+        assert not [e for e in noisy if e["event"] in ("context", "replanned", "prefer")], noisy
+
+        # a steady drop: ruled out after the dwell, replaced by the fewest-change choice
+        before = len(watch.events())
+        dropped = publisher.send(3.0)
+        ruled = watch.wait("context", after=before)
+        assert ruled["component"] == "spiral_high" and not ruled["usable"]
+        assert ruled["reason"] == "spiral_high needs visibility >= 3.25; it is 3.0"
+        assert DWELL <= _at(ruled) - dropped <= DWELL + 1.0, _at(ruled) - dropped
+        done = watch.wait("conformant", after=before)
+        replanned = next(e for e in watch.events()[before:] if e["event"] == "replanned")
+        assert [(c["from"], c["to"]) for c in replanned["changes"]] == [
+            ("spiral_high", "spiral_medium")
+        ]
+        why = [e["message"] for e in watch.events()[before:] if e["event"] == "why"]
+        assert any("is ruled out: spiral_high needs visibility >= 3.25" in w for w in why), why
+        assert done["configuration"]["search"] == "spiral_medium"
+        # /diagnostics: the value and what it rules out, on the face's next message
+        rows = [(m["at"], s) for m in _heard(heard, "/diagnostics") for s in m["status"]
+                if s["name"] == "rosreconf: context/visibility"]  # fmt: skip
+        shown = next(at for at, s in rows if "rules out spiral_high" in s["message"])
+        assert shown - _at(ruled) <= 1.0, shown - _at(ruled)
+        row = next(s for at, s in rows if at == shown)
+        assert row["level"] == 0 and row["values"]["value"] == "3.0"
+        assert row["values"]["rules out spiral_high"] == ruled["reason"]
+        nodes = {f"/{c}" for c in done["configuration"].values()}
+        seen = probe(watch.env, ros2_domain, wait_for=nodes, until_wired=True, python=python)
+        assert "/spiral_high" not in seen["nodes"] and nodes <= set(seen["nodes"])
+        # rosreconf's face subscribes to /battery_state too, which nobody publishes here (said
+        # as context-lost); the configuration's own nodes leave nothing dangling
+        ours = {k: [x for x in v if x[0] != "/rosreconf"] for k, v in seen["dangling"].items()}
+        assert ours == {"calls": [], "subscriptions": []}, seen["dangling"]
+
+        # the reading recovers: --prefer takes the better configuration back, once
+        before = len(watch.events())
+        recovered = publisher.send(4.0)
+        usable = watch.wait("context", after=before)
+        assert usable["component"] == "spiral_high" and usable["usable"]
+        assert _at(usable) - recovered >= DWELL
+        back = watch.wait("conformant", after=before)
+        moved = [e for e in watch.events()[before:] if e["event"] == "prefer"]
+        assert len(moved) == 1 and moved[0]["metric"] < moved[0]["previous_metric"]
+        assert back["configuration"]["search"] == "spiral_high"
+        time.sleep(DWELL + 1.0)
+        after = watch.events()[before:]
+        assert [e["event"] for e in after].count("prefer") == 1  # no back and forth
+        assert not [e for e in after if e["event"] in ("replanned", "failed")], after
+
+        # silence: said, and the last value kept (the default): nothing changes
+        before = len(watch.events())
+        publisher.silent()
+        lost = watch.wait("context-lost", after=before, timeout=SILENCE + 30)
+        assert lost["name"] == "visibility" and lost["policy"] == "keep"
+        assert "its last value 4.0 is kept" in lost["message"]
+        time.sleep(DWELL + 1.0)
+        assert not [e for e in watch.events()[before:] if e["event"] == "replanned"]
+    finally:
+        listener.kill()
+        publisher.stop()
+        watch.stop()
