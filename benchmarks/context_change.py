@@ -35,7 +35,9 @@ COLUMNS = ("decide", "conformant")
 GOALS = {"context-cold": ("conformant", DWELL + 1.0),
          "context-standby": ("conformant", DWELL + 1.0)}  # fmt: skip
 KINDS = tuple(GOALS)
-ALTERNATIVES = {"spiral_medium", "spiral_low", "controller_slow"}
+ALTERNATIVE = "spiral_medium"
+"""What replaces spiral_high (the fewest changes, then the library's order): with standby,
+the row waits until it is parked configured."""
 
 
 def one_change(kind: str, tmp: Path) -> dict[str, float]:
@@ -51,8 +53,8 @@ def one_change(kind: str, tmp: Path) -> dict[str, float]:
     if kind == "context-standby":
         text = library.read_text()
         library = tmp / "suave_managed.yaml"
-        library.write_text(text.replace("    abstraction:", "    ros: {lifecycle: true}\n"
-                                        "    abstraction:"))  # fmt: skip
+        managed = "    ros: {package: suave_mini, executable: node, lifecycle: true}\n"
+        library.write_text(text.replace("    abstraction:", managed + "    abstraction:"))
         args.append("--standby")
     domain = ros2_harness.free_domain()
     env["ROS_DOMAIN_ID"] = str(domain)
@@ -91,7 +93,7 @@ def one_change(kind: str, tmp: Path) -> dict[str, float]:
 
 def _parked(events: list[dict[str, Any]]) -> bool:
     configured = {e["component"] for e in events if e.get("transition") == "configure"}
-    return configured >= ALTERNATIVES
+    return ALTERNATIVE in configured
 
 
 def context(runs: int, kinds: tuple[str, ...] = KINDS) -> dict[str, Any]:
