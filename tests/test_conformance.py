@@ -12,7 +12,7 @@ from typing import Any
 
 from rosreconf.cli.app import app
 from rosreconf.errors import Severity
-from rosreconf.formats.loader import Source, check_loaded, load_bundled, load_sources
+from rosreconf.formats.loader import Source, check_loaded, load_bundled, load_paths, load_sources
 from rosreconf.model import Component, Configuration, RosLaunch
 from rosreconf.model.wiring import interface_live_name, node_live_name
 from rosreconf.ros.conformance import compare
@@ -340,3 +340,23 @@ def test_a_node_read_with_a_lifecycle_state_is_managed_whatever_its_listing_show
         nodes["NSM3"] = replace(nodes["NSM3"], lifecycle_state=state)
         found = compare(NOMINAL, lib, SCHEMA, _ros2(nodes.values())).findings
         assert [f.code for f in found] == ([code] if code else []), state
+
+
+def test_a_node_publishing_a_declared_context_topic_is_the_sensor_not_an_extra_node() -> None:
+    """The SUAVE-like example declares /water_visibility: the node publishing it is where
+    context is read from, not part of the configuration, and no finding; any other node
+    outside the configuration is still an extra node."""
+    example = Path(__file__).resolve().parent.parent / "docs" / "examples" / "suave"
+    loaded = load_paths([example / "library.yaml", example / "schema.yaml"])
+    lib, (schema,) = loaded.library, loaded.schemas
+    config = Configuration.of(schema.name, schema.nominal, schema.graph.roles)
+    nodes = [
+        LiveNode("/spiral_high", None, None, ("/search_path",), alive=True),
+        LiveNode("/controller_fast", None, None, ("/cmd_vel",), ("/search_path",), alive=True),
+        LiveNode("/thrusters", None, None, (), ("/cmd_vel",), alive=True),
+    ]
+    assert compare(config, lib, schema, _ros2(nodes)).ok
+    sensor = LiveNode("/visibility_sensor", None, None, ("/water_visibility",), alive=True)
+    stranger = LiveNode("/stranger", None, None, ("/sonar",), alive=True)
+    result = compare(config, lib, schema, _ros2([*nodes, sensor, stranger]))
+    assert [(f.code, f.live_name) for f in result.findings] == [("extra-node", "/stranger")]

@@ -159,3 +159,31 @@ def test_watch_follows_the_visibility_without_flapping(
         listener.kill()
         publisher.stop()
         watch.stop()
+
+
+def test_without_the_face_context_is_still_read_by_a_node_of_its_own(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """``--no-face``: no /rosreconf node, but /rosreconf_context reads the topics; a drop
+    below two bounds at once moves the search to the one path still usable."""
+    python = _python("jazzy")
+    watch = Watch(tmp_path, ros2_domain, "--library", str(EXAMPLE / "library.yaml"),
+                  "--schema", str(EXAMPLE / "schema.yaml"), "--no-face", "--dwell", "1",
+                  python=python)  # fmt: skip
+    publisher = Publisher(python, {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)})
+    try:
+        publisher.send(4.0)
+        watch.wait("conformant")
+        before = len(watch.events())
+        publisher.send(2.0)
+        done = watch.wait("conformant", after=before)
+        said = watch.events()[before:]
+        ruled = {e["component"] for e in said if e["event"] == "context" and not e["usable"]}
+        assert ruled == {"spiral_high", "spiral_medium"}
+        assert done["configuration"]["search"] == "spiral_low"
+        seen = probe(watch.env, ros2_domain, wait_for={"/spiral_low", "/rosreconf_context"},
+                     python=python)  # fmt: skip
+        assert "/rosreconf_context" in seen["nodes"] and "/rosreconf" not in seen["nodes"]
+    finally:
+        publisher.stop()
+        watch.stop()
