@@ -25,7 +25,7 @@ from typing import IO, Any
 
 import pytest
 from test_watch_ros2 import Watch, probe
-from test_watch_tasks import CLIENT, _heard
+from test_watch_tasks import _heard, listen
 from test_watch_wiring import _python
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -83,11 +83,8 @@ def test_watch_follows_the_visibility_without_flapping(
     env = {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)}
     publisher = Publisher(python, env)
     heard = tmp_path / "heard.jsonl"
-    argv = [str(python), str(CLIENT), "listen", str(heard)]
-    listener = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
-                                stderr=subprocess.DEVNULL, text=True)  # fmt: skip
+    listener = listen(python, env, heard)
     try:
-        assert listener.stdout is not None and "listening" in listener.stdout.readline()
         publisher.send(4.0)
         first = watch.wait("conformant")
         assert first["configuration"]["search"] == "spiral_high"

@@ -42,6 +42,16 @@ def _client(python: Path, env: dict[str, str], *args: str) -> dict[str, Any]:
     return dict(json.loads(out.stdout.splitlines()[-1]))
 
 
+def listen(python: Path, env: dict[str, str], heard: Path) -> subprocess.Popen[str]:
+    """Start the tests' listener to /diagnostics and /rosout, writing to ``heard``; return
+    once it listens."""
+    argv = [str(python), str(CLIENT), "listen", str(heard)]
+    listener = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, text=True)  # fmt: skip
+    assert listener.stdout is not None and "listening" in listener.stdout.readline()
+    return listener
+
+
 def _heard(path: Path, topic: str) -> list[dict[str, Any]]:
     if not path.exists():
         return []
@@ -72,11 +82,8 @@ def test_setting_task_switches_to_disc_loading_with_the_fewest_changes(
                   str(_dc_arm_file(tmp_path)), python=python)  # fmt: skip
     env = {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)}
     heard = tmp_path / "heard.jsonl"
-    argv = [str(python), str(CLIENT), "listen", str(heard)]
-    listener = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE,
-                                stderr=subprocess.DEVNULL, text=True)  # fmt: skip
+    listener = listen(python, env, heard)
     try:
-        assert listener.stdout is not None and "listening" in listener.stdout.readline()
         first = watch.wait("conformant")
         assert first["task"] == "object_repositioning"
         params = _client(python, env, "get", "/rosreconf")
