@@ -6,7 +6,9 @@ Once it is ``conformant`` (and, with standby, every servo-arm alternative is con
 the tests' own rclpy client (tests/ros2_face_client.py) sets the face's ``task`` parameter
 to ``disc_loading``. Times, from the request (the client's call, by its own clock):
 
-    answer      the parameter's answer
+    answer      the parameter's answer (the client sends the request again after 1.5 s
+                unanswered: a service may drop its answer to a client it has not matched
+                both ways yet; ``sent`` in each run says how many went)
     decide      request -> the ``task`` event (the next step of the watcher)
     conformant  request -> ``conformant`` for disc_loading (goal: <= 2 s standby, <= 4 s cold)
 
@@ -50,7 +52,12 @@ def one_switch(kind: str, tmp: Path) -> dict[str, float]:
     log = tmp / "watch.jsonl"
     env = ros2_harness.dds_env()
     env.pop("CYCLONEDDS_URI", None)
-    env.update(ROSRECONF_ROS2_PYTHON=str(JAZZY), HOME=str(tmp), ROS_LOG_DIR=str(tmp))
+    # UDP, as the tests' processes (tests/conftest.py) and the face: no shared-memory port
+    # file of another process's to wait on in rcl_node_init (docs/live.md)
+    env.setdefault("FASTDDS_BUILTIN_TRANSPORTS", "UDPv4")
+    # TMPDIR: the watch's work dir (its face.log) under tmp, read when the client fails
+    env.update(ROSRECONF_ROS2_PYTHON=str(JAZZY), HOME=str(tmp), ROS_LOG_DIR=str(tmp),
+               TMPDIR=str(tmp))  # fmt: skip
     config = tmp / "dc_arm.json"
     config.write_text(json.dumps({"format": "rosreconf/configuration", "version": 1,
                                   "configurations": {"object_repositioning": DC_ARM}}))  # fmt: skip
@@ -77,22 +84,41 @@ def one_switch(kind: str, tmp: Path) -> dict[str, float]:
             _wait(log, proc, _servo_parked, UP_TIMEOUT)
         before = len(_events(log))
         ask = [str(JAZZY), str(CLIENT), "set", "/rosreconf", "disc_loading"]
-        out = subprocess.run(ask, env=env, capture_output=True, text=True, timeout=120,
-                             check=True)  # fmt: skip
+        try:
+            out = subprocess.run(ask, env=env, capture_output=True, text=True, timeout=120,
+                                 check=True)  # fmt: skip
+        except subprocess.SubprocessError as exc:  # what the client and the face said
+            raise RuntimeError(f"{exc}; client: {_tail(getattr(exc, 'stderr', None))}; "
+                               f"face: {_tail(_face_log(tmp))}") from exc  # fmt: skip
         said = json.loads(out.stdout.splitlines()[-1])
         asked = said["answered_at"] - said["seconds"]
         if kind == "refusal":
             if said["successful"]:
                 raise RuntimeError("the switch was taken with NSM3 failed")
-            return {"answer": said["seconds"], "decide": 0.0, "conformant": 0.0}
+            return {"answer": said["seconds"], "decide": 0.0, "conformant": 0.0,
+                    "sent": said["sent"]}  # fmt: skip
         _wait(log, proc, lambda ev: any(e["event"] == "conformant" and e.get("task") ==
                                         "disc_loading" for e in ev[before:]), 120.0)  # fmt: skip
         after = _events(log)[before:]
         task = next(_at(e) for e in after if e["event"] == "task")
         done = next(_at(e) for e in after if e["event"] == "conformant")
-        return {"answer": said["seconds"], "decide": task - asked, "conformant": done - asked}
+        return {"answer": said["seconds"], "decide": task - asked, "conformant": done - asked,
+                "sent": said["sent"]}  # fmt: skip
     finally:
         stop_watch(proc, 10.0)
+
+
+def _tail(text: str | bytes | None) -> str:
+    if isinstance(text, bytes):
+        text = text.decode(errors="replace")
+    return (text or "").strip()[-300:]
+
+
+def _face_log(tmp: Path) -> str:
+    """Return what the face printed besides its decisions (rclpy's warnings, a traceback)."""
+    logs = sorted(tmp.glob("rosreconf-*/face.log"))
+    text = logs[-1].read_text(errors="replace") if logs else ""
+    return "\n".join(x for x in text.splitlines() if not x.startswith("["))
 
 
 def _servo_parked(events: list[dict[str, Any]]) -> bool:
@@ -116,7 +142,7 @@ def repeated(
                 try:
                     done.append(one(kind, Path(tmp)))
                 except (RuntimeError, subprocess.SubprocessError) as exc:
-                    done.append({"error": str(exc)[:300]})
+                    done.append({"error": str(exc)[:1000]})
         good = [r for r in done if "error" not in r]
         medians = {c: statistics.median(r[c] for r in good) for c in columns} if good else {}
         column, goal = goals[kind]

@@ -21,7 +21,7 @@ from typing import Any
 
 import pytest
 from test_tasks import DC_ARM, DL, OR, SERVO, _brute_force, _on_dc_arm
-from test_watch_ros2 import Watch, probe
+from test_watch_ros2 import Watch, _env, probe
 from test_watch_wiring import _python
 
 CLIENT = Path(__file__).with_name("ros2_face_client.py")
@@ -92,8 +92,10 @@ def test_setting_task_switches_to_disc_loading_with_the_fewest_changes(
         assert params["configuration"]["read_only"] and params["failed"]["read_only"]
         assert "elbow_joint=NDC3" in params["configuration"]["value"]
         before = len(watch.events())
-        answer = _client(python, env, "set", "/rosreconf", "disc_loading")
-        assert answer["successful"], answer
+        # asked twice, the second right after the first answer (a client resends when an
+        # answer is lost): both taken, one switch
+        answer = _client(python, env, "set", "/rosreconf", "disc_loading", "again")
+        assert answer["successful"] and answer["again"]["successful"], answer
         done = watch.wait("conformant", after=before)
         after = watch.events()[before:]
         (task,) = [e for e in after if e["event"] == "task"]
@@ -179,3 +181,55 @@ def test_with_nsm3_failed_the_switch_is_refused_and_nothing_stops(
         assert not kinds & {"task", "stop", "launch", "replanned"}, kinds
     finally:
         watch.stop(signal.SIGKILL)
+
+
+LOSES_FIRST_ANSWER = """
+import json, sys
+import rclpy
+from rcl_interfaces.msg import SetParametersResult
+from rcl_interfaces.srv import SetParameters
+
+rclpy.init()
+node = rclpy.create_node("rosreconf", start_parameter_services=False)
+asked = []
+
+def answer(request, response):
+    asked.append(request.parameters[0].value.string_value)
+    print(json.dumps({"asked": asked[-1]}), flush=True)
+    response.results = [SetParametersResult(successful=True)]
+    return response
+
+service = node.create_service(SetParameters, "/rosreconf/set_parameters", answer)
+send = service.send_response
+
+def lose_first(response, header):
+    if len(asked) > 1:
+        send(response, header)
+
+service.send_response = lose_first
+print(json.dumps({"ready": True}), flush=True)
+rclpy.spin(node)
+"""
+"""A face stand-in whose first answer is lost, as a Fast DDS service loses its answer to a
+client it has not matched both ways yet (rclpy: "failed to send response (timeout)")."""
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "kilted"])
+def test_rosreconf_task_asks_again_when_the_answer_is_lost(
+    ros2_domain: int, tmp_path: Path, distro: str
+) -> None:
+    python = _python(distro)
+    env = {**_env(tmp_path, python), "ROS_DOMAIN_ID": str(ros2_domain)}
+    argv = [str(python), "-c", LOSES_FIRST_ANSWER]
+    face = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                            text=True)  # fmt: skip
+    try:
+        assert face.stdout is not None and "ready" in face.stdout.readline()
+        ask = [sys.executable, "-m", "rosreconf", "task", "--domain", str(ros2_domain)]
+        out = subprocess.run([*ask, "disc_loading"], env=env, capture_output=True, text=True,
+                             timeout=120)  # fmt: skip
+        assert out.returncode == 0 and "took the switch" in out.stdout, (out.stdout, out.stderr)
+    finally:
+        face.kill()
+    asked = [json.loads(x)["asked"] for x in face.communicate()[0].splitlines() if "asked" in x]
+    assert asked[:2] == ["disc_loading", "disc_loading"], asked

@@ -27,11 +27,13 @@ def task_command(
 ) -> None:
     """Ask a running watch --ros2 to switch task; exit 0 taken, 1 refused (why), 3 no answer.
 
-    Sets the task parameter of the watch's face (one SetParameters call, what ``ros2 param
-    set`` does, through rosreconf's ROS 2 Python). The watch decides at once from what it can
-    reach now and answers; the switch runs after the answer, and its JSON log says ``task``,
-    then ``conformant``. Refused (exit 1, the reason on stdout): not one of the watch's
-    tasks, no configuration of it without the failed components, or a switch under way.
+    Sets the task parameter of the watch's face (a SetParameters call, what ``ros2 param
+    set`` does, through rosreconf's ROS 2 Python; sent again after 1.5 s unanswered, as DDS
+    can lose the answer to a client the face has not matched yet). The watch decides at once
+    from what it can reach now and answers; the switch runs after the answer, and its JSON
+    log says ``task``, then ``conformant``. Refused (exit 1, the reason on stdout): not one
+    of the watch's tasks, no configuration of it without the failed components, or a switch
+    to another task under way (a switch to this one under way is taken).
     Exit 3: no ROS 2 Python, or no face answered on the domain within --timeout.
     """
     if not is_own_face(face_name):

@@ -126,8 +126,9 @@ TASK_SCRIPT = Path(__file__).parent / "scripts" / "task_client.py"
 def ask_switch(face: str, task: str, env: Mapping[str, str], timeout: float) -> tuple[bool, str]:
     """Ask the face ``face`` of a running watch to switch to ``task``; return (taken, reason).
 
-    Runs ``scripts/task_client.py`` under the ROS 2 Python (one ``SetParameters`` call): no
-    ROS 2 tools needed. ``env`` names the domain (``ROS_DOMAIN_ID``).
+    Runs ``scripts/task_client.py`` under the ROS 2 Python (a ``SetParameters`` call, sent
+    again after 1.5 s unanswered): no ROS 2 tools needed. ``env`` names the domain
+    (``ROS_DOMAIN_ID``).
 
     Raises:
         ExternalToolError: no ROS 2 Python, or no face answered within ``timeout`` seconds.

@@ -152,7 +152,10 @@ class Face:
         return None
 
     def asked(self, params: list[Parameter]) -> SetParametersResult:
-        """Decide a parameter set from the table pushed last; say the switch after answering."""
+        """Decide a parameter set from the table pushed last; say the switch after answering.
+
+        A set of the task a switch is under way to is answered as taken and not said again:
+        a client resends when its answer was lost (the service had not matched it both ways)."""
         if self.internal:
             return SetParametersResult(successful=True)
         for p in params:
@@ -160,6 +163,8 @@ class Face:
                 return SetParametersResult(successful=False, reason=f"{p.name} is read-only")
             if p.value == self.state.get("task") and not self.state.get("switching"):
                 return SetParametersResult(successful=True)  # the task running now: no change
+            if p.value == self.state.get("switching"):  # a repeat (a client's resend whose
+                return SetParametersResult(successful=True)  # first answer was lost): taken
             why = self.verdict(str(p.value))
             if why is not None:
                 self.outbox.append({"event": "refused", "task": str(p.value), "reason": why})
