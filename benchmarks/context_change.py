@@ -47,6 +47,7 @@ def one_change(kind: str, tmp: Path) -> dict[str, float]:
     log = tmp / "watch.jsonl"
     env = ros2_harness.dds_env()
     env.pop("CYCLONEDDS_URI", None)
+    env.setdefault("FASTDDS_BUILTIN_TRANSPORTS", "UDPv4")  # as the tests' processes and the face
     env.update(ROSRECONF_ROS2_PYTHON=str(JAZZY), HOME=str(tmp), ROS_LOG_DIR=str(tmp))
     library = EXAMPLE / "library.yaml"
     args = ["--schema", str(EXAMPLE / "schema.yaml"), "--dwell", f"{DWELL:g}"]
