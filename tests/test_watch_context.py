@@ -11,7 +11,9 @@ sent and when: a noisy reading crossing the bound faster than the dwell changes 
 steady drop rules spiral_high out after the dwell (not before, and within a second after),
 and the fewest-change configuration replaces it, nothing dangling; with ``--prefer cost=1``
 the better configuration is taken back once the reading recovers, once, never back and
-forth; a topic gone silent is said.
+forth; a topic gone silent is said. Two more runs on Jazzy: ``--no-face`` reads context
+through a node of its own, and ``--context-lost fail`` rules out what a silent topic
+conditions, keeping the running configuration when nothing is left.
 """
 
 from __future__ import annotations
@@ -181,6 +183,59 @@ def test_without_the_face_context_is_still_read_by_a_node_of_its_own(
         seen = probe(watch.env, ros2_domain, wait_for={"/spiral_low", "/rosreconf_context"},
                      python=python)  # fmt: skip
         assert "/rosreconf_context" in seen["nodes"] and "/rosreconf" not in seen["nodes"]
+    finally:
+        publisher.stop()
+        watch.stop()
+
+
+def test_with_context_lost_fail_a_silent_topic_rules_its_components_out(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """``--context-lost fail``: a topic never heard, or gone silent, fails the conditions on
+    it. /battery_state is never published, so controller_fast is replanned away; when
+    /water_visibility falls silent every search path is ruled out, no configuration is left,
+    and the running one is kept (nothing stopped)."""
+    python = _python("jazzy")
+    watch = Watch(tmp_path, ros2_domain, "--library", str(EXAMPLE / "library.yaml"),
+                  "--schema", str(EXAMPLE / "schema.yaml"), "--context-lost", "fail",
+                  "--context-silence", "2", "--dwell", "1", python=python)  # fmt: skip
+    publisher = Publisher(python, {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)})
+    try:
+        publisher.send(4.0)
+        lost = watch.wait("context-lost")
+        assert (lost["name"], lost["policy"]) == ("battery", "fail"), lost
+        assert "taken to fail (--context-lost fail)" in lost["message"]
+        ruled = watch.wait("context")
+        assert ruled["component"] == "controller_fast" and not ruled["usable"]
+        assert ruled["reason"] == (
+            "controller_fast needs battery >= 0.3; battery is silent (--context-lost fail)"
+        )
+        replanned = watch.wait("replanned")
+        assert [(c["from"], c["to"]) for c in replanned["changes"]] == [
+            ("controller_fast", "controller_slow")
+        ]
+        slow = watch.wait("conformant", after=watch.events().index(replanned))
+        assert slow["configuration"] == {
+            "search": "spiral_high",
+            "control": "controller_slow",
+            "thrusters": "thrusters",
+        }
+
+        before = len(watch.events())
+        publisher.silent()
+        watch.wait("no-configuration", after=before, timeout=30)
+        said = watch.events()[before:]
+        gone = [e for e in said if e["event"] == "context-lost"]
+        assert [(e["name"], e["policy"]) for e in gone] == [("visibility", "fail")], gone
+        ruled_out = {e["component"] for e in said if e["event"] == "context" and not e["usable"]}
+        assert ruled_out == {"spiral_high", "spiral_medium", "spiral_low"}, said
+        time.sleep(2.0)  # another look or two: still nothing stopped, nothing said again
+        said = watch.events()[before:]
+        assert not [e for e in said if e["event"] in ("replanned", "stopped")], said
+        assert [e["event"] for e in said].count("no-configuration") == 1, said
+        seen = probe(watch.env, ros2_domain, wait_for={"/spiral_high", "/controller_slow"},
+                     python=python)  # fmt: skip
+        assert {"/spiral_high", "/controller_slow", "/thrusters"} <= set(seen["nodes"])
     finally:
         publisher.stop()
         watch.stop()
