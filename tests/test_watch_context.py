@@ -12,8 +12,9 @@ steady drop rules spiral_high out after the dwell (not before, and within a seco
 and the fewest-change configuration replaces it, nothing dangling; with ``--prefer cost=1``
 the better configuration is taken back once the reading recovers, once, never back and
 forth; a topic gone silent is said. Two more runs on Jazzy: ``--no-face`` reads context
-through a node of its own, and ``--context-lost fail`` rules out what a silent topic
-conditions, keeping the running configuration when nothing is left.
+through a node of its own; ``--context-lost fail`` rules out what a silent topic
+conditions, keeping the running configuration when nothing is left; a NaN is no reading, and
+a topic whose type cannot be imported is said.
 """
 
 from __future__ import annotations
@@ -236,6 +237,46 @@ def test_with_context_lost_fail_a_silent_topic_rules_its_components_out(
         seen = probe(watch.env, ros2_domain, wait_for={"/spiral_high", "/controller_slow"},
                      python=python)  # fmt: skip
         assert {"/spiral_high", "/controller_slow", "/thrusters"} <= set(seen["nodes"])
+    finally:
+        publisher.stop()
+        watch.stop()
+
+
+def test_a_nan_reading_is_no_reading_and_an_unreadable_topic_is_said(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """A NaN is no reading (an unmeasured ``BatteryState.percentage`` is NaN): a topic that
+    sends only NaN falls silent, its last value kept, and nothing switches. A context whose
+    message type this ROS 2 Python cannot import is said once, as ``context-error``."""
+    library = tmp_path / "library.yaml"
+    text = (EXAMPLE / "library.yaml").read_text()
+    battery = next(line for line in text.splitlines() if "{name: battery," in line)
+    depth = "  - {name: depth, topic: /depth, type: rosreconf_test_msgs/msg/Depth, field: data}"
+    library.write_text(text.replace(battery, f"{battery}\n{depth}"))
+    python = _python("jazzy")
+    watch = Watch(tmp_path, ros2_domain, "--library", str(library),
+                  "--schema", str(EXAMPLE / "schema.yaml"), "--context-silence", "2",
+                  python=python)  # fmt: skip
+    publisher = Publisher(python, {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)})
+    try:
+        publisher.send(4.0)
+        error = watch.wait("context-error")
+        assert error["name"] == "depth"
+        assert "cannot subscribe to /depth as rosreconf_test_msgs/msg/Depth" in error["message"]
+        up = watch.wait("conformant")
+        assert up["configuration"]["search"] == "spiral_high"
+
+        before = len(watch.events())
+        nan = publisher.send(float("nan"))
+        lost = watch.wait("context-lost", after=before, timeout=30)
+        while lost["name"] != "visibility":  # battery and depth, never heard, may come first
+            lost = watch.wait("context-lost", after=watch.events().index(lost) + 1, timeout=30)
+        assert "its last value 4.0 is kept" in lost["message"], lost
+        assert _at(lost) - nan >= 2.0 - 0.2  # silent since the last real reading (10 Hz)
+        time.sleep(DWELL + 1.0)
+        said = watch.events()[before:]
+        assert not [e for e in said if e["event"] in ("context", "replanned")], said
+        assert [e["event"] for e in watch.events()].count("context-error") == 1
     finally:
         publisher.stop()
         watch.stop()
