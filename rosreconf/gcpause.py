@@ -10,6 +10,11 @@ What is still alive at the end (the loaded model, a compiled instance, an answer
 generation, and the first allocation after re-enabling it would walk them all (0.02-0.03
 CPU s after compiling 1000 roles x 10). Frozen objects are still freed by reference
 counting; only a reference cycle made during the pause would outlive its use.
+
+A process that runs on (``watch``) freezes no more once it is set up (``stop_freezing``):
+``gc.freeze`` also freezes the cyclic garbage not collected yet, made before the pause
+(networkx graphs are cycles: each ``compare`` builds one), and a frozen cycle is never freed.
+Each repair's replan pauses the collector, and so froze 100-300 KiB more for good.
 """
 
 from __future__ import annotations
@@ -18,13 +23,21 @@ import contextlib
 import gc
 from collections.abc import Iterator
 
+_freezing = [True]
+
+
+def stop_freezing() -> None:
+    """Have later pauses re-enable the collector without freezing (a long-running process,
+    once it is set up: see the module docstring)."""
+    _freezing[0] = False
+
 
 @contextlib.contextmanager
 def paused_gc() -> Iterator[None]:
     """Disable the cyclic collector for the block, then freeze what it built and re-enable.
 
     Nested pauses are no-ops: only the outermost one (the collector was enabled when it
-    began) freezes and re-enables.
+    began) freezes and re-enables. After ``stop_freezing`` it only re-enables.
     """
     was = gc.isenabled()
     gc.disable()
@@ -32,5 +45,6 @@ def paused_gc() -> Iterator[None]:
         yield
     finally:
         if was:
-            gc.freeze()
+            if _freezing[0]:
+                gc.freeze()
             gc.enable()

@@ -33,6 +33,7 @@ from rosreconf.cli.common import (
 from rosreconf.cli.console import stderr
 from rosreconf.cli.stopping import stop_on_signals
 from rosreconf.errors import ExitCode, ExternalToolError, UsageError
+from rosreconf.gcpause import stop_freezing
 from rosreconf.model import ComponentLibrary
 from rosreconf.procs import private_workdir
 from rosreconf.render.reports.watch import event_json, event_line
@@ -320,6 +321,7 @@ def watch_command(
                 {"configuration": config.shown},
             )
         )
+        stop_freezing()  # it runs on: a pause's freeze would keep the garbage cycles of then
         check = poll(watcher, interval, once=once)
         if signals.signum is not None:
             raise typer.Exit(128 + signals.signum)
