@@ -111,7 +111,10 @@ def test_with_prefer_after_watch_returns_to_the_configuration_it_left_and_holds_
         hold = watch.wait("hold", after=before)
         assert (hold["component"], hold["seconds"]) == ("NSM3", 6)  # held again: twice as long
         assert watch.wait("conformant", after=before)["configuration"]["elbow_joint"] == "NDC3"
-        returns = [e for e in watch.events() if e["event"] == "return"]
-        assert len(returns) == 1  # one return so far: the second hold is not over
+        # no return since the second kill: its hold (6 s) is not over. Counted from the kill,
+        # not from the start: a stand-in a loaded host starves can vanish from the graph and
+        # be repaired and returned from on its own (fresh clone fc10, load 49)
+        returns = [e for e in watch.events()[before:] if e["event"] == "return"]
+        assert returns == [], returns
     finally:
         watch.stop()
