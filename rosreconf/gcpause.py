@@ -23,13 +23,14 @@ import contextlib
 import gc
 from collections.abc import Iterator
 
-_freezing = [True]
+_freezing = True
 
 
 def stop_freezing() -> None:
     """Have later pauses re-enable the collector without freezing (a long-running process,
     once it is set up: see the module docstring)."""
-    _freezing[0] = False
+    global _freezing
+    _freezing = False
 
 
 @contextlib.contextmanager
@@ -45,6 +46,6 @@ def paused_gc() -> Iterator[None]:
         yield
     finally:
         if was:
-            if _freezing[0]:
+            if _freezing:
                 gc.freeze()
             gc.enable()

@@ -31,7 +31,7 @@ def _cycle_made_in_a_pause() -> weakref.ref[_Node]:
 @pytest.fixture
 def freezing(monkeypatch: pytest.MonkeyPatch) -> None:
     """Each test starts freezing, as every command does, and leaves that as it was."""
-    monkeypatch.setattr(gcpause, "_freezing", [True])
+    monkeypatch.setattr(gcpause, "_freezing", True)
 
 
 @pytest.mark.usefixtures("freezing")
