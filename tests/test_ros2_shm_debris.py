@@ -82,25 +82,31 @@ def test_a_team_executable_stuck_on_a_broken_port_is_named_with_the_file(
     ros2_domain: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The team's executables keep Fast DDS's default transports: they get stuck, and watch
-    names the file each waits on and what to do, instead of "launched but not running"."""
+    names the file each waits on and what to do, instead of "launched but not running".
+
+    It runs in a /dev/shm of its own with a broken file for every port the team can take: on
+    the host's /dev/shm a port file another participant left (live, or dead and reusable) was
+    skipped by ``broken_ports``, so one of the 13 came up (CI, stop 52: NSM1 was not missing).
+    """
     from test_watch_wiring import _ament_prefix, _python
 
     monkeypatch.delenv("FASTDDS_BUILTIN_TRANSPORTS")
     prefix = _ament_prefix(tmp_path, _python("jazzy"))
-    with broken_ports() as made:
-        # --settle 5: the stuck processes never come up, so the 30 s default only waited
-        watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--settle", "5",
-                      stand_ins=False, env={"AMENT_PREFIX_PATH": str(prefix)})  # fmt: skip
-        try:
-            said = watch.wait("missing")
-            while "shared-memory" not in said["message"]:  # said again once the file is seen
-                said = watch.wait("missing", after=watch.events().index(said) + 1)
-        finally:
-            watch.stop(signal.SIGKILL)
-        assert sorted(said["components"]) == sorted(NOMINAL)
-        named = [str(p) for p in made if str(p) in said["message"]]
-        assert named and all(p.startswith(str(SHM / "fastrtps_port")) for p in named), said
-        assert f"rm {named[0]}" in said["message"]
+    planted = [f"/dev/shm/{kind}_port{port}" for port in PORTS for kind in ("fastrtps", "fastdds")]
+    wrap = _private_shm("; ".join(f": > {path}" for path in planted))
+    # --settle 5: the stuck processes never come up, so the 30 s default only waited
+    watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--settle", "5",
+                  stand_ins=False, env={"AMENT_PREFIX_PATH": str(prefix)}, wrap=wrap)  # fmt: skip
+    try:
+        said = watch.wait("missing")
+        while "shared-memory" not in said["message"]:  # said again once the file is seen
+            said = watch.wait("missing", after=watch.events().index(said) + 1)
+    finally:
+        watch.stop(signal.SIGKILL)
+    assert sorted(said["components"]) == sorted(NOMINAL)
+    named = [path for path in planted if path in said["message"]]
+    assert named and all(p.startswith("/dev/shm/fastrtps_port") for p in named), said
+    assert f"rm {named[0]}" in said["message"]
 
 
 PRIVATE_SHM = """
