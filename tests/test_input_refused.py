@@ -224,3 +224,50 @@ def test_a_number_is_quoted_as_written_not_as_read(
     result = runner.invoke(app, ["validate"])
     assert result.exit_code == 1
     assert "failure_probability' is number '1.50', which is out of range" in result.stdout
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["enumerate", "--best", "--objective", "cots=1"],
+        ["plan", "--fail", "NSM3", "--objective", "cots=1"],
+        [
+            "plan",
+            "--switch-to",
+            "disc_loading",
+            "--only",
+            "object_repositioning",
+            "--objective",
+            "cots=1",
+        ],
+        ["render-pddl", "-o", "{out}", "--fail", "NSM3", "--objective", "cots=1"],
+        ["watch", "--only", "object_repositioning", "--prefer", "cots=1"],
+    ],
+)
+def test_a_misspelt_metric_is_refused_not_weighed_zero(
+    runner: CliRunner, tmp_path: Path, command: list[str]
+) -> None:
+    """A metric no component carries would weigh 0 everywhere: the choice would silently fall
+    to the other rules. It is refused as ``simulate --pareto`` refuses one, naming the
+    library's metrics (read here from the YAML itself), and nothing is written or started."""
+    import yaml
+
+    out = tmp_path / "pddl"
+    argv = [arg.replace("{out}", str(out)) for arg in command]
+    result = runner.invoke(app, argv)
+    assert result.exit_code == 2, result.output
+    flag = "--prefer" if "--prefer" in argv else "--objective"
+    known = sorted(
+        {
+            metric
+            for path in (REPO / "libraries").glob("*.yaml")
+            for component in yaml.safe_load(path.read_text())["components"]
+            for metric in component.get("metrics", {})
+        }
+    )
+    assert known and "cots" not in known
+    assert result.stderr.strip() == (
+        f"rosreconf: error: {flag} cots=1: unknown metric 'cots' "
+        f"(the library's: {', '.join(known)})"
+    )
+    assert not out.exists()  # render-pddl made no folder for a refused command

@@ -98,18 +98,13 @@ def loop_spec(
     return spec, tuple(unity)
 
 
-def library_metrics(library: ComponentLibrary) -> frozenset[str]:
-    """Return the metric names some component of ``library`` carries."""
-    return frozenset(m for c in library for m in c.metrics)
-
-
 def check_metrics(library: ComponentLibrary, names: Iterable[str]) -> tuple[str, ...]:
     """Return ``names`` if each is simulated or a library metric.
 
     Raises:
         UsageError: a name is neither.
     """
-    known = set(METRICS) | library_metrics(library)
+    known = set(METRICS) | library.metrics
     out = tuple(names)
     for name in out:
         if name not in known:

@@ -15,6 +15,7 @@ import typer
 
 from rosreconf.errors import UsageError
 from rosreconf.formats.selection import Selection, select
+from rosreconf.model import ComponentLibrary
 
 __all__ = [  # the input the options select, then the options
     "ConfigurationOption",
@@ -243,11 +244,18 @@ ObjectiveOption = Annotated[
 ]
 
 
-def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
-    """Parse ``metric=weight`` options into the weights of an objective.
+def weights_of(
+    objective: Sequence[str] | None, library: ComponentLibrary, flag: str = "--objective"
+) -> dict[str, float]:
+    """Parse ``metric=weight`` options into the weights of an objective on ``library``.
+
+    A metric no component carries is refused, as ``simulate --pareto`` refuses one: it
+    would weigh 0 everywhere, and a misspelt ``--objective cots=1`` would silently choose
+    by the other rules alone.
 
     Raises:
-        UsageError: an item is not ``metric=weight`` with a number.
+        UsageError: an item is not ``metric=weight`` with a number, or names no metric of
+            the library.
     """
     weights: dict[str, float] = {}
     for item in objective or []:
@@ -257,5 +265,10 @@ def weights_of(objective: Sequence[str] | None) -> dict[str, float]:
         except ValueError:
             sep = ""
         if not sep or not name.strip():
-            raise UsageError(f"--objective {item}: write metric=weight, e.g. cost=1")
+            raise UsageError(f"{flag} {item}: write metric=weight, e.g. cost=1")
+        if name.strip() not in library.metrics:
+            known = ", ".join(sorted(library.metrics)) or "none: no component has metrics"
+            raise UsageError(
+                f"{flag} {item}: unknown metric '{name.strip()}' (the library's: {known})"
+            )
     return weights

@@ -77,10 +77,10 @@ def enumerate_command(
         raise UsageError("--best prints one configuration: leave out --count and --limit")
     if objective and not best:
         raise UsageError("--objective says what --best minimises: add --best")
-    goal = Objective(weights=weights_of(objective)) if best else None
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before the work
     sel = select(library, schema, fail, only, context or [], ignore_context=ignore_context)
+    goal = Objective(weights=weights_of(objective, sel.library)) if best else None
     if "bundled" in sel.loaded.note and not as_json:
         stderr.print(f"rosreconf: {sel.loaded.note}", markup=False)
     report = REPORTERS[Output.of(as_json)](sel, write_stdout)

@@ -102,13 +102,16 @@ def plan_command(
     if graph is not None:
         output_target(graph, stdout_ok=False)  # refuse a bad --graph before planning
     if switch_to is not None:
+        switching = select(
+            library, schema, fail, None, context or [], ignore_context=ignore_context
+        )
         switch_command(
-            select(library, schema, fail, None, context or [], ignore_context=ignore_context),
+            switching,
             switch_to,
             only,
             current,
             planner_named(planner, search),
-            weights=weights_of(objective),
+            weights=weights_of(objective, switching.library),
             timeout=timeout,
             keep_pddl=keep_pddl,
             budget=Budget(search_limit, search_time),
@@ -119,7 +122,7 @@ def plan_command(
     if not sel.failed:
         ruled = " (--context rules none out)" if sel.context else ""
         raise UsageError(f"give at least one --fail COMPONENT{ruled}")
-    weights = weights_of(objective)
+    weights = weights_of(objective, sel.library)
     chosen = planner_named(planner, search)
     running = running_mappings(sel, current, weights)
     results = replan_all(

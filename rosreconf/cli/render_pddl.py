@@ -44,10 +44,10 @@ def render_pddl(
     output is not a folder.
     """
 
-    folder = output_folder(output)
     sel = select(library, schema, fail, only)
-    weights = weights_of(objective)
+    weights = weights_of(objective, sel.library)
     running = running_mappings(sel, current, weights)
+    folder = output_folder(output)  # made only once the input is known good
     written = write_tasks(sel.library, sel.schemas, sel.failed, running, weights, folder)
     write_stdout("".join(f"{path}\n" for path in written))
     raise typer.Exit(ExitCode.OK)

@@ -249,7 +249,7 @@ def watch_command(
         hold=hold,
         prefer_after=prefer_after,
         budget=Budget(search_limit, search_time),
-        prefer=tuple(weights_of(prefer).items()),
+        prefer=tuple(weights_of(prefer, sel.library, "--prefer").items()),
         context=ContextOptions(dwell, context_silence, context_lost == "fail"),
         ros2=Ros2Options(standby, ros2_launch, stop_outside, force, face, face_name),
     )

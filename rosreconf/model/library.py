@@ -305,6 +305,11 @@ class ComponentLibrary:
         """Return the label set Lambda used by this library."""
         return frozenset(c.abstraction for c in self.components)
 
+    @property
+    def metrics(self) -> frozenset[str]:
+        """Return the metric names some component carries: all an objective can weigh."""
+        return frozenset(m for c in self.components for m in c.metrics)
+
     @staticmethod
     def merge(libraries: Iterable[ComponentLibrary]) -> ComponentLibrary:
         """Join several library files into one L (names must already be unique)."""
