@@ -271,3 +271,23 @@ def test_a_misspelt_metric_is_refused_not_weighed_zero(
         f"(the library's: {', '.join(known)})"
     )
     assert not out.exists()  # render-pddl made no folder for a refused command
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["snapshot", "--master", "http://127.0.0.1:1/", "--spin-time", "5"],
+        ["inspect", "--snapshot", "{out}", "--only", "object_repositioning", "--spin-time", "5"],
+        ["import", "--snapshot", "{out}", "-o", "-", "--spin-time", "5"],
+    ],
+)
+def test_spin_time_is_for_a_ros2_read_only(
+    runner: CliRunner, tmp_path: Path, command: list[str]
+) -> None:
+    """Only a ROS 2 read listens for discovery; elsewhere ``--spin-time`` would be ignored."""
+    argv = [arg.replace("{out}", str(tmp_path / "saved.json")) for arg in command]
+    result = runner.invoke(app, argv)
+    assert result.exit_code == 2, result.output
+    assert (
+        result.stderr.strip() == "rosreconf: error: --spin-time is for --ros2 (ROS 2 over DDS) only"
+    )

@@ -331,3 +331,28 @@ def test_a_participant_that_answers_late_is_read_not_called_absent(
         for p in system.processes:
             p.process.send_signal(signal.SIGCONT)
         system.stop()
+
+
+def test_spin_time_waits_for_a_participant_later_than_the_default_listen(
+    distro: str, loopback: None, tmp_path: Path, runner: CliRunner
+) -> None:
+    """``--spin-time`` (as ros2cli's) is the least a read listens: on a host loaded enough
+    that a participant answers after the default 3.5 s, a user asks for longer. The only
+    node's process is stopped (SIGSTOP) before ``snapshot`` starts and continued 6 s later,
+    past the default listen (which would call the domain empty, exit 3); with
+    ``--spin-time 10`` its node is in the snapshot."""
+    system = _system(distro, tmp_path)
+    try:
+        late = system.start(_specs()["PLANNER"]).process
+        late.send_signal(signal.SIGSTOP)
+        timer = threading.Timer(6.0, late.send_signal, [signal.SIGCONT])
+        timer.start()
+        argv = ["snapshot", "--ros2", "--domain", str(system.domain), "--spin-time", "10"]
+        result = runner.invoke(app, argv)
+        timer.join()
+        assert result.exit_code == 0, result.stderr
+        assert [n["name"] for n in json.loads(result.stdout)["nodes"]] == ["/planner"]
+    finally:
+        for p in system.processes:
+            p.process.send_signal(signal.SIGCONT)
+        system.stop()

@@ -23,6 +23,7 @@ from rosreconf.cli.common import (
     OptionalMasterOption,
     Ros2Option,
     SchemaOption,
+    finite,
     select,
 )
 from rosreconf.cli.console import stderr, write_output, write_stdout
@@ -31,10 +32,25 @@ from rosreconf.outfiles import output_target
 from rosreconf.render.reports import Output
 from rosreconf.render.reports.inspect import REPORTERS
 from rosreconf.ros.conformance import compare
-from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT, read_any
+from rosreconf.ros.connect import DEFAULT_MAX_BYTES, DEFAULT_SPIN_TIME, DEFAULT_TIMEOUT, read_any
 from rosreconf.ros.importer import draft_library, is_anonymous
 from rosreconf.ros.livegraph import LiveGraph, to_json, without_plumbing
 from rosreconf.solve.running import one_target
+
+SpinTimeOption = Annotated[
+    float | None,
+    typer.Option(
+        "--spin-time",
+        min=0.0,
+        max=600.0,
+        callback=finite,
+        metavar="SECONDS",
+        help=f"ROS 2: listen at least this long for discovery before the read may settle "
+        f"(as ros2cli's --spin-time; default {DEFAULT_SPIN_TIME:g}: Fast DDS announces every "
+        "3 s). Longer on a loaded host, where a participant can answer late and be left out.",
+        show_default=False,
+    ),
+]
 
 
 def _note(text: str) -> None:
@@ -51,6 +67,7 @@ class LiveRead:
     ros2: bool
     domain: int
     distro: str | None
+    spin_time: float | None
 
     def graph(self, master: str | None, snapshot: Path | None) -> LiveGraph:
         """Read the graph from ``master``, a saved ``snapshot`` or ROS 2 discovery."""
@@ -63,6 +80,7 @@ class LiveRead:
             timeout=self.timeout,
             max_bytes=self.max_bytes,
             on_note=_note,
+            spin_time=self.spin_time,
         )
 
 
@@ -72,9 +90,10 @@ def _live_read(
     ros2: Ros2Option = False,
     domain: DomainOption = 0,
     distro: DistroOption = None,
+    spin_time: SpinTimeOption = None,
 ) -> LiveRead:
     """Declare the live-read options once; ``reads_live`` gives them to each command."""
-    return LiveRead(master_timeout, max_answer_mb << 20, ros2, domain, distro)
+    return LiveRead(master_timeout, max_answer_mb << 20, ros2, domain, distro, spin_time)
 
 
 def reads_live(command: Callable[..., None]) -> Callable[..., None]:

@@ -18,6 +18,7 @@ from rosreconf.ros.livegraph import LiveGraph, from_json
 from rosreconf.ros.options import WatchOptions
 from rosreconf.ros.ros1.rosmaster import DEFAULT_MAX_BYTES, DEFAULT_TIMEOUT
 from rosreconf.ros.ros1.source import MasterSource
+from rosreconf.ros.ros2.discovery import FIRST_READ_AT_LEAST
 from rosreconf.ros.ros2.domainclaim import Claim, claim_domain
 from rosreconf.ros.ros2.face import FaceNode, ask_switch
 from rosreconf.ros.ros2.names import check_domain, gid_sizes
@@ -28,6 +29,7 @@ from rosreconf.ros.tasks import Face, Tasks
 
 __all__ = [
     "DEFAULT_MAX_BYTES",
+    "DEFAULT_SPIN_TIME",
     "DEFAULT_TIMEOUT",
     "ask_switch",
     "open_face",
@@ -35,6 +37,9 @@ __all__ = [
     "read_any",
     "watch_source",
 ]
+
+DEFAULT_SPIN_TIME = FIRST_READ_AT_LEAST
+"""Seconds a ROS 2 read listens at least before it may settle (``--spin-time``)."""
 
 
 def open_source(
@@ -45,21 +50,26 @@ def open_source(
     *,
     timeout: float = DEFAULT_TIMEOUT,
     max_bytes: int = DEFAULT_MAX_BYTES,
+    spin_time: float | None = None,
 ) -> MasterSource | Ros2Source:
     """Return the source the options name: ``--master URI`` or ``--ros2 [--domain N]``.
 
     Raises:
-        UsageError: both or neither are given, or ``--distro`` without ``--ros2``.
+        UsageError: both or neither are given, or ``--distro`` or ``--spin-time`` without
+            ``--ros2``.
     """
     if ros2 == (master is not None):
         raise UsageError("give exactly one of --master URI and --ros2 [--domain N]")
     if master is not None:
-        if distro is not None:
-            raise UsageError("--distro is for --ros2 (ROS 2 over DDS) only")
+        for flag, given in (("--distro", distro), ("--spin-time", spin_time)):
+            if given is not None:
+                raise UsageError(f"{flag} is for --ros2 (ROS 2 over DDS) only")
         return MasterSource(master, timeout, max_bytes)
     check_domain(domain)
     gid_sizes(distro)  # refuse an unknown distribution before joining the domain
-    return Ros2Source(domain, distro)
+    return Ros2Source(
+        domain, distro, spin_time=DEFAULT_SPIN_TIME if spin_time is None else spin_time
+    )
 
 
 def read_any(
@@ -72,6 +82,7 @@ def read_any(
     timeout: float = DEFAULT_TIMEOUT,
     max_bytes: int = DEFAULT_MAX_BYTES,
     on_note: Callable[[str], None] | None = None,
+    spin_time: float | None = None,
 ) -> LiveGraph:
     """Read the live graph from exactly one of a master, ROS 2 discovery and a snapshot.
 
@@ -86,11 +97,15 @@ def read_any(
     if sum((master is not None, snapshot is not None, ros2)) != 1:
         raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
     if snapshot is not None:
+        if spin_time is not None:
+            raise UsageError("--spin-time is for --ros2 (ROS 2 over DDS) only")
         try:
             return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
         except OSError as exc:
             raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
-    source = open_source(master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes)
+    source = open_source(
+        master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes, spin_time=spin_time
+    )
     if isinstance(source, Ros2Source):
         source.on_note = on_note
     try:

@@ -300,14 +300,24 @@ class Ros2Discovery:
                 return (16,) if b"typehash=" in e.user_data else (24,)
         return (16, 24)
 
-    def read(self, *, settle: float = 1.0, timeout: float = 8.0) -> LiveGraph:
+    def read(
+        self,
+        *,
+        settle: float = 1.0,
+        timeout: float | None = None,
+        at_least: float = FIRST_READ_AT_LEAST,
+    ) -> LiveGraph:
         """Return the ROS 2 graph now.
 
-        The first call waits (at most ``timeout`` s) until discovery is complete: every ROS
-        participant has sent its ``ros_discovery_info`` and every endpoint named there has
-        been discovered, nothing changed for ``settle`` s, and it has listened for at least
-        ``FIRST_READ_AT_LEAST`` s. Later calls do not wait.
+        The first call waits until discovery is complete: every ROS participant has sent its
+        ``ros_discovery_info`` and every endpoint named there has been discovered, nothing
+        changed for ``settle`` s, and it has listened for at least ``at_least`` s (a user's
+        ``--spin-time``: a loaded host answers late). It waits at most ``timeout`` s, by
+        default ``at_least`` plus ``UNDECODABLE_AFTER`` (8 s by default). Later calls do not
+        wait.
         """
+        if timeout is None:
+            timeout = at_least + UNDECODABLE_AFTER
         if self._dp is None:
             raise UsageError("this ROS 2 discovery session is closed")
         start = time.monotonic()
@@ -333,7 +343,7 @@ class Ros2Discovery:
             self._renew_if_stale(stale | silent, now, still=now - stable_since >= settle)
             if self._settled or now - start >= timeout:
                 break
-            listened = now - start >= FIRST_READ_AT_LEAST
+            listened = now - start >= at_least
             if listened and ros and complete and now - stable_since >= settle:
                 break
             if listened and not ros and now - start >= max(settle * 2, 1.0):
@@ -375,7 +385,7 @@ class Ros2Discovery:
 
 
 def read_ros2_graph(
-    domain: int, *, distro: str | None = None, settle: float = 1.0, timeout: float = 8.0
+    domain: int, *, distro: str | None = None, settle: float = 1.0, timeout: float | None = None
 ) -> LiveGraph:
     """Join ``domain``, wait for discovery to settle, and return the ROS 2 graph."""
     with Ros2Discovery(domain, distro) as session:

@@ -12,7 +12,7 @@ from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.launchfiles import RosVersion
 from rosreconf.ros.livegraph import LiveGraph
 from rosreconf.ros.ros2.actuator import Ros2Actuator
-from rosreconf.ros.ros2.discovery import Ros2Discovery
+from rosreconf.ros.ros2.discovery import FIRST_READ_AT_LEAST, Ros2Discovery
 from rosreconf.ros.ros2.graph import graph_uri
 from rosreconf.ros.ros2.launching import Ros2Launch, Ros2LaunchPort
 from rosreconf.ros.ros2.lifecycle_state import StateReader, with_states
@@ -43,6 +43,8 @@ class Ros2Source:
         empty_ok: an empty domain is not an error on the first read (``watch --apply``
             starts the nodes itself).
         on_note: where to say what a read had to leave out (undecodable or forged samples).
+        spin_time: the least seconds the first read listens before it may settle
+            (``--spin-time``, as ros2cli's: a loaded host's participants answer late).
     """
 
     domain: int
@@ -50,6 +52,7 @@ class Ros2Source:
     ros_version: RosVersion = RosVersion.ROS2
     empty_ok: bool = False
     on_note: Callable[[str], None] | None = None
+    spin_time: float = FIRST_READ_AT_LEAST
     _session: Ros2Discovery | None = field(default=None, repr=False)
     _states: StateReader = field(default_factory=StateReader, repr=False)
 
@@ -77,7 +80,7 @@ class Ros2Source:
         if self._session is None:
             self._session = Ros2Discovery(self.domain, self.distro)
         session = self._session
-        graph = session.read()
+        graph = session.read(at_least=self.spin_time)
         if first:
             self._refuse_empty(graph, session)
         deadline = time.monotonic() + STALE_GRACE
