@@ -259,16 +259,15 @@ def weights_of(
     """
     weights: dict[str, float] = {}
     for item in objective or []:
-        name, sep, value = item.partition("=")
+        written, sep, value = item.partition("=")
+        name = written.strip()
         try:
-            weights[name.strip()] = float(value)
+            weights[name] = float(value)
         except ValueError:
             sep = ""
-        if not sep or not name.strip():
+        if not sep or not name:
             raise UsageError(f"{flag} {item}: write metric=weight, e.g. cost=1")
-        if name.strip() not in library.metrics:
+        if name not in library.metrics:
             known = ", ".join(sorted(library.metrics)) or "none: no component has metrics"
-            raise UsageError(
-                f"{flag} {item}: unknown metric '{name.strip()}' (the library's: {known})"
-            )
+            raise UsageError(f"{flag} {item}: unknown metric '{name}' (the library's: {known})")
     return weights

@@ -50,26 +50,22 @@ def open_source(
     *,
     timeout: float = DEFAULT_TIMEOUT,
     max_bytes: int = DEFAULT_MAX_BYTES,
-    spin_time: float | None = None,
+    spin_time: float = DEFAULT_SPIN_TIME,
 ) -> MasterSource | Ros2Source:
     """Return the source the options name: ``--master URI`` or ``--ros2 [--domain N]``.
 
     Raises:
-        UsageError: both or neither are given, or ``--distro`` or ``--spin-time`` without
-            ``--ros2``.
+        UsageError: both or neither are given, or ``--distro`` without ``--ros2``.
     """
     if ros2 == (master is not None):
         raise UsageError("give exactly one of --master URI and --ros2 [--domain N]")
     if master is not None:
-        for flag, given in (("--distro", distro), ("--spin-time", spin_time)):
-            if given is not None:
-                raise UsageError(f"{flag} is for --ros2 (ROS 2 over DDS) only")
+        if distro is not None:
+            raise UsageError("--distro is for --ros2 (ROS 2 over DDS) only")
         return MasterSource(master, timeout, max_bytes)
     check_domain(domain)
     gid_sizes(distro)  # refuse an unknown distribution before joining the domain
-    return Ros2Source(
-        domain, distro, spin_time=DEFAULT_SPIN_TIME if spin_time is None else spin_time
-    )
+    return Ros2Source(domain, distro, spin_time=spin_time)
 
 
 def read_any(
@@ -96,15 +92,16 @@ def read_any(
     """
     if sum((master is not None, snapshot is not None, ros2)) != 1:
         raise UsageError("give exactly one of --master URI, --ros2 and --snapshot FILE")
+    if spin_time is not None and not ros2:
+        raise UsageError("--spin-time is for --ros2 (ROS 2 over DDS) only")
     if snapshot is not None:
-        if spin_time is not None:
-            raise UsageError("--spin-time is for --ros2 (ROS 2 over DDS) only")
         try:
             return from_json(snapshot.read_text(encoding="utf-8"), str(snapshot))
         except OSError as exc:
             raise UsageError(f"{snapshot}: cannot read: {exc.strerror}") from None
+    spin = DEFAULT_SPIN_TIME if spin_time is None else spin_time
     source = open_source(
-        master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes, spin_time=spin_time
+        master, ros2, domain, distro, timeout=timeout, max_bytes=max_bytes, spin_time=spin
     )
     if isinstance(source, Ros2Source):
         source.on_note = on_note
