@@ -14,7 +14,8 @@ the better configuration is taken back once the reading recovers, once, never ba
 forth; a topic gone silent is said. Two more runs on Jazzy: ``--no-face`` reads context
 through a node of its own; ``--context-lost fail`` rules out what a silent topic
 conditions, keeping the running configuration when nothing is left; a NaN is no reading, and
-a topic whose type cannot be imported is said.
+a topic whose type cannot be imported is said; and a robot's shape, the search paths sharing
+one namespaced node name, replaced in place and wired across the namespace.
 """
 
 from __future__ import annotations
@@ -125,7 +126,9 @@ def test_watch_follows_the_visibility_without_flapping(
         assert row["level"] == 0 and row["values"]["value"] == "3.0"
         assert row["values"]["rules out spiral_high"] == ruled["reason"]
         nodes = {f"/{c}" for c in done["configuration"].values()}
-        seen = probe(watch.env, ros2_domain, wait_for=nodes, until_wired=True, python=python)
+        # wired=nodes: until these leave nothing dangling (the face's /battery_state
+        # subscription dangles for good: waiting on every node took the probe's whole 60 s)
+        seen = probe(watch.env, ros2_domain, wait_for=nodes, wired=nodes, python=python)
         assert "/spiral_high" not in seen["nodes"] and nodes <= set(seen["nodes"])
         # rosreconf's face subscribes to /battery_state too, which nobody publishes here (said
         # as context-lost); the configuration's own nodes leave nothing dangling
@@ -277,6 +280,62 @@ def test_a_nan_reading_is_no_reading_and_an_unreadable_topic_is_said(
         said = watch.events()[before:]
         assert not [e for e in said if e["event"] in ("context", "replanned")], said
         assert [e["event"] for e in watch.events()].count("context-error") == 1
+    finally:
+        publisher.stop()
+        watch.stop()
+
+
+def _shaped_library(tmp: Path) -> Path:
+    """The example with a robot's shape: the three search paths are alternatives of one node,
+    ``/auv/search`` (a namespace, one node name shared), as Nav2's planners share one; the
+    controller stays outside the namespace, so its requirement is wired across it."""
+    text = (EXAMPLE / "library.yaml").read_text()
+    for name in ("spiral_high", "spiral_medium", "spiral_low"):
+        anchor = f"  - name: {name}\n"
+        assert anchor in text
+        text = text.replace(anchor, anchor + "    ros: {package: suave_search, executable: "
+                            f"{name}, node: search, namespace: /auv}}\n")  # fmt: skip
+    library = tmp / "suave_shaped.yaml"
+    library.write_text(text)
+    return library
+
+
+def _pids(watch: Watch, component: str) -> list[int]:
+    """Return the pids watch's log says it started ``component``'s node in."""
+    return [e["pids"][component] for e in watch.events()
+            if e["event"] == "launch" and component in e.get("pids", {})]  # fmt: skip
+
+
+def test_a_ruled_out_alternative_sharing_a_namespaced_node_name_is_replaced_wired(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """A drop in visibility rules spiral_high out; spiral_medium runs as the same node
+    ``/auv/search``. Read by rclpy, not by rosreconf: exactly one ``/auv/search``, the
+    controller's subscription wired to it across the namespace (nothing dangling), and the
+    process spiral_high ran in is gone (/proc), not left beside its successor."""
+    python = _python("jazzy")
+    watch = Watch(tmp_path, ros2_domain, "--library", str(_shaped_library(tmp_path)),
+                  "--schema", str(EXAMPLE / "schema.yaml"), python=python)  # fmt: skip
+    publisher = Publisher(python, {**watch.env, "ROS_DOMAIN_ID": str(ros2_domain)})
+    try:
+        publisher.send(4.0)
+        first = watch.wait("conformant")
+        assert first["configuration"]["search"] == "spiral_high"
+        before = len(watch.events())
+        publisher.send(3.0)
+        done = watch.wait("conformant", after=before)
+        assert done["configuration"]["search"] == "spiral_medium"
+        nodes = {"/auv/search", "/controller_fast", "/thrusters"}
+        # wired=nodes: until these leave nothing dangling (the face's /battery_state
+        # subscription dangles for good: waiting on every node took the probe's whole 60 s)
+        seen = probe(watch.env, ros2_domain, wait_for=nodes, wired=nodes, python=python)
+        assert seen["nodes"].count("/auv/search") == 1, seen["nodes"]
+        assert "/auv/search_path" in seen["topics"] and "/search_path" not in seen["topics"]
+        ours = {k: [x for x in v if x[0] != "/rosreconf"] for k, v in seen["dangling"].items()}
+        assert ours == {"calls": [], "subscriptions": []}, seen["dangling"]
+        old = _pids(watch, "spiral_high")
+        assert old and not [p for p in old if Path(f"/proc/{p}").exists()], old
+        assert _pids(watch, "spiral_medium"), watch.events()[before:]
     finally:
         publisher.stop()
         watch.stop()
