@@ -145,6 +145,11 @@ def test_watch_follows_the_visibility_without_flapping(
         moved = [e for e in watch.events()[before:] if e["event"] == "prefer"]
         assert len(moved) == 1 and moved[0]["metric"] < moved[0]["previous_metric"]
         assert back["configuration"]["search"] == "spiral_high"
+        nodes = {f"/{c}" for c in back["configuration"].values()}
+        seen = probe(watch.env, ros2_domain, wait_for=nodes, wired=nodes, python=python)
+        assert "/spiral_medium" not in seen["nodes"] and nodes <= set(seen["nodes"])
+        ours = {k: [x for x in v if x[0] != "/rosreconf"] for k, v in seen["dangling"].items()}
+        assert ours == {"calls": [], "subscriptions": []}, seen["dangling"]
         time.sleep(DWELL + 1.0)
         after = watch.events()[before:]
         assert [e["event"] for e in after].count("prefer") == 1  # no back and forth
