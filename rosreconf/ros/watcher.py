@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rosreconf.errors import UnsettledGraphError
 from rosreconf.model import ComponentLibrary, Configuration, InteroperabilitySchema
 from rosreconf.ros.actuator import Acting, Actuator
 from rosreconf.ros.clashes import NameClashes
@@ -367,12 +368,25 @@ class Watcher:
         return self._actuator.start(self.current, components, why)
 
     def _confirm(self) -> Conformance:
-        """Wait until the live graph conforms or ``settle`` passes; log which."""
+        """Wait until the live graph conforms or ``settle`` passes; log which.
+
+        A read caught half-announced (``UnsettledGraphError``) is no answer yet: the nodes
+        just started are announcing themselves, slowly on a loaded host. The wait goes on; the
+        error is raised only when the settle ends on one (``polling`` says it if it lasts).
+        """
         start = time.monotonic()
         while True:
             self._own_exits(tend=False)
             ended = self._actuator.ended()
-            check = self._compare(self._read())
+            try:
+                check = self._compare(self._read())
+            except UnsettledGraphError:
+                if self.stop_requested() and self._graph is not None:
+                    return self._compare(self._graph)  # the last whole read
+                if time.monotonic() - start > self.options.settle or ended:
+                    raise
+                time.sleep(0.1)
+                continue
             self.failed |= self._clashes.failed(check, self._actuator.started(), self.failed)
             took = time.monotonic() - start
             if check.ok:
