@@ -26,7 +26,16 @@ from typing import Any
 import pytest
 from ros2_team import STANDIN
 from test_watch_outside import _end, _team
-from test_watch_ros2 import DC_ARM, REPLACED, Watch, _env, _stop_by_hand, alive, probe
+from test_watch_ros2 import (
+    DC_ARM,
+    REPLACED,
+    Watch,
+    _env,
+    _stop_by_hand,
+    alive,
+    probe,
+    watched_by_process,
+)
 from test_watch_wiring import _python
 
 
@@ -236,11 +245,9 @@ def test_a_kept_outside_consumer_restarted_by_hand_with_its_old_wiring_is_unwire
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside",
                       python=python)  # fmt: skip
         watch.wait("running")
-        while True:  # each replaced one's process must be known before the kill
-            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
-            if {f"/{c}" for c in REPLACED} <= {n for e in said for n in e["nodes"]}:
-                break
-            watch.wait("watched", after=len(watch.events()))
+        replaced = {f"/{c}" for c in REPLACED}  # each one's process known before the kill
+        watch.until(lambda ev: replaced <= watched_by_process(ev).keys(),
+                    "'watched' by its process for each replaced node")  # fmt: skip
         before = len(watch.events())
         ours["NSM3"].kill()
         restart = watch.wait("restart-by-hand", after=before)

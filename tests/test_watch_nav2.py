@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from test_watch_ros2 import ROOT, Watch, _env, probe
+from test_watch_ros2 import ROOT, Watch, _env, probe, watched_by_process
 
 NAV2 = Path(__file__).with_name("data") / "nav2"
 FILES = ["--library", str(NAV2 / "nav2_library.yaml"), "--schema", str(NAV2 / "nav2_schema.yaml")]
@@ -156,8 +156,7 @@ def test_a_standby_never_waits_under_a_running_nodes_name(ros2_domain: int, tmp_
         assert standby.get("standby"), standby
         assert "planner_smac_hybrid" not in standby["components"]
         assert "slam_toolbox" in standby["components"]
-        while "slam_toolbox" not in watch.configured():
-            watch.wait("lifecycle", after=len(watch.events()) - 1)
+        watch.until(lambda ev: "slam_toolbox" in watch.configured(ev), "slam_toolbox configured")
         names = list(probe(watch.env, ros2_domain, wait_for=["/slam_toolbox"], python=python)[
             "nodes"])  # fmt: skip
         assert len(names) == len(set(names)), names
@@ -212,11 +211,8 @@ def test_a_hung_planner_the_team_started_is_gone_before_the_other_one_starts(
         watch = Watch(tmp_path, ros2_domain, *FILES, *flags, python=python)
         watch.wait("conformant")
         assert "planner_navfn" not in watch.pids()
-        while not any(
-            e["event"] == "watched" and e["how"] == "process" and "/planner_server" in e["nodes"]
-            for e in watch.events()
-        ):
-            watch.wait("watched", after=len(watch.events()))
+        watch.until(lambda ev: "/planner_server" in watched_by_process(ev),
+                    "'watched' of /planner_server by its process")  # fmt: skip
         before = len(watch.events())
         os.kill(ours.pid, signal.SIGSTOP)
         taken = watch.wait("name-taken", after=before)

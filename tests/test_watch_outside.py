@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 from ros2_team import STANDIN, Member, Team, wait_ready
-from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python, probe
+from test_watch_ros2 import NOMINAL, ROOT, Watch, _env, _ros2_python, probe, watched_by_process
 from test_watch_wiring import _python
 
 Node = subprocess.Popen[bytes] | Member
@@ -102,12 +102,10 @@ def test_outside_nodes_are_watched_by_their_processes_crash_and_hang_seen_so(
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", python=python)
         watch.wait("running")
         assert not watch.pids()  # it started none of them
-        while True:  # every node found and watched by its process
-            said = [e for e in watch.events() if e["event"] == "watched"]
-            by_process = {n: e["pid"] for e in said if e["how"] == "process" for n in e["nodes"]}
-            if set(by_process) >= {f"/{c}" for c in NOMINAL}:
-                break
-            watch.wait("watched", after=len(watch.events()))
+        every = {f"/{c}" for c in NOMINAL}  # every node found and watched by its process
+        events = watch.until(lambda ev: every <= watched_by_process(ev).keys(),
+                             "'watched' by its process for every node")  # fmt: skip
+        by_process = watched_by_process(events)
         assert all(by_process[f"/{c}"] == ours[c].pid for c in NOMINAL), by_process
         before = len(watch.events())
         os.kill(ours["NCA1"].pid, signal.SIGSTOP)  # hung: the process runs no more
@@ -163,11 +161,7 @@ def test_a_hung_outside_node_is_failed_and_with_stop_outside_its_process_is_gone
     try:
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside")
         watch.wait("running")
-        while True:
-            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
-            if "/NCA1" in {n for e in said for n in e["nodes"]}:
-                break
-            watch.wait("watched", after=len(watch.events()))
+        watch.until(lambda ev: "/NCA1" in watched_by_process(ev), "'watched' of /NCA1")
         before = len(watch.events())
         os.kill(ours["NCA1"].pid, signal.SIGSTOP)
         hung = watch.wait("failed", after=before)
@@ -269,12 +263,9 @@ def test_a_forged_guid_never_gets_a_bystander_signalled(
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", "--stop-outside",
                       python=python)  # fmt: skip
         watch.wait("running")
-        watched: dict[str, int] = {}
-        while "/NSM3" not in watched or "/NSM1" not in watched:
-            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
-            watched = {n: e["pid"] for e in said for n in e["nodes"]}
-            if "/NSM3" not in watched or "/NSM1" not in watched:
-                watch.wait("watched", after=len(watch.events()))
+        events = watch.until(lambda ev: {"/NSM3", "/NSM1"} <= watched_by_process(ev).keys(),
+                             "'watched' of /NSM3 and /NSM1")  # fmt: skip
+        watched = watched_by_process(events)
         assert watched["/NSM3"] == bystander.pid  # the forgery took: the GUID names it
         before = len(watch.events())
         ours["NSM1"].kill()  # the servo arm goes: NSM3 and its neighbours are replaced

@@ -91,11 +91,6 @@ class Watch:
         lines = self.log.read_text().splitlines()
         return [json.loads(line) for line in lines if line.endswith("}")]
 
-    def configured(self) -> set[str]:
-        """Return the components whose ``configure`` succeeded (a failed try may come first)."""
-        events = self.events()
-        return {e["component"] for e in events if e.get("transition") == "configure" and e["ok"]}
-
     def wait(
         self,
         kind: str,
@@ -107,23 +102,49 @@ class Watch:
 
         ``each``: called with those events on every look, to act on one as it comes.
         """
-        deadline = time.monotonic() + timeout
-        while True:
-            said = self.events()[after:]
+        found: list[dict[str, Any]] = []
+
+        def done(events: list[dict[str, Any]]) -> bool:
+            said = events[after:]
             if each is not None:
                 each(said)
-            found = [e for e in said if e["event"] == kind]
-            if found:
-                return found[0]
+            found[:] = [e for e in said if e["event"] == kind]
+            return bool(found)
+
+        self.until(done, f"{kind!r} event after event {after}", timeout)
+        return found[0]
+
+    def until(
+        self,
+        done: Callable[[list[dict[str, Any]]], bool],
+        what: str,
+        timeout: float = UP_TIMEOUT,
+    ) -> list[dict[str, Any]]:
+        """Return the events once ``done`` holds of them; fail after ``timeout`` s.
+
+        Each look judges one read of the log: a condition checked on one read and an
+        ``after=len(...)`` taken from a later one missed the events written between the two
+        (fresh clone fc15 waited 120 s for a 14th ``watched`` when the 13th had come).
+        """
+        deadline = time.monotonic() + timeout
+        while True:
+            events = self.events()
+            if done(events):
+                return events
             if self.process.poll() is not None:  # what it said on stderr tells why
                 said = self.err.read_text(errors="replace")[-2000:]
                 pytest.fail(f"watch exited {self.process.returncode}: {self.events()[-5:]}"
                             f"\nits stderr ends:\n{said}", pytrace=False)  # fmt: skip
             if time.monotonic() >= deadline:  # every word of the last events: pytest's
                 last = "\n".join(json.dumps(e) for e in self.events()[-8:])  # repr cuts them
-                pytest.fail(f"no {kind!r} event after event {after} in {timeout:.0f} s; the "
-                            f"last events:\n{last}", pytrace=False)  # fmt: skip
+                pytest.fail(f"no {what} in {timeout:.0f} s; the last events:\n{last}",
+                            pytrace=False)  # fmt: skip
             time.sleep(0.1)
+
+    def configured(self, events: list[dict[str, Any]] | None = None) -> set[str]:
+        """Return the components whose ``configure`` succeeded (a failed try may come first)."""
+        events = self.events() if events is None else events
+        return {e["component"] for e in events if e.get("transition") == "configure" and e["ok"]}
 
     def pids(self) -> dict[str, int]:
         return {c: p for e in self.events() if e["event"] == "launch" for c, p in
@@ -138,6 +159,12 @@ class Watch:
             os.killpg(self.process.pid, signal.SIGKILL)
             self.process.wait(5)
             raise
+
+
+def watched_by_process(events: list[dict[str, Any]]) -> dict[str, int]:
+    """Return each node watch said it watches by its process, with that process's pid."""
+    said = [e for e in events if e["event"] == "watched" and e["how"] == "process"]
+    return {n: e["pid"] for e in said for n in e["nodes"]}
 
 
 def probe(
@@ -466,11 +493,10 @@ def test_nodes_watch_did_not_start_are_named_to_stop_by_hand_then_confirmed(
         watch = Watch(tmp_path, ros2_domain, "--only", "object_repositioning", *flags)
         watch.wait("running")  # the test's own nodes: watch started none of them
         assert not watch.pids()
-        while stop_outside:  # each replaced one's process must be known before the kill
-            said = [e for e in watch.events() if e["event"] == "watched" and e["how"] == "process"]
-            if {f"/{c}" for c in REPLACED} <= {n for e in said for n in e["nodes"]}:
-                break
-            watch.wait("watched", after=len(watch.events()))
+        if stop_outside:  # each replaced one's process must be known before the kill
+            replaced = {f"/{c}" for c in REPLACED}
+            watch.until(lambda ev: replaced <= watched_by_process(ev).keys(),
+                        "'watched' by its process for each replaced node")  # fmt: skip
         before = len(watch.events())
         ours["NSM3"].kill()
         left = watch.wait("left-running", after=before)

@@ -114,8 +114,8 @@ def test_standby_camera_switch_activates_standbys_started_wired(
     try:
         watch.wait("conformant")
         standby = {*DC_ARM, *CAMERA_GROUP}
-        while not {*NOMINAL, *standby} <= watch.configured():
-            watch.wait("lifecycle", after=len(watch.events()) - 1)
+        watch.until(lambda ev: {*NOMINAL, *standby} <= watch.configured(ev),
+                    "every node and standby configured")  # fmt: skip
         python = _python("jazzy")
         got = _camera_switch(watch, ros2_domain, python, until_wired=False)  # parked ones dangle
         after = got["after"]
