@@ -1,4 +1,5 @@
-"""A hung lifecycle agent is replaced as a dead one is, within seconds, and no component fails.
+"""A hung lifecycle agent is replaced as a dead one is, within seconds, and no component fails;
+one that could not start is started again.
 
 The agent is stopped with SIGSTOP, the real way a process hangs without dying: it still runs
 as a process, so only its silence tells (it says ``{"alive": ...}`` every 0.25 s, even in the
@@ -14,7 +15,7 @@ import signal
 import time
 from pathlib import Path
 
-from test_watch_ros2 import SCHEMAS, Watch, _helper, _managed_library, alive, probe
+from test_watch_ros2 import JAZZY, SCHEMAS, Watch, _helper, _managed_library, alive, probe
 
 HUNG_SECONDS = 2.0
 """The agent's allowed silence (rosreconf.ros.ros2.lifecycle.HUNG_SECONDS)."""
@@ -71,4 +72,42 @@ def test_a_stopped_lifecycle_agent_is_replaced_and_the_failover_conforms(
     finally:
         if agent and os.path.exists(f"/proc/{agent}"):
             os.kill(agent, signal.SIGCONT)
+        watch.stop()
+
+
+def test_a_lifecycle_agent_that_could_not_start_is_started_again_and_the_nodes_activated(
+    ros2_domain: int, tmp_path: Path
+) -> None:
+    """Fresh clone fc16: 13 Kilted executables starting at once on a loaded host, and the
+    agent did not say ready within its 10 s; watch never started it again, so every managed
+    node stayed unconfigured and failed. Provoked (a shell "interpreter", named as such): the
+    agent's first start hangs, every later one is the real Jazzy Python. Watch must say the
+    failed start, start the agent again within seconds, and end conformant with every node
+    of the configuration active (read by rclpy)."""
+    first = tmp_path / "first-agent-start"
+    python = tmp_path / "python-agent-hangs-once"
+    python.write_text(
+        "#!/bin/sh\n# provoked fault (tests/test_watch_agent_hung.py): the first agent hangs\n"
+        f'case "$1" in *lifecycle_agent.py) [ -e "{first}" ] || {{ : > "{first}"; '
+        f'exec sleep 600; }};; esac\nexec "{JAZZY}" "$@"\n'
+    )
+    python.chmod(0o755)
+    library = _managed_library(tmp_path)
+    files = ["--library", str(library), "--schema", str(SCHEMAS / "object_repositioning.yaml")]
+    watch = Watch(tmp_path, ros2_domain, *files, python=python)
+    try:
+        done = watch.wait("conformant")
+        events = watch.events()
+        failed = [
+            e for e in events if e["event"] == "lifecycle" and "did not answer" in e["message"]
+        ]
+        assert failed and first.exists(), events[-5:]
+        (again,) = [e for e in events if e["event"] == "helper"]
+        assert "started, after a start that failed" in again["message"], again
+        assert events.index(failed[0]) < events.index(again) < events.index(done)
+        assert not [e for e in events if e["event"] == "failed"], events[-5:]
+        chosen = sorted(f"/{c}" for c in done["configuration"].values() if c)
+        seen = probe(watch.env, ros2_domain, *chosen)
+        assert seen["states"] == dict.fromkeys(chosen, "active"), seen["states"]
+    finally:
         watch.stop()

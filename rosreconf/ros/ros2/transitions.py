@@ -22,6 +22,12 @@ from rosreconf.ros.ros2.fastdds_ids import may_be_of
 from rosreconf.ros.ros2.lifecycle import AGENT_NODE, HUNG_SECONDS, TIMEOUT, LifecycleAgent, Outcome
 from rosreconf.ros.ros2.runtime import node_env, own_profile
 
+START_AGAIN_FIRST = 5.0
+"""Seconds after a lifecycle agent failed to start before it is started again (then doubled)."""
+START_AGAIN_MOST = 60.0
+"""The longest wait between two starts of an agent that keeps failing to start: each start
+may hold the watch loop for 10 s (``ANSWER_SECONDS``), so at most a seventh of its time."""
+
 
 @dataclass
 class Transitions:
@@ -55,6 +61,8 @@ class Transitions:
     dead_agents: set[int] = field(default_factory=set)
     _agent: LifecycleAgent | None = None
     _agent_error: str | None = None
+    _agent_retry_at: float = 0.0
+    _agent_backoff: float = START_AGAIN_FIRST
 
     def _agent_died(self) -> bool:
         """Note an agent that ended on its own (killed, crashed) or hung; True if so.
@@ -115,11 +123,19 @@ class Transitions:
         return found
 
     def agent(self) -> LifecycleAgent:
-        """Return the lifecycle agent, started on first use (and again after it died)."""
+        """Return the lifecycle agent, started on first use (and again after it died).
+
+        An agent that could not start (no ``ready`` within 10 s: a host too loaded to import
+        rclpy in time, or a broken ROS 2 Python) is started again ``START_AGAIN_FIRST`` s
+        later, then after twice as long each time up to ``START_AGAIN_MOST``; until then a
+        call fails at once with the error, as each start may hold the watch loop 10 s.
+        """
         self._agent_died()
         if self._agent is None:
-            if self._agent_error is not None:  # said once; not retried on every call
-                raise ExternalToolError(self._agent_error)
+            now = time.monotonic()
+            if self._agent_error is not None and now < self._agent_retry_at:
+                left = self._agent_retry_at - now
+                raise ExternalToolError(f"{self._agent_error}; started again in {left:.0f} s")
             self.directory.mkdir(parents=True, exist_ok=True)
             try:
                 env = node_env(self.env, own_profile(self.directory))  # one of rosreconf's own
@@ -128,7 +144,16 @@ class Transitions:
                 )
             except ExternalToolError as exc:
                 self._agent_error = str(exc)
+                self._agent_retry_at = time.monotonic() + self._agent_backoff
+                self._agent_backoff = min(2 * self._agent_backoff, START_AGAIN_MOST)
                 raise
+            if self._agent_error is not None:
+                why = self._agent_error.removeprefix(f"{self._agent.name} ")
+                self.helpers.append(
+                    f"{self._agent.name} (pid {self._agent.process.pid}) started, after a "
+                    f"start that failed: it {why}"
+                )
+                self._agent_error, self._agent_backoff = None, START_AGAIN_FIRST
         return self._agent
 
     def call(self, call: Callable[[LifecycleAgent], Any]) -> Any:
