@@ -272,15 +272,36 @@ class Announcer:
 
 
 def start(
-    tmp: Path, domain: int, nodes: list[dict[str, Any]], *, gid_size: int = 16, **extra: Any
+    tmp: Path,
+    domain: int,
+    nodes: list[dict[str, Any]],
+    *,
+    gid_size: int = 16,
+    env: dict[str, str] | None = None,
+    **extra: Any,
 ) -> Announcer:
-    """Start one announcer process for ``nodes`` and wait until it has announced them."""
+    """Start one announcer process for ``nodes`` and wait until it has announced them.
+
+    ``env``: its environment, the loopback-only one (``dds_env``) unless given.
+    """
     spec = {"domain": domain, "gid_size": gid_size, "nodes": nodes, **extra}
     path = tmp / f"announcer-{len(list(tmp.glob('announcer-*.json')))}.json"
     path.write_text(json.dumps(spec), encoding="utf-8")
     argv = [sys.executable, str(ANNOUNCER), str(path)]
-    proc = start_ready(argv, tmp / f"{path.stem}.err", dds_env(), "announcer")
+    proc = start_ready(argv, tmp / f"{path.stem}.err", env or dds_env(), "announcer")
     return Announcer(proc, spec)
+
+
+def fake_python(path: Path, real: Path, fault: str, script: str | None = None) -> Path:
+    """Write a provoked-fault "ROS 2 Python" at ``path``: a shell script that runs ``fault``
+    (shell) when it is run for ``script`` (a file name; every run when None), and otherwise
+    is the ``real`` interpreter. A real Python cannot be made to hang or be slow on cue."""
+    faulty = fault if script is None else f'case "$1" in *{script}) {fault};; esac'
+    path.write_text(
+        f'#!/bin/sh\n# provoked fault (rosreconf tests)\n{faulty}\nexec "{real}" "$@"\n'
+    )
+    path.chmod(0o755)
+    return path
 
 
 def start_ready(

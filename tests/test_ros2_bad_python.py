@@ -28,13 +28,11 @@ import ros2_harness
 
 ROOT = Path(__file__).resolve().parent.parent
 JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
-ZYGOTE = 'case "$1" in *standin_zygote.py) {fault};; esac\nexec "{real}" "$@"\n'
-FAKES = {
-    "hangs": "exec sleep 600\n",
-    "helper-hangs": ZYGOTE.replace("{fault}", "exec sleep 600"),
-    "helper-garbage": ZYGOTE.replace(
-        "{fault}", 'while true; do echo "this is not json"; sleep 1; done'
-    ),
+ZYGOTE = "standin_zygote.py"
+FAKES: dict[str, tuple[str, str | None]] = {  # fault -> (what it runs, for which script)
+    "hangs": ("exec sleep 600", None),
+    "helper-hangs": ("exec sleep 600", ZYGOTE),
+    "helper-garbage": ('while true; do echo "this is not json"; sleep 1; done', ZYGOTE),
 }
 NAMED = {
     "hangs": "did not answer within 10 s when asked to find rclpy (it hangs)",
@@ -49,10 +47,7 @@ def test_a_bad_ros2_python_is_named_within_seconds(
 ) -> None:
     if not JAZZY.exists():  # make test builds it: missing is a failure, never a skip
         pytest.fail("the Jazzy venv is missing: run `make ros2-venvs`", pytrace=False)
-    fake = tmp_path / f"fake-python-{fault}"
-    script = FAKES[fault].replace("{real}", str(JAZZY))
-    fake.write_text("#!/bin/sh\n# provoked fault (tests/test_ros2_bad_python.py)\n" + script)
-    fake.chmod(0o755)
+    fake = ros2_harness.fake_python(tmp_path / f"fake-python-{fault}", JAZZY, *FAKES[fault])
     env = {**ros2_harness.dds_env(), "ROSRECONF_ROS2_PYTHON": str(fake), "HOME": str(tmp_path)}
     env.update(ROS_LOG_DIR=str(tmp_path))
     env.pop("CYCLONEDDS_URI", None)

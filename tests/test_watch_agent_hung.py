@@ -15,6 +15,7 @@ import signal
 import time
 from pathlib import Path
 
+import ros2_harness
 from test_watch_ros2 import JAZZY, SCHEMAS, Watch, _helper, _managed_library, alive, probe
 
 HUNG_SECONDS = 2.0
@@ -85,13 +86,9 @@ def test_a_lifecycle_agent_that_could_not_start_is_started_again_and_the_nodes_a
     failed start, start the agent again within seconds, and end conformant with every node
     of the configuration active (read by rclpy)."""
     first = tmp_path / "first-agent-start"
-    python = tmp_path / "python-agent-hangs-once"
-    python.write_text(
-        "#!/bin/sh\n# provoked fault (tests/test_watch_agent_hung.py): the first agent hangs\n"
-        f'case "$1" in *lifecycle_agent.py) [ -e "{first}" ] || {{ : > "{first}"; '
-        f'exec sleep 600; }};; esac\nexec "{JAZZY}" "$@"\n'
-    )
-    python.chmod(0o755)
+    hang_once = f'[ -e "{first}" ] || {{ : > "{first}"; exec sleep 600; }}'
+    python = ros2_harness.fake_python(tmp_path / "python-agent-hangs-once", JAZZY, hang_once,
+                                      "lifecycle_agent.py")  # fmt: skip
     library = _managed_library(tmp_path)
     files = ["--library", str(library), "--schema", str(SCHEMAS / "object_repositioning.yaml")]
     watch = Watch(tmp_path, ros2_domain, *files, python=python)

@@ -34,7 +34,6 @@ import ros2_harness
 
 ROOT = Path(__file__).resolve().parent.parent
 JAZZY = ROOT / ".venv-ros2-jazzy" / "bin" / "python"
-ANNOUNCER = Path(__file__).with_name("ros2_announcer.py")
 HELD = 8.0
 """Seconds each stand-in is held back: the announcer is up (about 1 s) long before any can be."""
 KEPT = 4.0
@@ -47,12 +46,8 @@ def test_a_half_announced_graph_during_the_settle_is_waited_through(
 ) -> None:
     if not JAZZY.exists():  # make test builds it: missing is a failure, never a skip
         pytest.fail("the Jazzy venv is missing: run `make ros2-venvs`", pytrace=False)
-    slow = tmp_path / "slow-python"
-    slow.write_text(
-        "#!/bin/sh\n# provoked fault (tests/test_watch_unsettled_confirm.py): a busy host\n"
-        f'case "$1" in *standin_node.py) sleep {HELD:g};; esac\nexec "{JAZZY}" "$@"\n'
-    )
-    slow.chmod(0o755)
+    slow = ros2_harness.fake_python(tmp_path / "slow-python", JAZZY, f"sleep {HELD:g}",
+                                    "standin_node.py")  # fmt: skip  # a busy host
     # Cyclone's and Fast DDS's defaults, as test_watch_ros2's: rclpy announces by multicast
     env = {k: v for k, v in ros2_harness.dds_env().items() if k != "CYCLONEDDS_URI"}
     env.update(ROSRECONF_ROS2_PYTHON=str(slow), ROSRECONF_STANDIN_ZYGOTE="0",
@@ -78,26 +73,20 @@ def test_a_half_announced_graph_during_the_settle_is_waited_through(
     announcer = None
     try:
         assert started.wait(60.0), "".join(lines)
-        spec = {"domain": domain_id, "gid_size": 16, "stale_newest": True, "nodes": [
+        nodes = [
             {"name": "extra", "publishers": [{"name": "/extra", "type": "std_msgs/msg/String"}]},
             {"name": "late", "plumbing": False,
              "publishers": [{"name": "/late", "type": "std_msgs/msg/String"}]},
-        ]}  # fmt: skip
-        path = tmp_path / "announcer.json"
-        path.write_text(json.dumps(spec), encoding="utf-8")
-        announcer = ros2_harness.start_ready(
-            [sys.executable, str(ANNOUNCER), str(path)], tmp_path / "announcer.err", env,
-            "announcer",
-        )  # fmt: skip
+        ]  # fmt: skip
+        announcer = ros2_harness.start(tmp_path, domain_id, nodes, env=env, stale_newest=True)
         time.sleep(KEPT)
         assert watch.poll() is None, "".join(lines)  # neither conformed nor gave up meanwhile
         gone = time.time()
-        announcer.send_signal(signal.SIGTERM)  # a clean exit: DDS forgets it at once
-        announcer.wait(10)
+        ros2_harness.stop([announcer])  # a clean exit (SIGTERM): DDS forgets it at once
         watch.wait(150)
     finally:
-        if announcer is not None and announcer.poll() is None:
-            announcer.kill()
+        if announcer is not None:
+            ros2_harness.stop([announcer])
         if watch.poll() is None:
             os.killpg(watch.pid, signal.SIGINT)
         watch.wait(30)
