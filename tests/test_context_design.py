@@ -91,6 +91,20 @@ def test_counts_and_listings_match_the_brute_force(
     assert doc["context"]["values"] == values
 
 
+def test_no_configuration_says_the_unmet_conditions_not_a_failure(runner: CliRunner) -> None:
+    """Every search path ruled out: enumerate's why-not named each as "has failed" (text and
+    JSON) though none was given as failed; it says each one's unmet condition now."""
+    flags = _flags({"visibility": 1.0, "battery": 1.0})
+    code, out, _ = _run(runner, "enumerate", "--count", *flags)
+    doc = _json(runner, "enumerate", *flags)
+    why_not = doc["schemas"][0]["why_not"]
+    assert code == 1 and why_not in out
+    for name in ("spiral_high", "spiral_medium", "spiral_low"):
+        bound = CONDITIONS[name]["visibility"]["at_least"]
+        assert f"{name} is ruled out: {name} needs visibility >= {bound}; it is 1.0" in why_not
+    assert "has failed" not in out + why_not
+
+
 def test_every_report_says_why(runner: CliRunner) -> None:
     flags = _flags({"visibility": 2.0, "battery": 0.1})
     code, out, _ = _run(runner, "enumerate", *flags)

@@ -16,7 +16,7 @@ from rosreconf.formats.selection import Selection
 from rosreconf.model import EMPTY, Configuration, InteroperabilitySchema
 from rosreconf.model.validity import graph_dict, ros_graph
 from rosreconf.render.reports import Output
-from rosreconf.render.reports.context import context_doc, context_text
+from rosreconf.render.reports.context import context_doc, context_text, reworded
 
 
 class EnumerateReporter(Protocol):
@@ -57,6 +57,7 @@ class TextReporter:
 
     def __init__(self, sel: Selection, write: Callable[[str], None]) -> None:
         self.write = write
+        self.sel = sel
         if sel.has_context:
             write(context_text(sel))
 
@@ -83,7 +84,7 @@ class TextReporter:
         if optimum is not None:
             self.write(_optimum_line(optimum) + "\n")
             return
-        self.write(_summary(total, listed, why))
+        self.write(_summary(total, listed, _why(why, self.sel)))
 
     def close(self) -> None:
         """Nothing to close in text."""
@@ -98,6 +99,12 @@ def _optimum_line(optimum: dict[str, object]) -> str:
         f"  optimal for {goal}: weighted sum {optimum['weighted_sum']:g} "
         f"(proven by {optimum['engine']})\n"
     )
+
+
+def _why(why: str | None, sel: Selection) -> str | None:
+    """Say why there is none with a ruled-out component's condition where the solver, which
+    sees it as unusable, says "has failed" (as ``plan``'s report does)."""
+    return None if why is None else reworded([why], sel)[0]
 
 
 def _heading(s: InteroperabilitySchema) -> str:
@@ -122,6 +129,7 @@ class JsonReporter:
 
     def __init__(self, sel: Selection, write: Callable[[str], None]) -> None:
         self.write = write
+        self.sel = sel
         self.first_schema = True
         self.first_config = True
         head: dict[str, object] = {
@@ -170,7 +178,7 @@ class JsonReporter:
             "count": total,
             "count_text": None if total is None else str(total),
             "limit_reached": limit_reached,
-            "why_not": why,
+            "why_not": _why(why, self.sel),
         }
         if optimum is not None:  # --best: what the configuration is optimal for
             tail["optimum"] = optimum
